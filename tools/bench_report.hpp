@@ -1,0 +1,37 @@
+#pragma once
+// The one output path of every `deepnav bench` subcommand: a titled table printed
+// readably on stdout and, with --json FILE, the same figures as JSON.
+#include <nlohmann/json.hpp>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace deepnav::cli {
+
+class BenchReport {
+ public:
+  using Cell = std::variant<std::string, double, long long>;
+
+  BenchReport(std::string title, std::vector<std::string> columns);
+  /// Number of decimals used when printing double cells of a column (default 3).
+  void set_precision(const std::string& column, int decimals);
+  void add_row(std::vector<Cell> row);
+  /// Free-form figures that are not per-row (machine, settings, totals).
+  void add_note(const std::string& key, nlohmann::json value);
+
+  std::string to_text() const;
+  nlohmann::json to_json() const;
+  /// Prints the table to stdout and, when json_path is not empty, writes the JSON
+  /// (throws UserError naming the path when it cannot be written).
+  void emit(const std::string& json_path) const;
+
+ private:
+  std::string format_cell(std::size_t column, const Cell& cell) const;
+  std::string title_;
+  std::vector<std::string> columns_;
+  std::vector<int> precision_;
+  std::vector<std::vector<Cell>> rows_;
+  nlohmann::json notes_ = nlohmann::json::object();
+};
+
+}  // namespace deepnav::cli

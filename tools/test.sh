@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Installs what is missing, builds and runs the whole test suite with ctest.
+#   tools/test.sh              Release build in build/
+#   tools/test.sh --sanitize   ASan+UBSan build in build-sanitize/
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+build="$root/build"
+cmake_args=(-DDEEPNAV_WERROR=ON)
+for arg in "$@"; do
+  case "$arg" in
+    --sanitize) build="$root/build-sanitize"; cmake_args+=(-DDEEPNAV_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDEEPNAV_BUILD_BENCHMARKS=OFF) ;;
+    *) echo "tools/test.sh: unknown option '$arg' (expected --sanitize)" >&2; exit 2 ;;
+  esac
+done
+"$root/tools/install_deps.sh"
+jobs=$(nproc)
+cmake -S "$root" -B "$build" -G Ninja "${cmake_args[@]}"
+cmake --build "$build" -j "$jobs"
+cd "$build"
+ctest --output-on-failure -j "$jobs" --timeout 600
