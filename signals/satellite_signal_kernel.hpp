@@ -1,0 +1,25 @@
+#pragma once
+// The synthesizer's hot loop: adds one satellite's C/A signal to a block of samples.
+// Within a segment code rate and carrier frequency are constant (the caller
+// recomputes them from exact geometry every millisecond), so the code index is a
+// fixed-point accumulator and the carrier a phasor rotated by a constant step.
+#include <cstdint>
+
+#include "signals/ca_code.hpp"
+
+namespace deepnav {
+
+struct SignalSegment {
+  double carrier_phase_cycles = 0.0;  ///< phase of the first sample
+  double carrier_step_cycles = 0.0;   ///< phase advance per sample (IF + Doppler) / fs
+  double code_phase_chips = 0.0;      ///< code phase of the first sample, in [0, 1023)
+  double code_step_chips = 0.0;       ///< code advance per sample (code rate / fs)
+  float amplitude = 0.0f;             ///< sqrt(C) times the data bit (+1/-1)
+};
+
+/// i_out[k] += a c(k) cos(2 pi phi(k)), q_out[k] += a c(k) sin(2 pi phi(k)) for k in [0, n).
+/// `scratch` must hold n floats. The code index wraps modulo 1023.
+void add_satellite_segment(float* i_out, float* q_out, int n, const SignalSegment& segment, const CaCodeChips& code,
+                           float* scratch);
+
+}  // namespace deepnav
