@@ -32,6 +32,9 @@ struct Ephemeris {
   double cuc_rad = 0.0, cus_rad = 0.0, crc_m = 0.0, crs_m = 0.0, cic_rad = 0.0, cis_rad = 0.0;
   double aodo_s = 0.0;     ///< age of data offset (subframe 2)
   double transmission_time_s = 0.0;  ///< when known (RINEX), seconds of week
+  /// Whether transmission_time_s holds a value (RINEX writes 0.9999e9 when it does not).
+  /// May be negative or beyond a week when it refers to the week before/after toe's.
+  bool transmission_time_known = false;
 
   bool healthy() const { return health == 0; }
 };
@@ -54,5 +57,10 @@ double l1_clock_correction_s(const Ephemeris& eph, const GpsTime& t);
 /// Rotates a satellite position from the ECEF frame at transmission time into the ECEF frame at
 /// reception time, flight time tau_s later (Sagnac / Earth-rotation correction).
 Eigen::Vector3d earth_rotation_corrected(const Eigen::Vector3d& r_ecef_at_tx, double tau_s);
+
+/// Curve fit interval of the data set (IS-GPS-200 20.3.3.4.3.1 and Tables 20-XI/XII): 4 h when
+/// the fit interval flag is 0, otherwise the extended interval that the IODC indicates.
+/// The data set is valid from toe - interval/2 to toe + interval/2.
+double fit_interval_s(const Ephemeris& eph);
 
 }  // namespace deepnav

@@ -1,0 +1,45 @@
+#pragma once
+// GPS broadcast navigation files: reader for RINEX 2.10/2.11 and 3.0x (GPS records of
+// mixed files; other systems are skipped), writer for RINEX 3.04 GPS navigation files.
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "ins/gps_time.hpp"
+#include "signals/ephemeris.hpp"
+#include "signals/iono_utc.hpp"
+
+namespace deepnav {
+
+struct NavData {
+  std::vector<Ephemeris> ephemerides;  ///< GPS records in file order (duplicates kept)
+  IonoParameters iono;                 ///< from ION ALPHA/BETA or IONOSPHERIC CORR GPSA/GPSB
+  /// From DELTA-UTC (RINEX 2) or TIME SYSTEM CORR GPUT (RINEX 3) and LEAP SECONDS. RINEX
+  /// gives the full week number in wnt (not the 8 LSBs LNAV carries). valid is set when
+  /// the A0/A1 line was present; delta_t_ls alone comes from LEAP SECONDS.
+  UtcParameters utc;
+  bool leap_seconds_valid = false;
+  double rinex_version = 0.0;
+  int skipped_records = 0;  ///< records of other satellite systems in mixed files
+
+  /// The healthy ephemeris of `prn` with the toe closest to t among those whose fit
+  /// interval contains t. Data sets whose transmission time is known and later than t
+  /// are used only when no other one qualifies. nullptr when none qualifies.
+  const Ephemeris* select(int prn, const GpsTime& t) const;
+};
+
+/// Reads a RINEX 2.10/2.11/3.0x navigation file. Throws std::runtime_error naming the file
+/// and line ("brdc0010.22n:123: ...") on a missing, empty, truncated or malformed file.
+NavData read_rinex_nav(const std::string& path);
+/// Same from a stream; `name` is used in error messages.
+NavData read_rinex_nav(std::istream& in, const std::string& name);
+
+/// Writes a RINEX 3.04 GPS navigation file. The header date is the latest toc in the data
+/// (not the wall clock), so equal inputs give equal bytes.
+void write_rinex3_nav(std::ostream& out, const NavData& nav, const std::string& program_name);
+
+/// URA index (IS-GPS-200 20.3.3.3.1.3) <-> accuracy in metres as RINEX stores it.
+int ura_index_from_metres(double ura_m);
+double ura_metres_from_index(int ura_index);
+
+}  // namespace deepnav
