@@ -130,11 +130,14 @@ void ChirpGenerator::generate(std::span<std::complex<float>> out, std::int64_t f
     const std::int64_t sweep = sweep_of(sample);
     const std::int64_t end = std::min({sweep_start_sample(sweep + 1), (floor_div(sample, kSegment) + 1) * kSegment,
                                        first_sample + n});
-    const double tau = (static_cast<double>(sample) - static_cast<double>(sweep) * period_s_ * fs_) / fs_;
+    // The recurrence always starts at the segment's own start, even when the block begins
+    // inside the segment, so every sample is computed the same way.
+    const std::int64_t anchor = std::max(sweep_start_sample(sweep), floor_div(sample, kSegment) * kSegment);
+    const double tau = (static_cast<double>(anchor) - static_cast<double>(sweep) * period_s_ * fs_) / fs_;
     std::complex<double> z = unit_phasor(phase_cycles(sweep, tau)) * static_cast<double>(amplitude);
     std::complex<double> w = unit_phasor((f_low_hz_ + bandwidth_hz_ * tau / period_s_) / fs_ + 0.5 * a);
-    for (std::int64_t s = sample; s < end; ++s, ++k) {
-      out[static_cast<std::size_t>(k)] = {static_cast<float>(z.real()), static_cast<float>(z.imag())};
+    for (std::int64_t s = anchor; s < end; ++s) {
+      if (s >= sample) out[static_cast<std::size_t>(k++)] = {static_cast<float>(z.real()), static_cast<float>(z.imag())};
       const double zr = z.real() * w.real() - z.imag() * w.imag();
       const double zi = z.real() * w.imag() + z.imag() * w.real();
       z = {zr, zi};
