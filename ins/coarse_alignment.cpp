@@ -164,8 +164,9 @@ StationarityReport check_stationary(std::span<const Eigen::Vector3d> f_b_mps2,
 
   // Sample std tolerance: the configured ratio, widened by the estimator's own spread.
   const double std_slack = limits.noise_ratio_limit * (1.0 + 3.0 / std::sqrt(2.0 * (n - 1.0)));
-  const double accel_std_max = std_slack * limits.accel_noise_mps2;
-  const double gyro_std_max = std_slack * limits.gyro_noise_radps;
+  // Floors keep noise-free (simulated) data from failing on rounding.
+  const double accel_std_max = std::max(std_slack * limits.accel_noise_mps2, 1e-9);
+  const double gyro_std_max = std::max(std_slack * limits.gyro_noise_radps, 1e-12);
   // The mean itself is uncertain by noise/sqrt(n); allow 5 sigma of that on top of the bias.
   const double norm_tol = limits.accel_bias_mps2 + 5.0 * limits.accel_noise_mps2 / std::sqrt(n);
   const double rate_max = wgs84::kEarthRate_radps + limits.gyro_bias_radps + 5.0 * limits.gyro_noise_radps / std::sqrt(n);
