@@ -500,7 +500,7 @@ TEST(LnavMessage, ReservedPagesCarryAlternatingFill) {
     const auto sf = decode_subframe(words);
     ASSERT_TRUE(sf.has_value()) << page;
     EXPECT_EQ(sf->sv_id, page_sv_id(4, page));
-    // Word 4 follows word 3 whose last bit is uncomplemented data only if D30 = 0; restore.
+    // Word 4 is all fill: its data bits, polarity restored with D29*/D30* of word 3, alternate.
     const auto data4 = check_word(words[3], word_d29(words[2]), word_d30(words[2]));
     ASSERT_TRUE(data4.has_value());
     EXPECT_TRUE(*data4 == 0xAAAAAAu || *data4 == 0x555555u) << std::hex << *data4;
