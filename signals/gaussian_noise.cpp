@@ -34,6 +34,15 @@ const ZigguratTables& tables() {
   return t;
 }
 
+const std::array<float, kLayers + 1>& float_edges() {
+  static const std::array<float, kLayers + 1> edges = [] {
+    std::array<float, kLayers + 1> e{};
+    for (int i = 0; i <= kLayers; ++i) e[i] = static_cast<float>(tables().x[i]);
+    return e;
+  }();
+  return edges;
+}
+
 double uniform53(std::uint64_t bits) { return static_cast<double>(bits >> 11) * kTwoPowMinus53; }
 
 }  // namespace
@@ -87,24 +96,63 @@ double GaussianNoise::next() {
   return slow_path(bits);
 }
 
+// Block fill: each 64-bit word feeds two draws, one from each 32-bit half (layer in bits
+// 0-7, sign in bit 8, a 23-bit uniform in bits 9-31 -- float resolution, disjoint fields).
+// A draw that misses its layer's core finishes the ziggurat for that same point (tail or
+// wedge test); a wedge rejection restarts with the full 64-bit sampler, which is itself
+// exact, so the result is N(0, 1) either way.
+double GaussianNoise::finish_half(std::uint32_t half) {
+  const ZigguratTables& t = tables();
+  const int i = static_cast<int>(half & 0xFF);
+  const double sign = (half & 0x100) ? -1.0 : 1.0;
+  const double x = static_cast<double>(half >> 9) * (1.0 / 8388608.0) * t.x[i];
+  if (x < t.x[i + 1]) return sign * x;
+  if (i == 0) {
+    double xt, y;
+    do {
+      xt = -std::log(uniform53(rng_()) + kTwoPowMinus53) / kR;
+      y = -std::log(uniform53(rng_()) + kTwoPowMinus53);
+    } while (y + y < xt * xt);
+    return sign * (kR + xt);
+  }
+  const double y = t.f[i] + uniform53(rng_()) * (t.f[i + 1] - t.f[i]);
+  if (y < density(x)) return sign * x;
+  return next();
+}
+
 template <bool kAdd>
 void GaussianNoise::generate(float* out, std::size_t count, float sigma) {
-  const ZigguratTables& t = tables();
-  const double* x_edge = t.x.data();
-  for (std::size_t k = 0; k < count; ++k) {
-    const std::uint64_t bits = rng_();
-    const int i = static_cast<int>(bits & 0xFF);
-    double x = uniform53(bits) * x_edge[i];
-    if (x < x_edge[i + 1]) [[likely]] {
-      if (bits & 0x100) x = -x;
-    } else {
-      x = slow_path(bits);
-    }
-    const float v = sigma * static_cast<float>(x);
+  const float* x_edge = float_edges().data();
+  auto draw = [&](std::uint32_t half) {
+    const int i = static_cast<int>(half & 0xFF);
+    float x = static_cast<float>(static_cast<std::int32_t>(half >> 9)) * (1.0f / 8388608.0f) * x_edge[i];
+    if (x < x_edge[i + 1]) [[likely]]
+      return (half & 0x100) ? -x : x;
+    return static_cast<float>(finish_half(half));
+  };
+  auto put = [&](std::size_t k, float v) {
     if constexpr (kAdd)
-      out[k] += v;
+      out[k] += sigma * v;
     else
-      out[k] = v;
+      out[k] = sigma * v;
+  };
+  // A half word left over by the previous call is used first, so the draw sequence does
+  // not depend on how the stream is cut into calls.
+  std::size_t k = 0;
+  if (has_pending_ && count > 0) {
+    put(k++, draw(pending_));
+    has_pending_ = false;
+  }
+  for (; k + 2 <= count; k += 2) {
+    const std::uint64_t bits = rng_();
+    put(k, draw(static_cast<std::uint32_t>(bits)));
+    put(k + 1, draw(static_cast<std::uint32_t>(bits >> 32)));
+  }
+  if (k < count) {
+    const std::uint64_t bits = rng_();
+    put(k, draw(static_cast<std::uint32_t>(bits)));
+    pending_ = static_cast<std::uint32_t>(bits >> 32);
+    has_pending_ = true;
   }
 }
 

@@ -9,7 +9,9 @@
 // The ziggurat is exact up to floating-point rounding: about 99% of draws are one
 // multiply and one compare; the rest evaluate the wedge under exp(-x^2/2) or the
 // |x| > 3.654 tail with Marsaglia's exponential method, so the tails are right
-// out to the 53-bit resolution of the uniforms (no table truncation).
+// out to the resolution of the uniforms (no table truncation). next() takes one 64-bit
+// word per draw (53-bit uniform); the block fills take two draws per word, one per 32-bit
+// half with a 23-bit uniform, which is the resolution of the float samples they produce.
 //
 // Noise power convention of the synthesizer (N0 = 1): complex baseband noise at
 // sample rate fs has total variance N0*fs, i.e. sigma = sqrt(fs/2) per component;
@@ -63,9 +65,12 @@ class GaussianNoise {
 
  private:
   double slow_path(std::uint64_t bits);
+  double finish_half(std::uint32_t half);
   template <bool kAdd>
   void generate(float* out, std::size_t count, float sigma);
   Xoshiro256ss rng_;
+  std::uint32_t pending_ = 0;  ///< unused upper half of the last word of a block fill
+  bool has_pending_ = false;
 };
 
 /// Per-component standard deviation of thermal noise with N0 = 1 at sample rate
