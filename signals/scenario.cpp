@@ -1,0 +1,443 @@
+#include "signals/scenario.hpp"
+
+#include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+namespace deepnav {
+namespace {
+
+constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+
+/// A YAML node together with its dotted path, so that every error names the field.
+class Field {
+ public:
+  Field(YAML::Node node, std::string path, const std::string* origin) : node_(std::move(node)), path_(std::move(path)), origin_(origin) {}
+
+  [[noreturn]] void fail(const std::string& what) const {
+    const auto mark = node_.Mark();
+    const std::string where = mark.line >= 0 ? fmt::format("{}:{}", *origin_, mark.line + 1) : *origin_;
+    throw std::invalid_argument(fmt::format("{}: field '{}': {}", where, path_, what));
+  }
+  bool has(const std::string& key) const { return node_.IsMap() && node_[key].IsDefined() && !node_[key].IsNull(); }
+  Field operator[](const std::string& key) const {
+    return Field(node_[key], path_.empty() ? key : path_ + "." + key, origin_);
+  }
+  Field at(std::size_t i) const { return Field(node_[i], fmt::format("{}[{}]", path_, i), origin_); }
+  std::size_t size() const { return node_.size(); }
+  bool is_map() const { return node_.IsMap(); }
+  bool is_sequence() const { return node_.IsSequence(); }
+  bool is_scalar() const { return node_.IsScalar(); }
+
+  /// Rejects keys that the schema does not know (typos would otherwise be ignored silently).
+  void allow_only(std::initializer_list<const char*> keys) const {
+    if (!node_.IsMap()) fail("expected a mapping");
+    const std::set<std::string> allowed(keys.begin(), keys.end());
+    for (const auto& item : node_) {
+      const auto key = item.first.as<std::string>();
+      if (!allowed.count(key)) {
+        std::string list;
+        for (const auto& k : allowed) list += (list.empty() ? "" : ", ") + k;
+        Field(item.first, path_.empty() ? key : path_ + "." + key, origin_).fail("unknown field (expected one of: " + list + ")");
+      }
+    }
+  }
+
+  double number() const {
+    if (!node_.IsScalar()) fail("expected a number");
+    try {
+      const double v = node_.as<double>();
+      if (!std::isfinite(v)) fail("expected a finite number, got '" + node_.Scalar() + "'");
+      return v;
+    } catch (const YAML::Exception&) {
+      fail("expected a number, got '" + node_.Scalar() + "'");
+    }
+  }
+  double number_in(double lo, double hi) const {
+    const double v = number();
+    if (v < lo || v > hi) fail(fmt::format("{} is out of range [{}, {}]", v, lo, hi));
+    return v;
+  }
+  long long integer_in(long long lo, long long hi) const {
+    const double v = number();
+    if (v != std::floor(v)) fail(fmt::format("expected an integer, got {}", v));
+    if (v < static_cast<double>(lo) || v > static_cast<double>(hi)) fail(fmt::format("{} is out of range [{}, {}]", v, lo, hi));
+    return static_cast<long long>(v);
+  }
+  std::string text() const {
+    if (!node_.IsScalar()) fail("expected a string");
+    return node_.Scalar();
+  }
+  bool boolean() const {
+    if (!node_.IsScalar()) fail("expected true or false");
+    try {
+      return node_.as<bool>();
+    } catch (const YAML::Exception&) {
+      fail("expected true or false, got '" + node_.Scalar() + "'");
+    }
+  }
+  std::vector<int> prn_list() const {
+    if (!node_.IsSequence()) fail("expected a list of PRNs");
+    std::vector<int> prns;
+    for (std::size_t i = 0; i < size(); ++i) prns.push_back(static_cast<int>(at(i).integer_in(1, 32)));
+    return prns;
+  }
+
+ private:
+  YAML::Node node_;
+  std::string path_;
+  const std::string* origin_;
+};
+
+std::string resolve_path(const std::string& path, const std::string& base_dir, const std::string& search_root) {
+  namespace fs = std::filesystem;
+  if (fs::path(path).is_absolute()) return path;
+  const fs::path from_base = fs::path(base_dir) / path;
+  if (fs::exists(from_base) || search_root.empty()) return from_base.lexically_normal().string();
+  const fs::path from_root = fs::path(search_root) / path;
+  if (fs::exists(from_root)) return from_root.lexically_normal().string();
+  return from_base.lexically_normal().string();  // the existence check names this one
+}
+
+/// start_time: "YYYY-MM-DDThh:mm:ss" (GPS time scale) or {week: W, sow: S}.
+GpsTime parse_start_time(const Field& f) {
+  if (f.is_map()) {
+    f.allow_only({"week", "sow"});
+    return GpsTime::normalized(static_cast<int>(f["week"].integer_in(0, 10000)), f["sow"].number_in(0, kSecondsPerWeek - 1e-9));
+  }
+  CalendarTime c;
+  const std::string s = f.text();
+  char t_sep = 0;
+  std::istringstream in(s);
+  char d1 = 0, d2 = 0, c1 = 0, c2 = 0;
+  in >> c.year >> d1 >> c.month >> d2 >> c.day >> t_sep >> c.hour >> c1 >> c.minute >> c2 >> c.second;
+  if (!in || d1 != '-' || d2 != '-' || (t_sep != 'T' && t_sep != ' ') || c1 != ':' || c2 != ':' || c.month < 1 ||
+      c.month > 12 || c.day < 1 || c.day > 31 || c.hour > 23 || c.minute > 59 || c.second >= 60.0 || c.year < 1980)
+    f.fail("expected a GPS time like \"2022-01-01T02:00:00\" or {week: 2190, sow: 525600}, got '" + s + "'");
+  return gps_time_from_calendar(c);
+}
+
+TrajectorySpec parse_trajectory(const Field& f, const std::string& base_dir, const std::string& search_root) {
+  f.allow_only({"preset", "file", "start", "heading_deg"});
+  TrajectorySpec spec;
+  if (f.has("preset") && f.has("file")) f.fail("give either 'preset' or 'file', not both");
+  if (f.has("file")) {
+    spec.preset.clear();
+    spec.csv_path = resolve_path(f["file"].text(), base_dir, search_root);
+    if (!std::filesystem::exists(spec.csv_path)) f["file"].fail("trajectory file '" + spec.csv_path + "' does not exist");
+  } else if (f.has("preset")) {
+    spec.preset = f["preset"].text();
+  }
+  if (f.has("start")) {
+    const Field s = f["start"];
+    s.allow_only({"lat_deg", "lon_deg", "height_m"});
+    spec.start.lat_rad = s["lat_deg"].number_in(-90, 90) * kDegToRad;
+    spec.start.lon_rad = s["lon_deg"].number_in(-180, 360) * kDegToRad;
+    spec.start.height_m = s.has("height_m") ? s["height_m"].number_in(-500, 100000) : 0.0;
+  } else {
+    spec.start = {37.5 * kDegToRad, 127.0 * kDegToRad, 50.0};
+  }
+  if (f.has("heading_deg")) spec.heading_rad = f["heading_deg"].number_in(-360, 360) * kDegToRad;
+  return spec;
+}
+
+Cn0Spec parse_cn0(const Field& f) {
+  Cn0Spec spec;
+  if (f.is_scalar()) {  // shorthand: cn0: 45
+    spec.fixed_dbhz = f.number_in(0, 80);
+    return spec;
+  }
+  f.allow_only({"model", "dbhz", "zenith_dbhz", "horizon_dbhz", "per_prn", "ramp"});
+  const std::string model = f.has("model") ? f["model"].text() : "fixed";
+  if (model == "fixed") {
+    spec.model = Cn0Spec::Model::fixed;
+  } else if (model == "elevation") {
+    spec.model = Cn0Spec::Model::elevation;
+  } else {
+    f["model"].fail("expected 'fixed' or 'elevation', got '" + model + "'");
+  }
+  if (f.has("dbhz")) spec.fixed_dbhz = f["dbhz"].number_in(0, 80);
+  if (f.has("zenith_dbhz")) spec.zenith_dbhz = f["zenith_dbhz"].number_in(0, 80);
+  if (f.has("horizon_dbhz")) spec.horizon_dbhz = f["horizon_dbhz"].number_in(0, 80);
+  if (spec.horizon_dbhz > spec.zenith_dbhz) f["horizon_dbhz"].fail("must not exceed zenith_dbhz");
+  if (f.has("per_prn")) {
+    const Field per = f["per_prn"];
+    if (!per.is_map()) per.fail("expected a mapping PRN: dB-Hz");
+    for (int prn = 1; prn <= 32; ++prn)
+      if (per.has(std::to_string(prn))) spec.per_prn_dbhz[prn] = per[std::to_string(prn)].number_in(0, 80);
+    if (spec.per_prn_dbhz.size() != per.size()) per.fail("keys must be PRNs 1..32");
+  }
+  if (f.has("ramp")) {
+    const Field r = f["ramp"];
+    r.allow_only({"start_s", "end_s", "delta_db"});
+    spec.ramp_start_s = r["start_s"].number_in(0, 1e7);
+    spec.ramp_end_s = r["end_s"].number_in(0, 1e7);
+    spec.ramp_delta_db = r["delta_db"].number_in(-80, 80);
+    if (spec.ramp_end_s <= spec.ramp_start_s) r["end_s"].fail("must be after start_s");
+  }
+  return spec;
+}
+
+ReceiverClockSpec parse_clock(const Field& f) {
+  f.allow_only({"bias_s", "drift_sps", "drift_ppm", "oscillator", "h0", "h_minus2"});
+  ReceiverClockSpec spec;
+  if (f.has("bias_s")) spec.bias_s = f["bias_s"].number_in(-1.0, 1.0);
+  if (f.has("drift_sps") && f.has("drift_ppm")) f.fail("give drift_sps or drift_ppm, not both");
+  if (f.has("drift_sps")) spec.drift_sps = f["drift_sps"].number_in(-1e-4, 1e-4);
+  if (f.has("drift_ppm")) spec.drift_sps = f["drift_ppm"].number_in(-100, 100) * 1e-6;
+  if (f.has("oscillator")) spec.oscillator = f["oscillator"].text();
+  // Allan variance coefficients (Brown & Hwang, Introduction to Random Signals, table 9.1).
+  if (spec.oscillator == "ideal") {
+    spec.h0 = spec.h_minus2 = 0.0;
+  } else if (spec.oscillator == "tcxo") {
+    spec.h0 = 2e-19;
+    spec.h_minus2 = 2e-20;
+  } else if (spec.oscillator == "ocxo") {
+    spec.h0 = 8e-20;
+    spec.h_minus2 = 4e-23;
+  } else if (spec.oscillator == "custom") {
+    spec.h0 = f["h0"].number_in(0, 1e-15);
+    spec.h_minus2 = f["h_minus2"].number_in(0, 1e-15);
+  } else {
+    f["oscillator"].fail("expected ideal, tcxo, ocxo or custom, got '" + spec.oscillator + "'");
+  }
+  return spec;
+}
+
+JammerConfig parse_jammer(const Field& f) {
+  f.allow_only({"type", "js_db", "offset_hz", "bandwidth_hz", "sweep_period_s", "duty_cycle", "pulse_rate_hz",
+                "start_s", "end_s"});
+  JammerConfig j;
+  const std::string type = f["type"].text();
+  try {
+    j.type = parse_jammer_type(type);
+  } catch (const std::invalid_argument& e) {
+    f["type"].fail(e.what());
+  }
+  j.js_db = f["js_db"].number_in(-50, 120);
+  if (f.has("offset_hz")) j.center_offset_hz = f["offset_hz"].number();
+  if (f.has("bandwidth_hz")) j.bandwidth_hz = f["bandwidth_hz"].number_in(0, 1e9);
+  if (f.has("sweep_period_s")) j.sweep_period_s = f["sweep_period_s"].number_in(0, 1e3);
+  if (f.has("duty_cycle")) j.duty_cycle = f["duty_cycle"].number_in(1e-6, 1.0);
+  if (f.has("pulse_rate_hz")) j.pulse_rate_hz = f["pulse_rate_hz"].number_in(0, 1e8);
+  if (f.has("start_s")) j.start_s = f["start_s"].number_in(0, 1e7);
+  if (f.has("end_s")) j.end_s = f["end_s"].number_in(0, 1e7);
+  return j;
+}
+
+std::vector<OutageSpec> parse_outages(const Field& f) {
+  if (!f.is_sequence()) f.fail("expected a list of {start_s, end_s, prns}");
+  std::vector<OutageSpec> out;
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    const Field o = f.at(i);
+    o.allow_only({"start_s", "end_s", "prns"});
+    OutageSpec spec;
+    spec.start_s = o["start_s"].number_in(0, 1e7);
+    spec.end_s = o["end_s"].number_in(0, 1e7);
+    if (spec.end_s <= spec.start_s) o["end_s"].fail("must be after start_s");
+    if (o.has("prns")) spec.prns = o["prns"].prn_list();
+    out.push_back(spec);
+  }
+  return out;
+}
+
+}  // namespace
+
+Scenario parse_scenario(const std::string& yaml_text, const std::string& origin, const std::string& base_dir,
+                        const std::string& search_root) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::Exception& e) {
+    throw std::invalid_argument(fmt::format("{}:{}: not valid YAML/JSON: {}", origin, e.mark.line + 1, e.msg));
+  }
+  const Field f(root, "", &origin);
+  if (!root.IsMap()) throw std::invalid_argument(origin + ": expected a scenario mapping at the top level");
+  f.allow_only({"name", "start_time", "duration_s", "sample_rate_hz", "if_hz", "format", "adc", "nav_file",
+                "trajectory", "elevation_mask_deg", "prns", "max_satellites", "cn0", "receiver_clock", "ionosphere",
+                "troposphere", "seed", "jammers", "outages", "truth_rate_hz", "sat_truth_rate_hz"});
+  Scenario s;
+  s.source_path = origin;
+  s.name = f.has("name") ? f["name"].text() : std::filesystem::path(origin).stem().string();
+  if (!f.has("start_time")) f.fail("missing required field 'start_time'");
+  s.start_time = parse_start_time(f["start_time"]);
+  if (!f.has("duration_s")) f.fail("missing required field 'duration_s'");
+  s.duration_s = f["duration_s"].number();
+  if (s.duration_s <= 0) f["duration_s"].fail(fmt::format("must be positive, got {}", s.duration_s));
+  if (s.duration_s > 86400) f["duration_s"].fail("must be at most 86400 s");
+  if (f.has("sample_rate_hz")) s.sample_rate_hz = f["sample_rate_hz"].number_in(1e5, 1e8);
+  if (std::floor(s.sample_rate_hz) != s.sample_rate_hz) f["sample_rate_hz"].fail("must be a whole number of Hz");
+  if (f.has("if_hz")) s.if_hz = f["if_hz"].number_in(-s.sample_rate_hz / 2, s.sample_rate_hz / 2);
+  if (f.has("format")) {
+    try {
+      s.format = parse_sample_format(f["format"].text());
+    } catch (const std::invalid_argument& e) {
+      f["format"].fail(e.what());
+    }
+  }
+  if (f.has("adc")) {
+    const Field a = f["adc"];
+    a.allow_only({"bits", "agc", "agc_time_constant_s"});
+    if (a.has("bits")) s.adc.bits = static_cast<int>(a["bits"].integer_in(0, 16));
+    if (a.has("agc")) s.adc.agc = a["agc"].boolean();
+    if (a.has("agc_time_constant_s")) s.adc.agc_time_constant_s = a["agc_time_constant_s"].number_in(1e-6, 100);
+  }
+  const std::string nav = f.has("nav_file") ? f["nav_file"].text() : "data/brdc0010.22n";
+  s.nav_file = resolve_path(nav, base_dir, search_root);
+  if (!std::filesystem::exists(s.nav_file)) {
+    if (f.has("nav_file")) f["nav_file"].fail("navigation file '" + s.nav_file + "' does not exist");
+    throw std::invalid_argument(origin + ": default navigation file '" + s.nav_file + "' does not exist (set nav_file)");
+  }
+  if (f.has("trajectory")) s.trajectory = parse_trajectory(f["trajectory"], base_dir, search_root);
+  if (f.has("elevation_mask_deg")) s.elevation_mask_rad = f["elevation_mask_deg"].number_in(-10, 90) * kDegToRad;
+  if (f.has("prns")) s.prns = f["prns"].prn_list();
+  if (f.has("max_satellites")) s.max_satellites = static_cast<int>(f["max_satellites"].integer_in(1, 32));
+  if (f.has("cn0")) s.cn0 = parse_cn0(f["cn0"]);
+  if (f.has("receiver_clock")) s.clock = parse_clock(f["receiver_clock"]);
+  if (f.has("ionosphere")) s.ionosphere = f["ionosphere"].boolean();
+  if (f.has("troposphere")) s.troposphere = f["troposphere"].boolean();
+  if (f.has("seed")) s.seed = static_cast<std::uint64_t>(f["seed"].integer_in(0, (1LL << 53)));
+  if (f.has("jammers")) {
+    const Field j = f["jammers"];
+    if (!j.is_sequence()) j.fail("expected a list of jammers");
+    for (std::size_t i = 0; i < j.size(); ++i) s.jammers.push_back(parse_jammer(j.at(i)));
+  }
+  if (f.has("outages")) s.outages = parse_outages(f["outages"]);
+  if (f.has("truth_rate_hz")) s.truth_rate_hz = f["truth_rate_hz"].number_in(0.1, 1000);
+  if (f.has("sat_truth_rate_hz")) s.sat_truth_rate_hz = f["sat_truth_rate_hz"].number_in(0.1, 1000);
+  try {
+    validate_scenario(s);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(origin + ": " + e.what());
+  }
+  return s;
+}
+
+void validate_scenario(const Scenario& s) {
+  if (s.format == SampleFormat::byte && s.if_hz == 0.0)
+    throw std::invalid_argument("field 'if_hz': real sample format 'byte' needs a non-zero IF (the signal would alias onto itself)");
+  if (s.format == SampleFormat::byte && std::abs(s.if_hz) + 1.1e6 > s.sample_rate_hz / 2)
+    throw std::invalid_argument(fmt::format("field 'if_hz': real sampling at {} Hz cannot hold the 2 MHz C/A band at IF {} Hz",
+                                            s.sample_rate_hz, s.if_hz));
+  if (s.sample_rate_hz < 1.023e6 * 1.0)
+    throw std::invalid_argument("field 'sample_rate_hz': must be at least 1.023 MHz for the C/A code");
+  // The synthesizer works in 1 ms epochs of a whole number of samples.
+  if (std::fmod(s.sample_rate_hz, 1000.0) != 0.0)
+    throw std::invalid_argument(fmt::format("field 'sample_rate_hz': {} Hz is not a multiple of 1000 Hz", s.sample_rate_hz));
+  if (s.duration_s < 1e-3) throw std::invalid_argument("field 'duration_s': must be at least 0.001 s");
+  for (const auto& [name, rate] : {std::pair<const char*, double>{"truth_rate_hz", s.truth_rate_hz},
+                                   std::pair<const char*, double>{"sat_truth_rate_hz", s.sat_truth_rate_hz}}) {
+    const double stride = 1000.0 / rate;
+    if (std::abs(stride - std::round(stride)) > 1e-9)
+      throw std::invalid_argument(fmt::format("field '{}': {} Hz does not divide 1000 Hz (truth rows fall on whole milliseconds)", name, rate));
+  }
+  const int max_bits = s.format == SampleFormat::ishort ? 16 : (s.format == SampleFormat::gr_complex ? 16 : 8);
+  if (s.adc.bits > max_bits)
+    throw std::invalid_argument(fmt::format("field 'adc.bits': {} bits do not fit format '{}' (at most {})", s.adc.bits,
+                                            to_string(s.format), max_bits));
+  for (std::size_t i = 0; i < s.jammers.size(); ++i) {
+    try {
+      validate_jammer(s.jammers[i], s.sample_rate_hz, s.if_hz);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(fmt::format("field 'jammers[{}]': {}", i, e.what()));
+    }
+  }
+}
+
+Scenario load_scenario(const std::string& path, const std::string& search_root) {
+  std::ifstream in(path);
+  if (!in) throw std::invalid_argument("cannot open scenario file '" + path + "'");
+  std::stringstream text;
+  text << in.rdbuf();
+  if (text.str().find_first_not_of(" \t\r\n") == std::string::npos)
+    throw std::invalid_argument("scenario file '" + path + "' is empty");
+  const std::string base_dir = std::filesystem::absolute(path).parent_path().string();
+  return parse_scenario(text.str(), path, base_dir, search_root);
+}
+
+std::string scenario_to_yaml(const Scenario& s) {
+  constexpr double r2d = 180.0 / 3.14159265358979323846;
+  YAML::Emitter out;
+  out.SetDoublePrecision(15);
+  out << YAML::BeginMap;
+  out << YAML::Key << "name" << YAML::Value << s.name;
+  out << YAML::Key << "start_time" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "week" << YAML::Value
+      << s.start_time.week << YAML::Key << "sow" << YAML::Value << s.start_time.sow << YAML::EndMap;
+  out << YAML::Key << "duration_s" << YAML::Value << s.duration_s;
+  out << YAML::Key << "sample_rate_hz" << YAML::Value << s.sample_rate_hz;
+  out << YAML::Key << "if_hz" << YAML::Value << s.if_hz;
+  out << YAML::Key << "format" << YAML::Value << std::string(to_string(s.format));
+  out << YAML::Key << "adc" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "bits" << YAML::Value
+      << s.adc.bits << YAML::Key << "agc" << YAML::Value << s.adc.agc << YAML::Key << "agc_time_constant_s"
+      << YAML::Value << s.adc.agc_time_constant_s << YAML::EndMap;
+  out << YAML::Key << "nav_file" << YAML::Value << s.nav_file;
+  out << YAML::Key << "trajectory" << YAML::Value << YAML::BeginMap;
+  if (!s.trajectory.csv_path.empty()) {
+    out << YAML::Key << "file" << YAML::Value << s.trajectory.csv_path;
+  } else {
+    out << YAML::Key << "preset" << YAML::Value << s.trajectory.preset;
+  }
+  out << YAML::Key << "start" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "lat_deg" << YAML::Value
+      << s.trajectory.start.lat_rad * r2d << YAML::Key << "lon_deg" << YAML::Value << s.trajectory.start.lon_rad * r2d
+      << YAML::Key << "height_m" << YAML::Value << s.trajectory.start.height_m << YAML::EndMap;
+  out << YAML::Key << "heading_deg" << YAML::Value << s.trajectory.heading_rad * r2d << YAML::EndMap;
+  out << YAML::Key << "elevation_mask_deg" << YAML::Value << s.elevation_mask_rad * r2d;
+  if (!s.prns.empty()) out << YAML::Key << "prns" << YAML::Value << YAML::Flow << s.prns;
+  out << YAML::Key << "max_satellites" << YAML::Value << s.max_satellites;
+  out << YAML::Key << "cn0" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "model" << YAML::Value << (s.cn0.model == Cn0Spec::Model::fixed ? "fixed" : "elevation");
+  out << YAML::Key << "dbhz" << YAML::Value << s.cn0.fixed_dbhz;
+  out << YAML::Key << "zenith_dbhz" << YAML::Value << s.cn0.zenith_dbhz;
+  out << YAML::Key << "horizon_dbhz" << YAML::Value << s.cn0.horizon_dbhz;
+  if (!s.cn0.per_prn_dbhz.empty()) {
+    out << YAML::Key << "per_prn" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    for (const auto& [prn, v] : s.cn0.per_prn_dbhz) out << YAML::Key << std::to_string(prn) << YAML::Value << v;
+    out << YAML::EndMap;
+  }
+  if (s.cn0.ramp_end_s > s.cn0.ramp_start_s)
+    out << YAML::Key << "ramp" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "start_s" << YAML::Value
+        << s.cn0.ramp_start_s << YAML::Key << "end_s" << YAML::Value << s.cn0.ramp_end_s << YAML::Key << "delta_db"
+        << YAML::Value << s.cn0.ramp_delta_db << YAML::EndMap;
+  out << YAML::EndMap;
+  out << YAML::Key << "receiver_clock" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "bias_s"
+      << YAML::Value << s.clock.bias_s << YAML::Key << "drift_sps" << YAML::Value << s.clock.drift_sps << YAML::Key
+      << "oscillator" << YAML::Value << "custom" << YAML::Key << "h0" << YAML::Value << s.clock.h0 << YAML::Key
+      << "h_minus2" << YAML::Value << s.clock.h_minus2 << YAML::EndMap;
+  out << YAML::Key << "ionosphere" << YAML::Value << s.ionosphere;
+  out << YAML::Key << "troposphere" << YAML::Value << s.troposphere;
+  out << YAML::Key << "seed" << YAML::Value << s.seed;
+  if (!s.jammers.empty()) {
+    out << YAML::Key << "jammers" << YAML::Value << YAML::BeginSeq;
+    for (const auto& j : s.jammers) {
+      out << YAML::Flow << YAML::BeginMap << YAML::Key << "type" << YAML::Value << std::string(to_string(j.type))
+          << YAML::Key << "js_db" << YAML::Value << j.js_db << YAML::Key << "offset_hz" << YAML::Value
+          << j.center_offset_hz << YAML::Key << "bandwidth_hz" << YAML::Value << j.bandwidth_hz << YAML::Key
+          << "sweep_period_s" << YAML::Value << j.sweep_period_s << YAML::Key << "duty_cycle" << YAML::Value
+          << j.duty_cycle << YAML::Key << "pulse_rate_hz" << YAML::Value << j.pulse_rate_hz << YAML::Key << "start_s"
+          << YAML::Value << j.start_s << YAML::Key << "end_s" << YAML::Value << j.end_s << YAML::EndMap;
+    }
+    out << YAML::EndSeq;
+  }
+  if (!s.outages.empty()) {
+    out << YAML::Key << "outages" << YAML::Value << YAML::BeginSeq;
+    for (const auto& o : s.outages) {
+      out << YAML::Flow << YAML::BeginMap << YAML::Key << "start_s" << YAML::Value << o.start_s << YAML::Key << "end_s"
+          << YAML::Value << o.end_s;
+      if (!o.prns.empty()) out << YAML::Key << "prns" << YAML::Value << YAML::Flow << o.prns;
+      out << YAML::EndMap;
+    }
+    out << YAML::EndSeq;
+  }
+  out << YAML::Key << "truth_rate_hz" << YAML::Value << s.truth_rate_hz;
+  out << YAML::Key << "sat_truth_rate_hz" << YAML::Value << s.sat_truth_rate_hz;
+  out << YAML::EndMap;
+  return std::string(out.c_str()) + "\n";
+}
+
+}  // namespace deepnav
