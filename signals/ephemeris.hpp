@@ -33,7 +33,7 @@ struct Ephemeris {
   double aodo_s = 0.0;     ///< age of data offset (subframe 2)
   double transmission_time_s = 0.0;  ///< when known (RINEX), seconds of week
   /// Whether transmission_time_s holds a value (RINEX writes 0.9999e9 when it does not).
-  /// May be negative or beyond a week when it refers to the week before/after toe's.
+  /// The value may be negative when it refers to the week before toe's week (RINEX 3).
   bool transmission_time_known = false;
 
   bool healthy() const { return health == 0; }
@@ -48,7 +48,10 @@ struct SatelliteState {
   double relativistic_s = 0.0; ///< the relativistic part of clock_bias_s
 };
 
-/// Position, velocity and clock per IS-GPS-200 Table 20-IV at GPS time t.
+/// Position, velocity and clock per IS-GPS-200 Table 20-IV at GPS time t. tk = t - toe uses the
+/// weeks when t and toe are within half a week of each other (so toe in the previous or next
+/// week works); otherwise the weeks are taken as unreliable (unknown, or off by 1024-week
+/// rollovers) and IS-GPS-200's end/start-of-week fold of the seconds of week applies.
 SatelliteState satellite_state(const Ephemeris& eph, const GpsTime& t);
 
 /// Satellite clock correction for L1 C/A users: clock_bias - TGD (IS-GPS-200 20.3.3.3.3.2).
