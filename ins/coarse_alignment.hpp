@@ -75,7 +75,7 @@ StaticImuMean stationary_imu_outputs(const Eigen::Matrix3d& C_b_n, double lat_ra
 struct StationarityLimits {
   double accel_noise_mps2 = 0.0;          ///< 1-sigma white noise of one accelerometer sample
   double gyro_noise_radps = 0.0;          ///< 1-sigma white noise of one gyro sample
-  double accel_bias_mps2 = 0.01;          ///< largest plausible accelerometer bias (norm check)
+  double accel_bias_mps2 = 0.05;          ///< largest plausible accelerometer bias + gravity model error (norm check)
   double gyro_bias_radps = 1e-4;          ///< largest plausible gyro bias (mean-rate check)
   double noise_ratio_limit = 3.0;         ///< allowed sample std / expected std (vibration, engine)
 };
