@@ -59,17 +59,23 @@ LeverArmObservability assess_lever_arm_observability(const Eigen::Matrix3d& info
   std::ostringstream summary;
   summary.precision(3);
   out.fully_observable = true;
+  const double lambda_max = std::max(out.eigenvalues(2), 0.0);
   for (int k = 0; k < 3; ++k) {
     const double lambda = out.eigenvalues(k);
     out.sigma_m(k) = lambda > 0.0 ? 1.0 / std::sqrt(lambda) : std::numeric_limits<double>::infinity();
-    if (out.sigma_m(k) > sigma_limit_m) {
-      out.fully_observable = false;
-      Eigen::Vector3d dir = out.directions.col(k);
-      if (dir.cwiseAbs().maxCoeff() == -dir.minCoeff()) dir = -dir;  // print the dominant component positive
-      summary << (summary.tellp() > 0 ? "; " : "") << "not observable along body direction " << vector_text(dir)
-              << " (sigma " << out.sigma_m(k) << " m > " << sigma_limit_m
-              << " m): an arm along it makes no acceleration in this motion, e.g. along the only rotation axis";
-    }
+    if (out.sigma_m(k) <= sigma_limit_m) continue;
+    out.fully_observable = false;
+    Eigen::Vector3d dir = out.directions.col(k);
+    if (dir.cwiseAbs().maxCoeff() == -dir.minCoeff()) dir = -dir;  // print the dominant component positive
+    summary << (summary.tellp() > 0 ? "; " : "");
+    // Information 100x below the best direction: the motion gives (almost) nothing, e.g. an
+    // arm along the only rotation axis. Otherwise the motion is just too short or gentle.
+    if (lambda < 1e-2 * lambda_max)
+      summary << "not observable along body direction " << vector_text(dir) << " (sigma " << out.sigma_m(k)
+              << " m): an arm along it makes no acceleration in this motion (rotation about that axis only)";
+    else
+      summary << "weakly observable along body direction " << vector_text(dir) << " (sigma " << out.sigma_m(k)
+              << " m > " << sigma_limit_m << " m): needs more motion or time";
   }
   out.summary = out.fully_observable ? "observable in all three axes" : summary.str();
   return out;
