@@ -1,5 +1,7 @@
 #include "signals/scenario.hpp"
 
+#include "ins/imu_model.hpp"
+
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
@@ -231,6 +233,27 @@ JammerConfig parse_jammer(const Field& f) {
   return j;
 }
 
+ImuSpec parse_imu(const Field& f, const std::string& base_dir, const std::string& search_root) {
+  f.allow_only({"grade", "grades_file", "rate_hz", "lever_arm_m"});
+  ImuSpec spec;
+  spec.enabled = true;
+  if (f.has("grade")) spec.grade = f["grade"].text();
+  spec.grades_file = resolve_path(f.has("grades_file") ? f["grades_file"].text() : "data/imu_grades.yaml", base_dir, search_root);
+  if (!std::filesystem::exists(spec.grades_file)) f.fail("IMU grades file '" + spec.grades_file + "' does not exist");
+  try {
+    load_imu_grade(spec.grades_file, spec.grade);
+  } catch (const std::exception& e) {
+    f["grade"].fail(e.what());
+  }
+  if (f.has("rate_hz")) spec.rate_hz = f["rate_hz"].number_in(1, 10000);
+  if (f.has("lever_arm_m")) {
+    const Field l = f["lever_arm_m"];
+    if (!l.is_sequence() || l.size() != 3) l.fail("expected [x, y, z] in metres (body axes)");
+    for (std::size_t i = 0; i < 3; ++i) spec.lever_arm_m[i] = l.at(i).number_in(-100, 100);
+  }
+  return spec;
+}
+
 std::vector<OutageSpec> parse_outages(const Field& f) {
   if (!f.is_sequence()) f.fail("expected a list of {start_s, end_s, prns}");
   std::vector<OutageSpec> out;
@@ -261,7 +284,7 @@ Scenario parse_scenario(const std::string& yaml_text, const std::string& origin,
   if (!root.IsMap()) throw std::invalid_argument(origin + ": expected a scenario mapping at the top level");
   f.allow_only({"name", "start_time", "duration_s", "sample_rate_hz", "if_hz", "format", "adc", "nav_file",
                 "trajectory", "elevation_mask_deg", "prns", "max_satellites", "cn0", "receiver_clock", "ionosphere",
-                "troposphere", "seed", "jammers", "outages", "truth_rate_hz", "sat_truth_rate_hz"});
+                "troposphere", "seed", "jammers", "outages", "imu", "truth_rate_hz", "sat_truth_rate_hz"});
   Scenario s;
   s.source_path = origin;
   s.name = f.has("name") ? f["name"].text() : std::filesystem::path(origin).stem().string();
@@ -309,6 +332,7 @@ Scenario parse_scenario(const std::string& yaml_text, const std::string& origin,
     for (std::size_t i = 0; i < j.size(); ++i) s.jammers.push_back(parse_jammer(j.at(i)));
   }
   if (f.has("outages")) s.outages = parse_outages(f["outages"]);
+  if (f.has("imu")) s.imu = parse_imu(f["imu"], base_dir, search_root);
   if (f.has("truth_rate_hz")) s.truth_rate_hz = f["truth_rate_hz"].number_in(0.1, 1000);
   if (f.has("sat_truth_rate_hz")) s.sat_truth_rate_hz = f["sat_truth_rate_hz"].number_in(0.1, 1000);
   try {
@@ -433,6 +457,12 @@ std::string scenario_to_yaml(const Scenario& s) {
       out << YAML::EndMap;
     }
     out << YAML::EndSeq;
+  }
+  if (s.imu.enabled) {
+    out << YAML::Key << "imu" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "grade" << YAML::Value
+        << s.imu.grade << YAML::Key << "grades_file" << YAML::Value << s.imu.grades_file << YAML::Key << "rate_hz"
+        << YAML::Value << s.imu.rate_hz << YAML::Key << "lever_arm_m" << YAML::Value << YAML::Flow << YAML::BeginSeq
+        << s.imu.lever_arm_m[0] << s.imu.lever_arm_m[1] << s.imu.lever_arm_m[2] << YAML::EndSeq << YAML::EndMap;
   }
   out << YAML::Key << "truth_rate_hz" << YAML::Value << s.truth_rate_hz;
   out << YAML::Key << "sat_truth_rate_hz" << YAML::Value << s.sat_truth_rate_hz;

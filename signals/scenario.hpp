@@ -2,6 +2,7 @@
 // A synthesis scenario: everything `deepnav sim` needs to produce an IF file and
 // its truth. Loaded from YAML (JSON is valid YAML too); every field is validated
 // and an error names the file and the field. The schema is documented in README.md.
+#include <array>
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -59,6 +60,15 @@ struct AdcSpec {
   double agc_time_constant_s = 0.01;
 };
 
+/// Optional IMU output for the same trajectory (written as imu.csv next to the IF file).
+struct ImuSpec {
+  bool enabled = false;
+  std::string grade = "tactical";  ///< a grade name in grades_file
+  std::string grades_file;         ///< resolved path (default data/imu_grades.yaml)
+  double rate_hz = 100.0;
+  std::array<double, 3> lever_arm_m{0.0, 0.0, 0.0};  ///< IMU position from the antenna, body axes (x fwd, y right, z down)
+};
+
 struct Scenario {
   std::string name;
   std::string source_path;  ///< the file it was loaded from, for messages
@@ -80,6 +90,7 @@ struct Scenario {
   std::uint64_t seed = 1;
   std::vector<JammerConfig> jammers;
   std::vector<OutageSpec> outages;
+  ImuSpec imu{};
   double truth_rate_hz = 100.0;      ///< receiver truth rows per second
   double sat_truth_rate_hz = 10.0;   ///< per-satellite truth rows per second
 };

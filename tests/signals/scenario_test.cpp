@@ -62,6 +62,7 @@ jammers:
   - {type: cw, js_db: 40, offset_hz: 1000}
   - {type: chirp, js_db: 30, bandwidth_hz: 2000000, sweep_period_s: 0.0001}
 outages: [{start_s: 1, end_s: 2, prns: [3]}]
+imu: {grade: tactical, rate_hz: 200, lever_arm_m: [0.5, 0, -1]}
 truth_rate_hz: 50
 )");
   EXPECT_EQ(s.format, SampleFormat::byte);
@@ -86,6 +87,10 @@ truth_rate_hz: 50
   EXPECT_EQ(back.outages.size(), 1u);
   EXPECT_EQ(back.seed, 42u);
   EXPECT_FALSE(back.ionosphere);
+  EXPECT_TRUE(back.imu.enabled);
+  EXPECT_EQ(back.imu.grade, "tactical");
+  EXPECT_EQ(back.imu.rate_hz, 200.0);
+  EXPECT_EQ(back.imu.lever_arm_m[2], -1.0);
 }
 
 TEST(Scenario, BadInputNamesTheField) {
@@ -102,6 +107,8 @@ TEST(Scenario, BadInputNamesTheField) {
   expect_error(std::string(kMinimal) + "adc: {bits: 12}\n", {"adc.bits"});
   expect_error(std::string(kMinimal) + "truth_rate_hz: 3\n", {"truth_rate_hz"});
   expect_error(std::string(kMinimal) + "cn0: {model: fancy}\n", {"cn0.model"});
+  expect_error(std::string(kMinimal) + "imu: {grade: wishful}\n", {"imu.grade", "tactical"});
+  expect_error(std::string(kMinimal) + "imu: {lever_arm_m: [1, 2]}\n", {"imu.lever_arm_m"});
   expect_error("start_time: [unclosed\n", {"test.yaml"});
   expect_error("", {"test.yaml"});
 }
