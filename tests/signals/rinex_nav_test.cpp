@@ -50,6 +50,11 @@ std::string error_of(const std::string& text, const std::string& name = "test.na
   return "";
 }
 
+std::string brdc_head(std::size_t n_lines) {
+  const auto lines = split_lines(file_text(kBrdcPath));
+  return join_lines(std::vector<std::string>(lines.begin(), lines.begin() + static_cast<long>(n_lines)));
+}
+
 const NavData& brdc() {
   static const NavData nav = read_rinex_nav(kBrdcPath);
   return nav;
@@ -323,6 +328,25 @@ TEST(RinexNav, MixedRinex3SkipsOtherSystems) {
   EXPECT_EQ(nav.ephemerides[1].sqrt_a, brdc().ephemerides[1].sqrt_a);
 }
 
+TEST(RinexNav, WeekWrittenModulo1024IsRepairedFromTheEpochLine) {
+  auto lines = split_lines(brdc_head(16));
+  lines[13].replace(41, 19, " 0.142000000000D+03");  // 2190 - 2 * 1024
+  const NavData nav = read_text(join_lines(lines));
+  ASSERT_EQ(nav.ephemerides.size(), 1u);
+  EXPECT_EQ(nav.ephemerides[0].week, 2190);
+}
+
+TEST(RinexNavErrors, TruncatedGpsRecordInMixedFile) {
+  auto lines = split_lines(mixed_rinex3());
+  std::size_t g02 = 0;
+  while (lines[g02].rfind("G02", 0) != 0) ++g02;
+  lines.erase(lines.begin() + static_cast<long>(g02) + 3, lines.begin() + static_cast<long>(g02) + 8);
+  const std::string msg = error_of(join_lines(lines), "mixed.rnx");
+  const std::string expected = "mixed.rnx:" + std::to_string(g02 + 4) + ": record of PRN 2 (line " +
+                               std::to_string(g02 + 1) + ") is truncated: expected broadcast orbit line 3";
+  EXPECT_NE(msg.find(expected), std::string::npos) << msg;
+}
+
 TEST(RinexNav, Rinex3HeaderFields) {
   const std::string text =
       "     3.04           N: GNSS NAV DATA    M: Mixed            RINEX VERSION / TYPE\n"
@@ -351,11 +375,6 @@ TEST(RinexNav, Rinex3HeaderFields) {
 
 // ---------------------------------------------------------------------------
 // Bad input
-
-std::string brdc_head(std::size_t n_lines) {
-  const auto lines = split_lines(file_text(kBrdcPath));
-  return join_lines(std::vector<std::string>(lines.begin(), lines.begin() + static_cast<long>(n_lines)));
-}
 
 TEST(RinexNavErrors, MissingAndEmptyFile) {
   try {
