@@ -72,10 +72,10 @@ void FineAlignment::zupt() {
   const Eigen::Vector3d w_ie_n = earth_rate_ned(config_.lat_rad);
   Mat12 F = Mat12::Zero();
   F.block<3, 3>(0, 0) = -skew(w_ie_n);
-  F.block<3, 3>(0, 9) = -C_b_n_;
+  F.block<3, 3>(0, 9) = -Eigen::Matrix3d::Identity();  // bias errors resolved in NED (see header)
   F.block<3, 3>(3, 0) = skew(f_n);
   F.block<3, 3>(3, 3) = -2.0 * skew(w_ie_n);
-  F.block<3, 3>(3, 6) = C_b_n_;
+  F.block<3, 3>(3, 6) = Eigen::Matrix3d::Identity();
   const Mat12 FT = F * T;
   const Mat12 Phi = Mat12::Identity() + FT + 0.5 * FT * FT;
   Mat12 Qd = Mat12::Zero();
@@ -97,8 +97,8 @@ void FineAlignment::zupt() {
   // Closed loop: C_true = (I + [phi x]) C_est, v -= dv, biases += their errors.
   C_b_n_ = rotation(dx.segment<3>(0)) * C_b_n_;
   v_ned_mps_ -= dx.segment<3>(3);
-  accel_bias_mps2_ += dx.segment<3>(6);
-  gyro_bias_radps_ += dx.segment<3>(9);
+  accel_bias_mps2_ += C_b_n_.transpose() * dx.segment<3>(6);
+  gyro_bias_radps_ += C_b_n_.transpose() * dx.segment<3>(9);
 
   time_since_zupt_s_ = 0.0;
   samples_since_zupt_ = 0;

@@ -4,10 +4,14 @@
 //
 // Error model (phi-angle form, NED, vehicle at rest, Titterton & Weston ch. 12):
 //   C_b_n_est = (I - [phi x]) C_b_n_true
-//   phi'  = -w_ie_n x phi - C_b_n db_g
-//   dv'   =  f_n x phi - 2 w_ie_n x dv + C_b_n db_a
-//   db_a' = 0 (+ small random walk), db_g' = 0 (+ small random walk)
-// with db = true bias - estimated bias. The ZUPT measures dv = v_est (truth is zero).
+//   phi'   = -w_ie_n x phi - db_g_n
+//   dv'    =  f_n x phi - 2 w_ie_n x dv + db_a_n,   f_n = [0 0 -g] at rest
+//   db_a_n' = 0, db_g_n' = 0
+// with db = true bias - estimated bias, resolved in NED: at rest C_b_n is constant, so the
+// NED-resolved biases are constant too, and the covariance no longer depends on the
+// heading estimate. (With body-frame bias states, every heading correction rotates what
+// the filter has learned about the north gyro bias into the unobservable east one and
+// the filter becomes overconfident and biased.) The ZUPT measures dv = v_est (truth is zero).
 // Corrections are fed back after every update (closed loop), so the states stay small.
 //
 // At rest the east gyro bias and the heading error are not separable: the heading

@@ -36,7 +36,7 @@ const Eigen::Vector3d kAttitudeDeg(5.0, 5.0, 5.0);  // paper: body and NED withi
 struct AlignBenchOptions {
   std::string json_path;
   std::string plots_dir;
-  int runs = 5;
+  int runs = 10;
   std::uint64_t seed = 1;
 };
 
