@@ -148,5 +148,34 @@ TEST(LeverArmEkf, FullLeverArmUnderRichMotionAndUnobservableUnderPureRoll) {
   EXPECT_NEAR(roll_run.lever_b_m.back().y(), arm.y(), 0.05);
 }
 
+TEST(LeverArmEkf, ObservabilityVerdicts) {
+  // Information only about y and z (rotation about x): x is structurally unobservable.
+  const auto none_x = assess_lever_arm_observability(Eigen::Vector3d(0.0, 1e4, 1e4).asDiagonal(), 0.05);
+  EXPECT_FALSE(none_x.fully_observable);
+  EXPECT_EQ(none_x.summary.find("not observable along body direction [1.00, 0.00, 0.00]"), 0u) << none_x.summary;
+  // Every direction seen, one too weakly: "weakly observable", not "not observable".
+  const auto weak = assess_lever_arm_observability(Eigen::Vector3d(1e4, 1e4, 1e3).asDiagonal(), 0.02);
+  EXPECT_FALSE(weak.fully_observable);
+  EXPECT_EQ(weak.summary.find("weakly observable"), 0u) << weak.summary;
+  const auto all = assess_lever_arm_observability(Eigen::Vector3d(1e4, 2e4, 3e4).asDiagonal(), 0.05);
+  EXPECT_TRUE(all.fully_observable) << all.summary;
+  EXPECT_NEAR(all.sigma_m(0), 0.01, 1e-12);
+}
+
+TEST(LeverArmEkf, BadInputIsRejected) {
+  const MemsImuFigures imu = MemsImuFigures::industrial();
+  LeverArmEkfConfig config = paper004_config(LeverArmModel::kVertical, imu);
+  LeverArmEkf ekf(config, Eigen::Quaterniond::Identity());
+  EXPECT_THROW(ekf.update(Eigen::Vector3d(0, 0, std::nan("")), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()),
+               std::invalid_argument);
+  EXPECT_THROW(ekf.propagate(Eigen::Vector3d::Zero(), 0.0), std::invalid_argument);
+  config.accel_sigma_mps2 = 0.0;
+  EXPECT_THROW(LeverArmEkf(config, Eigen::Quaterniond::Identity()), std::invalid_argument);
+  EXPECT_THROW(run_lever_arm_ekf({}, paper004_config(LeverArmModel::kNone, imu)), std::invalid_argument);
+  ShipRollParameters ship;
+  ship.roll_inertia_kgm2 = 0.0;
+  EXPECT_THROW(simulate_ship_roll(ship), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace deepnav
