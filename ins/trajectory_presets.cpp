@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "ins/attitude_rates.hpp"
 #include "ins/frames.hpp"
 #include "ins/rotations.hpp"
 
@@ -59,22 +60,10 @@ class PathTrajectory : public Trajectory {
 
   TrajectoryState at(double t) const override {
     TrajectoryState s = kinematics(t);
-    // Body rate w.r.t. local NED from central differences of the attitude:
-    // w_nb_b = 2 vec(q* dq/dt), dw_nb_b/dt = 2 vec(q* d2q/dt2).
-    constexpr double h = 2e-3;
-    Eigen::Quaterniond q[5];
-    for (int k = -2; k <= 2; ++k) {
-      q[k + 2] = k == 0 ? s.q_b_n : attitude(t + k * h);
-      if (q[k + 2].coeffs().dot(s.q_b_n.coeffs()) < 0.0) q[k + 2].coeffs() *= -1.0;
-    }
-    const Eigen::Vector4d d1 =
-        (q[0].coeffs() - 8.0 * q[1].coeffs() + 8.0 * q[3].coeffs() - q[4].coeffs()) / (12.0 * h);
-    const Eigen::Vector4d d2 = (-q[0].coeffs() + 16.0 * q[1].coeffs() - 30.0 * q[2].coeffs() + 16.0 * q[3].coeffs() -
-                                q[4].coeffs()) /
-                               (12.0 * h * h);
-    const Eigen::Quaterniond qc = s.q_b_n.conjugate();
-    s.w_nb_b_radps = 2.0 * (qc * Eigen::Quaterniond(d1)).vec();
-    s.dw_nb_b_radps2 = 2.0 * (qc * Eigen::Quaterniond(d2)).vec();
+    // Body rate w.r.t. local NED from central differences of the attitude.
+    const AttitudeRates rates = attitude_rates([this](double x) { return attitude(x); }, t, s.q_b_n);
+    s.w_nb_b_radps = rates.w_nb_b_radps;
+    s.dw_nb_b_radps2 = rates.dw_nb_b_radps2;
     return s;
   }
 

@@ -15,6 +15,7 @@
 #include "ins/frames.hpp"
 #include "ins/imu_model.hpp"
 #include "ins/simulated_imu_file.hpp"
+#include "ins/trajectory_csv.hpp"
 #include "ins/rotations.hpp"
 #include "ins/trajectory_presets.hpp"
 #include "signals/ca_code.hpp"
@@ -127,8 +128,15 @@ struct IfSynthesizer::Impl {
 
   std::unique_ptr<Trajectory> make_trajectory() const {
     if (!sc.trajectory.csv_path.empty()) {
-      throw std::runtime_error(fmt::format("{}: field 'trajectory.file': CSV trajectories are not supported by this build yet; use a preset",
-                                           sc.source_path));
+      auto traj = load_csv_trajectory(sc.trajectory.csv_path);
+      try {
+        traj->at(0.0);
+        traj->at(sc.duration_s);
+      } catch (const std::out_of_range&) {
+        throw std::runtime_error(fmt::format("{}: trajectory file '{}' must cover the run: times 0 to {} s",
+                                             sc.source_path, sc.trajectory.csv_path, sc.duration_s));
+      }
+      return traj;
     }
     return make_preset_trajectory(sc.trajectory.preset, sc.trajectory.start, sc.trajectory.heading_rad,
                                   sc.duration_s + 1.0);

@@ -3,14 +3,14 @@
 # processes a 60 s `deepnav sim` static scenario and its position fixes are
 # compared with the synthesizer's truth. Passes when every GNSS-SDR fix after the
 # first 5 lies within 10 m (3-D) of the true position.
-#   usage: tools/gnss_sdr_check.sh [scenario.yaml] [work_dir]
+#   usage: tools/gnss_sdr_check.sh [scenario.yaml] [work_dir]   (DEEPNAV=path overrides the binary)
 # Not part of the default test suite (it takes a few minutes and needs gnss-sdr).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 scenario=${1:-$root/data/scenarios/gnss_sdr_static.yaml}
 work=${2:-$root/out/gnss_sdr_check}
 command -v gnss-sdr >/dev/null || { echo "gnss-sdr is not installed: apt-get install gnss-sdr" >&2; exit 2; }
-deepnav=$root/build/tools/deepnav
+deepnav=${DEEPNAV:-$root/build/tools/deepnav}
 if [[ ! -x $deepnav ]]; then
   cmake -S "$root" -B "$root/build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
   cmake --build "$root/build" --target deepnav
