@@ -63,15 +63,26 @@ def main():
             sod = round(float(row["gps_sow"]) % 86400.0, 3)
             truth[sod] = (float(row["x_ecef_m"]), float(row["y_ecef_m"]), float(row["z_ecef_m"]))
     fixes = parse_gga(a.nmea)
-    errs = []
-    for sod_utc, lat, lon, h in fixes:
-        sod = round((sod_utc + a.leap_seconds) % 86400.0, 3)
-        if sod not in truth:
-            continue
-        x = llh_to_ecef(lat, lon, h)
-        t = truth[sod]
-        n, e, d = ned([x[i] - t[i] for i in range(3)], lat, lon)
-        errs.append((math.hypot(n, e), abs(d), math.sqrt(n * n + e * e + d * d)))
+
+    def errors(leap):
+        out = []
+        for sod_utc, lat, lon, h in fixes:
+            sod = round((sod_utc + leap) % 86400.0, 3)
+            if sod not in truth:
+                continue
+            x = llh_to_ecef(lat, lon, h)
+            t = truth[sod]
+            n, e, d = ned([x[i] - t[i] for i in range(3)], lat, lon)
+            out.append((math.hypot(n, e), abs(d), math.sqrt(n * n + e * e + d * d)))
+        return out
+
+    # Some receivers stamp NMEA with GPS time instead of UTC: use whichever offset
+    # matches more fixes to truth epochs, and say which.
+    errs = errors(a.leap_seconds)
+    alt = errors(0.0)
+    if len(alt) > len(errs):
+        print("NMEA time stamps match truth as GPS time (no leap seconds)")
+        errs = alt
     if not errs:
         print(f"no GGA fix of {a.nmea} matches a truth epoch of {a.truth}", file=sys.stderr)
         return 2
