@@ -1,4 +1,5 @@
 #include "ins/coarse_alignment.hpp"
+#include "ins/frames.hpp"
 
 #include <Eigen/Dense>
 #include <Eigen/SVD>
@@ -35,11 +36,6 @@ Eigen::Matrix3d dcm_from_euler(double roll_rad, double pitch_rad, double yaw_rad
           Eigen::AngleAxisd(pitch_rad, Eigen::Vector3d::UnitY()) *
           Eigen::AngleAxisd(roll_rad, Eigen::Vector3d::UnitX()))
       .toRotationMatrix();
-}
-
-/// Earth rate in NED at latitude L: [w_ie cos L, 0, -w_ie sin L].
-Eigen::Vector3d earth_rate_ned(double lat_rad) {
-  return {wgs84::kEarthRate_radps * std::cos(lat_rad), 0.0, -wgs84::kEarthRate_radps * std::sin(lat_rad)};
 }
 
 /// Nearest rotation matrix (polar decomposition); flips the last singular vector if
@@ -90,7 +86,7 @@ OneShotAlignment align_one_shot(const Eigen::Vector3d& f_b_mps2, const Eigen::Ve
   if (std::abs(std::cos(lat_rad)) < 1e-6)
     throw std::invalid_argument("one-shot alignment: latitude at a pole, heading undefined");
   const Eigen::Vector3d f_n(0.0, 0.0, -gravity_mps2);
-  const Eigen::Vector3d w_n = earth_rate_ned(lat_rad);
+  const Eigen::Vector3d w_n = earth_rate_ned_radps(lat_rad);
   Eigen::Matrix3d nav_rows;  // paper eq. 4: rows are f^T, w^T, (f x w)^T
   nav_rows << f_n.transpose(), w_n.transpose(), f_n.cross(w_n).transpose();
   Eigen::Matrix3d body_rows;
@@ -130,7 +126,7 @@ Eigen::Vector3d two_step_tilt_error_rad(const Eigen::Vector3d& df_n_mps2, const 
 StaticImuMean stationary_imu_outputs(const Eigen::Matrix3d& C_b_n, double lat_rad, double gravity_mps2) {
   StaticImuMean out;
   out.f_b_mps2 = C_b_n.transpose() * Eigen::Vector3d(0.0, 0.0, -gravity_mps2);
-  out.w_ib_b_radps = C_b_n.transpose() * earth_rate_ned(lat_rad);
+  out.w_ib_b_radps = C_b_n.transpose() * earth_rate_ned_radps(lat_rad);
   return out;
 }
 

@@ -1,4 +1,6 @@
 #include "ins/fine_alignment.hpp"
+#include "ins/rotations.hpp"
+#include "ins/frames.hpp"
 
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
@@ -10,26 +12,6 @@
 #include "ins/wgs84.hpp"
 
 namespace deepnav {
-namespace {
-
-Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return m;
-}
-
-Eigen::Matrix3d rotation(const Eigen::Vector3d& rotvec) {
-  const double angle = rotvec.norm();
-  if (angle <= 0.0) return Eigen::Matrix3d::Identity();
-  return Eigen::AngleAxisd(angle, rotvec / angle).toRotationMatrix();
-}
-
-Eigen::Vector3d earth_rate_ned(double lat_rad) {
-  return {wgs84::kEarthRate_radps * std::cos(lat_rad), 0.0, -wgs84::kEarthRate_radps * std::sin(lat_rad)};
-}
-
-}  // namespace
-
 double gyrocompass_heading_limit_rad(double dw_east_radps, double lat_rad) {
   return -dw_east_radps / (wgs84::kEarthRate_radps * std::cos(lat_rad));
 }
@@ -52,9 +34,9 @@ void FineAlignment::step(const ImuReading& reading, double dt_s) {
   if (!reading.f_b_mps2.allFinite() || !reading.w_ib_b_radps.allFinite())
     throw std::invalid_argument("fine alignment: reading at t = " + std::to_string(reading.t_s) + " s is not finite");
   if (samples_per_zupt_ == 0) samples_per_zupt_ = std::max(1L, std::lround(config_.zupt_interval_s / dt_s));
-  const Eigen::Vector3d w_ie_n = earth_rate_ned(config_.lat_rad);
+  const Eigen::Vector3d w_ie_n = earth_rate_ned_radps(config_.lat_rad);
   // Attitude: body rotation on the right, Earth rotation of the NED frame on the left.
-  C_b_n_ = rotation(-w_ie_n * dt_s) * C_b_n_ * rotation((reading.w_ib_b_radps - gyro_bias_radps_) * dt_s);
+  C_b_n_ = dcm_from_rotation_vector(-w_ie_n * dt_s) * C_b_n_ * dcm_from_rotation_vector((reading.w_ib_b_radps - gyro_bias_radps_) * dt_s);
   const Eigen::Vector3d f_n = C_b_n_ * (reading.f_b_mps2 - accel_bias_mps2_);
   const Eigen::Vector3d g_n(0.0, 0.0, config_.gravity_mps2);
   v_ned_mps_ += (f_n + g_n - 2.0 * w_ie_n.cross(v_ned_mps_)) * dt_s;
@@ -69,7 +51,7 @@ void FineAlignment::zupt() {
   // f_n instead would let accelerometer noise pose as horizontal manoeuvres and make
   // heading look observable beyond the gyrocompass limit (overconfident, biased).
   const Eigen::Vector3d f_n(0.0, 0.0, -config_.gravity_mps2);
-  const Eigen::Vector3d w_ie_n = earth_rate_ned(config_.lat_rad);
+  const Eigen::Vector3d w_ie_n = earth_rate_ned_radps(config_.lat_rad);
   Mat12 F = Mat12::Zero();
   F.block<3, 3>(0, 0) = -skew(w_ie_n);
   F.block<3, 3>(0, 9) = -Eigen::Matrix3d::Identity();  // bias errors resolved in NED (see header)
@@ -95,7 +77,7 @@ void FineAlignment::zupt() {
   P_ = I_KH * P_ * I_KH.transpose() + r * K * K.transpose();  // Joseph form
 
   // Closed loop: C_true = (I + [phi x]) C_est, v -= dv, biases += their errors.
-  C_b_n_ = rotation(dx.segment<3>(0)) * C_b_n_;
+  C_b_n_ = dcm_from_rotation_vector(dx.segment<3>(0)) * C_b_n_;
   v_ned_mps_ -= dx.segment<3>(3);
   accel_bias_mps2_ += C_b_n_.transpose() * dx.segment<3>(6);
   gyro_bias_radps_ += C_b_n_.transpose() * dx.segment<3>(9);

@@ -1,4 +1,5 @@
 #include "ins/lever_arm_imu_sim.hpp"
+#include "ins/rotations.hpp"
 
 #include <cmath>
 #include <numbers>
@@ -6,12 +7,6 @@
 
 namespace deepnav {
 namespace {
-
-Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return m;
-}
 
 Eigen::Vector3d gaussian3(std::normal_distribution<double>& unit, std::mt19937_64& rng) {
   const double x = unit(rng), y = unit(rng), z = unit(rng);

@@ -66,6 +66,16 @@ Xoshiro256ss::Xoshiro256ss(std::uint64_t seed) {
 
 GaussianNoise::GaussianNoise(std::uint64_t seed) : rng_(seed) {}
 
+// Tail beyond r (Marsaglia 1964): x = r + E1/r accepted when 2 E2 > (E1/r)^2.
+double GaussianNoise::tail() {
+  double xt, y;
+  do {
+    xt = -std::log(uniform53(rng_()) + kTwoPowMinus53) / kR;
+    y = -std::log(uniform53(rng_()) + kTwoPowMinus53);
+  } while (y + y < xt * xt);
+  return kR + xt;
+}
+
 // Layer index from bits 0-7, sign from bit 8, abscissa from bits 11-63: disjoint fields.
 double GaussianNoise::slow_path(std::uint64_t bits) {
   const ZigguratTables& t = tables();
@@ -75,13 +85,7 @@ double GaussianNoise::slow_path(std::uint64_t bits) {
     const double x = uniform53(bits) * t.x[i];
     if (x < t.x[i + 1]) return sign * x;
     if (i == 0) {
-      // Tail beyond r (Marsaglia 1964): x = r + E1/r accepted when 2 E2 > (E1/r)^2.
-      double xt, y;
-      do {
-        xt = -std::log(uniform53(rng_()) + kTwoPowMinus53) / kR;
-        y = -std::log(uniform53(rng_()) + kTwoPowMinus53);
-      } while (y + y < xt * xt);
-      return sign * (kR + xt);
+      return sign * tail();
     }
     const double y = t.f[i] + uniform53(rng_()) * (t.f[i + 1] - t.f[i]);
     if (y < density(x)) return sign * x;
@@ -110,12 +114,7 @@ double GaussianNoise::finish_half(std::uint32_t half) {
   const double x = static_cast<double>(half >> 9) * (1.0 / 8388608.0) * t.x[i];
   if (x < t.x[i + 1]) return sign * x;
   if (i == 0) {
-    double xt, y;
-    do {
-      xt = -std::log(uniform53(rng_()) + kTwoPowMinus53) / kR;
-      y = -std::log(uniform53(rng_()) + kTwoPowMinus53);
-    } while (y + y < xt * xt);
-    return sign * (kR + xt);
+    return sign * tail();
   }
   const double y = t.f[i] + uniform53(rng_()) * (t.f[i + 1] - t.f[i]);
   if (y < density(x)) return sign * x;

@@ -64,6 +64,8 @@ class GaussianNoise {
   void add_complex(std::span<std::complex<float>> out, float sigma_per_component);
 
  private:
+  /// A draw from the normal tail beyond the base layer's edge r (positive).
+  double tail();
   double slow_path(std::uint64_t bits);
   double finish_half(std::uint32_t half);
   template <bool kAdd>
