@@ -16,10 +16,11 @@ Eigen::Quaterniond quaternion_from_euler(const EulerAngles& e) {
 Eigen::Matrix3d dcm_from_euler(const EulerAngles& e) { return quaternion_from_euler(e).toRotationMatrix(); }
 
 EulerAngles euler_from_dcm(const Eigen::Matrix3d& C) {
-  // C(2,0) = -sin(pitch); the clamp protects asin from rounding just past +-1.
+  // C(2,0) = -sin(pitch) and |(C(2,1), C(2,2))| = cos(pitch): atan2 stays accurate near
+  // +-90 deg, where asin(-C(2,0)) loses half the digits.
   EulerAngles e;
   const double s_pitch = std::clamp(-C(2, 0), -1.0, 1.0);
-  e.pitch_rad = std::asin(s_pitch);
+  e.pitch_rad = std::atan2(s_pitch, std::hypot(C(2, 1), C(2, 2)));
   if (std::abs(s_pitch) > 1.0 - 1e-12) {
     // Gimbal lock: only yaw -/+ roll is observable; report it all as yaw.
     e.roll_rad = 0.0;
