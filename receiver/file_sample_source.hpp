@@ -1,0 +1,66 @@
+#pragma once
+// Samples from a recorded IF file in any of the GNSS-SDR formats, read in
+// bounded pieces so memory stays small whatever the file length.
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "receiver/sample_source.hpp"
+#include "signals/sample_format.hpp"
+
+namespace deepnav {
+
+struct FileSampleSourceOptions {
+  std::filesystem::path path;
+  SampleFormat format = SampleFormat::ibyte;
+  double sample_rate_hz = 0.0;
+  double intermediate_frequency_hz = 0.0;
+  /// Seconds skipped at the start of the file; the first delivered sample keeps
+  /// its absolute index round(skip_s * fs), so time still counts from the file start.
+  double skip_s = 0.0;
+  /// Deliver I - jQ instead of I + jQ (front ends that mix with the high-side LO).
+  bool inverted_spectrum = false;
+};
+
+class FileSampleSource final : public SampleSource {
+ public:
+  /// Opens the file and checks it; throws std::runtime_error naming the file for
+  /// an unreadable path, an empty file, or a skip past the end, and
+  /// std::invalid_argument for an impossible sample rate or skip.
+  explicit FileSampleSource(FileSampleSourceOptions options);
+  ~FileSampleSource() override;
+  FileSampleSource(const FileSampleSource&) = delete;
+  FileSampleSource& operator=(const FileSampleSource&) = delete;
+
+  double sample_rate_hz() const override { return options_.sample_rate_hz; }
+  double intermediate_frequency_hz() const override { return options_.intermediate_frequency_hz; }
+  bool is_real() const override { return !is_complex(options_.format); }
+  std::size_t read(std::span<Sample> out) override;
+  std::int64_t next_sample_index() const override { return next_index_; }
+  bool at_end() const override { return at_end_; }
+
+  /// Whole samples in the file (including skipped ones).
+  std::int64_t total_samples() const { return total_samples_; }
+  /// Factor applied to gr_complex values before rounding to int16 (1 for the integer formats).
+  float float_scale() const { return float_scale_; }
+  /// Problems that do not stop reading (a trailing partial sample), one sentence each.
+  const std::vector<std::string>& warnings() const { return warnings_; }
+
+ private:
+  void choose_float_scale();
+  std::size_t read_raw(std::size_t max_samples);
+  void convert(std::size_t count, std::span<Sample> out) const;
+
+  FileSampleSourceOptions options_;
+  std::FILE* file_ = nullptr;
+  std::int64_t total_samples_ = 0;
+  std::int64_t next_index_ = 0;
+  bool at_end_ = false;
+  float float_scale_ = 1.0f;
+  std::vector<unsigned char> raw_;
+  std::vector<std::string> warnings_;
+};
+
+}  // namespace deepnav
