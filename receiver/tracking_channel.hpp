@@ -1,0 +1,95 @@
+#pragma once
+// One tracking channel: code and carrier NCOs, the correlator bank, integration over
+// code periods (1 ms, extended up to 20 ms along data-bit edges once the bits are
+// synchronised), bit synchronisation and lock monitoring. The channel is steered only
+// through NcoCommands (apply()); in scalar mode its owner passes every epoch to a
+// ScalarLoopController and feeds the command back.
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "receiver/lock_detectors.hpp"
+#include "receiver/sample_source.hpp"
+#include "receiver/tracking_types.hpp"
+#include "signals/ca_code.hpp"
+
+namespace deepnav {
+
+struct TrackingConfig {
+  double sample_rate_hz = 4.092e6;
+  double if_hz = 0.0;
+  double spacing_chips = 0.5;
+  int coherent_ms_after_bit_sync = 20;  ///< 1, 2, 4, 5, 10 or 20
+  double lost_cn0_dbhz = 22.0;          ///< below this for `lost_after_s`: loss of lock
+  double lost_after_s = 1.0;
+};
+
+/// Where tracking starts: an acquisition result.
+struct ChannelStart {
+  int prn = 0;
+  double doppler_hz = 0.0;
+  double code_phase_chips = 0.0;  ///< prompt code phase at sample `sample_index`, [0, 1023)
+  std::int64_t sample_index = 0;
+};
+
+enum class ChannelState { pull_in, bit_sync, tracking, lost };
+
+class TrackingChannel {
+ public:
+  TrackingChannel(const TrackingConfig& config, const ChannelStart& start);
+
+  /// Consumes a block (any size, any alignment); completed integrations are appended to `out`.
+  /// Samples before the channel's next sample are skipped; a gap in the indices drops the
+  /// integration in progress and carries the NCOs across it.
+  void process(const SampleBlock& block, std::vector<CorrelatorEpoch>& out);
+  /// New NCO rates from the next sample on.
+  void apply(const NcoCommand& command);
+  /// Feeds the lock monitor and the bit synchroniser with a completed epoch (the owner calls
+  /// it after process(), whoever steers the channel); switches integration length and state.
+  void monitor(const CorrelatorEpoch& epoch);
+
+  int prn() const { return start_.prn; }
+  ChannelState state() const { return state_; }
+  double cn0_dbhz() const { return lock_.cn0_dbhz(); }
+  bool phase_locked() const { return lock_.ready() && lock_.phase_lock_indicator() > 1.5; }
+  /// Code period (ms count since the start) at which data bits begin, once synchronised.
+  std::optional<std::int64_t> bit_edge_period() const { return bit_edge_; }
+  double seconds_tracked() const;
+  /// Code phase (chips, unwrapped from the start: periods * 1023 + phase) at an absolute
+  /// sample index inside or just after the last block processed.
+  double code_chips_at(std::int64_t sample_index) const;
+  std::int64_t next_sample() const { return next_sample_; }
+
+ private:
+  void finish_code_period(std::vector<CorrelatorEpoch>& out);
+  void bit_sync_step(const CorrelatorEpoch& epoch);
+
+  TrackingConfig cfg_;
+  ChannelStart start_;
+  const CaCodeChips* code_;
+  const CaCodeChips* noise_code_;
+  ChannelState state_ = ChannelState::pull_in;
+  // NCO state at next_sample_.
+  std::int64_t next_sample_;
+  double code_phase_chips_;
+  std::int64_t code_period_ = 0;
+  double carrier_phase_cycles_ = 0.0;  ///< Doppler part only; the IF part follows the sample index
+  NcoCommand nco_;
+  // Integration in progress.
+  std::complex<double> acc_e_, acc_p_, acc_l_, acc_n_;
+  std::int64_t acc_first_ = -1;
+  int acc_samples_ = 0;
+  int acc_ms_ = 0;
+  int coherent_ms_ = 1;
+  // Monitoring.
+  LockDetector lock_;
+  std::array<int, 20> edge_votes_{};
+  int transitions_ = 0;
+  std::optional<std::complex<double>> last_prompt_ms_;
+  std::optional<std::int64_t> bit_edge_;
+  double low_cn0_since_s_ = -1.0;
+  double tracked_s_ = 0.0;
+};
+
+}  // namespace deepnav
