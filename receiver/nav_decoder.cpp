@@ -1,0 +1,86 @@
+#include "receiver/nav_decoder.hpp"
+
+#include <cmath>
+
+#include "signals/gps_constants.hpp"
+
+namespace deepnav {
+namespace {
+
+constexpr int kSubframeBits = lnav::kBitsPerSubframe;
+constexpr std::uint8_t kPreamble[8] = {1, 0, 0, 0, 1, 0, 1, 1};
+
+}  // namespace
+
+NavDecoder::NavDecoder(int prn, int reference_week) : prn_(prn), assembler_(prn, reference_week) {}
+
+bool NavDecoder::add(const CorrelatorEpoch& e, std::int64_t bit_edge_period) {
+  const int ms = static_cast<int>(std::lround(e.integration_s * 1000.0));
+  const std::int64_t start = e.code_period - ms;
+  // Only integrations that lie inside one bit count; the bit is complete at its last ms.
+  const auto phase = [&](std::int64_t p) { return ((p - bit_edge_period) % 20 + 20) % 20; };
+  if (phase(start) + ms > 20) {  // straddles a bit edge (before alignment): drop it
+    bit_sum_ = 0.0;
+    bit_ms_ = 0;
+    return false;
+  }
+  if (phase(start) == 0) {
+    bit_sum_ = 0.0;
+    bit_ms_ = 0;
+  }
+  bit_sum_ += e.prompt;
+  bit_ms_ += ms;
+  if (phase(e.code_period) != 0) return false;
+  const bool whole = bit_ms_ == 20;
+  const std::complex<double> sum = bit_sum_;
+  bit_sum_ = 0.0;
+  bit_ms_ = 0;
+  if (!whole) return false;
+  bits_.push_back(sum.real() < 0.0 ? 1 : 0);
+  bit_start_period_.push_back(e.code_period - 20);
+  const int before = assembler_.ephemeris() ? assembler_.ephemeris()->iode : -1;
+  const bool had = assembler_.ephemeris().has_value();
+  try_decode();
+  return assembler_.ephemeris().has_value() && (!had || assembler_.ephemeris()->iode != before);
+}
+
+void NavDecoder::try_decode() {
+  while (bits_.size() >= static_cast<std::size_t>(kSubframeBits)) {
+    // Preamble, either polarity, at the front of the buffer.
+    bool normal = true, inverted = true;
+    for (int i = 0; i < 8; ++i) {
+      normal = normal && bits_[static_cast<std::size_t>(i)] == kPreamble[i];
+      inverted = inverted && bits_[static_cast<std::size_t>(i)] != kPreamble[i];
+    }
+    if (normal || inverted) {
+      lnav::Subframe sf{};
+      for (int w = 0; w < 10; ++w) {
+        std::uint32_t word = 0;
+        for (int b = 0; b < 30; ++b) word = (word << 1) | bits_[static_cast<std::size_t>(w * 30 + b)];
+        sf[static_cast<std::size_t>(w)] = word;
+      }
+      if (const auto decoded = lnav::decode_subframe(sf)) {
+        anchor_ = Anchor{bit_start_period_.front(), decoded->tlm_how.tow_count};
+        assembler_.add(*decoded);
+        ++subframes_;
+        bits_.erase(bits_.begin(), bits_.begin() + kSubframeBits);
+        bit_start_period_.erase(bit_start_period_.begin(), bit_start_period_.begin() + kSubframeBits);
+        continue;
+      }
+      ++failures_;
+    }
+    bits_.pop_front();
+    bit_start_period_.pop_front();
+  }
+}
+
+std::optional<double> NavDecoder::transmit_time_sow(std::int64_t period, double code_phase_chips) const {
+  if (!anchor_) return std::nullopt;
+  const double subframe_start_sow = (anchor_->tow_count - 1) * 6.0;
+  double t = subframe_start_sow + static_cast<double>(period - anchor_->period) * 1e-3 +
+             code_phase_chips / gps::kCodeRate_cps;
+  if (t < 0.0) t += 604800.0;
+  return t;
+}
+
+}  // namespace deepnav

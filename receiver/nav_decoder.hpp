@@ -1,0 +1,57 @@
+#pragma once
+// LNAV data of one channel: data bits from bit-aligned prompt integrations, subframe
+// synchronisation (preamble in either polarity, confirmed by every word's parity),
+// subframe decoding, ephemeris/ionosphere/UTC assembly, and the time anchor that turns
+// a code period count into the satellite's transmit time:
+//   t_sv = (HOW TOW count - 1) * 6 s + (period - first period of that subframe) * 1 ms
+//          + code phase / 1.023 MHz.
+#include <cstdint>
+#include <deque>
+#include <optional>
+#include <vector>
+
+#include "receiver/tracking_types.hpp"
+#include "signals/lnav_message.hpp"
+
+namespace deepnav {
+
+class NavDecoder {
+ public:
+  /// reference_week resolves the 10-bit week number (any week within 512 of the truth).
+  NavDecoder(int prn, int reference_week);
+
+  /// Feeds an epoch; `bit_edge_period` is the channel's bit alignment (code period at which
+  /// bits start, modulo 20). Integrations of 1 to 20 ms are summed into whole bits.
+  /// Returns true when a new ephemeris was completed.
+  bool add(const CorrelatorEpoch& epoch, std::int64_t bit_edge_period);
+
+  bool synchronised() const { return anchor_.has_value(); }
+  const std::optional<Ephemeris>& ephemeris() const { return assembler_.ephemeris(); }
+  const IonoParameters& iono() const { return assembler_.iono(); }
+  const UtcParameters& utc() const { return assembler_.utc(); }
+  /// Satellite transmit time (seconds of week) of the code period `period` plus
+  /// `code_phase_chips` into it; nullopt before the first subframe.
+  std::optional<double> transmit_time_sow(std::int64_t period, double code_phase_chips) const;
+  int subframes_decoded() const { return subframes_; }
+  int parity_failures() const { return failures_; }
+
+ private:
+  void try_decode();
+
+  struct Anchor {
+    std::int64_t period;  ///< code period at which the subframe's first bit starts
+    int tow_count;        ///< HOW TOW count (start of the next subframe, 6 s units)
+  };
+
+  int prn_;
+  lnav::EphemerisAssembler assembler_;
+  std::complex<double> bit_sum_{};
+  int bit_ms_ = 0;
+  std::deque<std::uint8_t> bits_;
+  std::deque<std::int64_t> bit_start_period_;
+  std::optional<Anchor> anchor_;
+  int subframes_ = 0;
+  int failures_ = 0;
+};
+
+}  // namespace deepnav

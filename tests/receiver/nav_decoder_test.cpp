@@ -1,0 +1,79 @@
+#include "receiver/nav_decoder.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "signals/rinex_nav.hpp"
+
+namespace deepnav {
+namespace {
+
+lnav::LnavContent content_for(int prn, GpsTime t, NavData& nav) {
+  nav = read_rinex_nav(std::string(DEEPNAV_SOURCE_DIR) + "/data/brdc0010.22n");
+  lnav::LnavContent c;
+  c.eph = *nav.select(prn, t);
+  c.iono = nav.iono;
+  c.utc = nav.utc;
+  return c;
+}
+
+/// Feeds `n_bits` LNAV bits starting at week bit `first_bit` as 20 ms epochs whose code
+/// periods start at `period0`, with noise and the given polarity; returns the decoder.
+NavDecoder run(const lnav::LnavContent& c, std::int64_t first_bit, int n_bits, std::int64_t period0, double polarity,
+               double snr_amplitude, std::uint64_t seed) {
+  NavDecoder dec(c.eph.prn, 2190);
+  const auto bits = lnav::lnav_bits(c, first_bit, n_bits);
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  for (int k = 0; k < n_bits; ++k) {
+    CorrelatorEpoch e;
+    e.prn = c.eph.prn;
+    e.integration_s = 0.02;
+    e.code_period = period0 + 20 * (k + 1);
+    const double s = (bits[static_cast<std::size_t>(k)] ? -1.0 : 1.0) * polarity * snr_amplitude;
+    e.prompt = {s + noise(rng), noise(rng)};
+    dec.add(e, period0 % 20);
+  }
+  return dec;
+}
+
+TEST(NavDecoder, DecodesEphemerisAndTransmitTimeInBothPolarities) {
+  NavData nav;
+  const GpsTime t{2190, 525600.0};
+  const auto c = content_for(10, t, nav);
+  // Start mid-subframe: bit index of the week at 525600 s + 2.34 s.
+  const std::int64_t first_bit = static_cast<std::int64_t>(525602.34 / 0.02);
+  for (double polarity : {1.0, -1.0}) {
+    const NavDecoder dec = run(c, first_bit, 2000, 777, polarity, 8.0, 5);
+    ASSERT_TRUE(dec.synchronised());
+    ASSERT_TRUE(dec.ephemeris().has_value());
+    const Ephemeris& e = *dec.ephemeris();
+    EXPECT_EQ(e.prn, 10);
+    EXPECT_EQ(e.week, c.eph.week);
+    EXPECT_EQ(e.iode, c.eph.iode);
+    EXPECT_NEAR(e.sqrt_a, c.eph.sqrt_a, 2e-6);
+    EXPECT_NEAR(e.e, c.eph.e, 1.2e-10);
+    EXPECT_NEAR(e.toe_s, c.eph.toe_s, 16.0);
+    EXPECT_NEAR(e.af0_s, c.eph.af0_s, 5e-10);
+    EXPECT_NEAR(e.m0_rad, c.eph.m0_rad, 1e-8);
+    EXPECT_GE(dec.subframes_decoded(), 5);
+    // Bit k starts at period 777 + 20 k and at week time (first_bit + k) * 20 ms.
+    const std::int64_t k = 1500;
+    const auto tx = dec.transmit_time_sow(777 + 20 * k + 3, 511.5);
+    ASSERT_TRUE(tx.has_value());
+    EXPECT_NEAR(*tx, (first_bit + k) * 0.02 + 3e-3 + 511.5 / 1.023e6, 1e-9);
+  }
+}
+
+TEST(NavDecoder, NoiseAloneNeverSynchronises) {
+  NavData nav;
+  const auto c = content_for(10, GpsTime{2190, 525600.0}, nav);
+  const NavDecoder dec = run(c, 26280000, 3000, 0, 1.0, 0.0, 99);
+  EXPECT_FALSE(dec.ephemeris().has_value());
+  EXPECT_EQ(dec.subframes_decoded(), 0);
+}
+
+}  // namespace
+}  // namespace deepnav
