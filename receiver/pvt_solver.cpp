@@ -1,0 +1,183 @@
+#include "receiver/pvt_solver.hpp"
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+
+#include "ins/frames.hpp"
+#include "signals/atmosphere.hpp"
+#include "signals/gps_constants.hpp"
+
+namespace deepnav {
+namespace {
+
+constexpr double c = gps::kSpeedOfLight_mps;
+
+/// Chi-square quantile for `dof` degrees of freedom at upper-tail probability p (Wilson-Hilferty).
+double chi2_quantile(int dof, double p) {
+  // Normal quantile by bisection on the complementary error function.
+  double lo = 0.0, hi = 10.0;
+  for (int i = 0; i < 100; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (0.5 * std::erfc(mid / std::sqrt(2.0)) > p ? lo : hi) = mid;
+  }
+  const double z = 0.5 * (lo + hi);
+  const double k = dof;
+  const double a = 1.0 - 2.0 / (9.0 * k) + z * std::sqrt(2.0 / (9.0 * k));
+  return k * a * a * a;
+}
+
+double sigma2_m2(double elevation_rad, double cn0_dbhz) {
+  const double s = std::max(std::sin(elevation_rad), 0.1);
+  return 0.25 + 0.25 / (s * s) + 3e3 * std::pow(10.0, -cn0_dbhz / 10.0);
+}
+
+struct SatGeometry {
+  Eigen::Vector3d r, v;
+  double clock_m, drift_mps;
+};
+
+}  // namespace
+
+PvtSolution PvtSolver::solve(const GpsTime& t_rx, const std::vector<PseudorangeObservation>& obs,
+                             const std::map<int, Ephemeris>& ephemerides, const IonoParameters& iono) {
+  std::vector<PseudorangeObservation> use = obs;
+  std::vector<int> excluded;
+  PvtSolution sol;
+  while (true) {
+    sol = solve_once(t_rx, use, ephemerides, iono);
+    if (!sol.valid) break;
+    const int n = static_cast<int>(sol.used_prns.size());
+    if (n < 6) break;
+    // Residual test: weighted sum of squares against the chi-square bound.
+    double sse = 0.0, worst = 0.0;
+    int worst_prn = 0;
+    for (const auto& o : use) {
+      const auto it = sol.residuals_m.find(o.prn);
+      if (it == sol.residuals_m.end()) continue;
+      const double w = it->second * it->second / sigma2_m2(sol.elevation_rad.at(o.prn), o.cn0_dbhz);
+      sse += w;
+      if (w > worst) {
+        worst = w;
+        worst_prn = o.prn;
+      }
+    }
+    if (sse <= chi2_quantile(n - 4, cfg_.chi2_probability)) break;
+    excluded.push_back(worst_prn);
+    use.erase(std::remove_if(use.begin(), use.end(), [&](const auto& o) { return o.prn == worst_prn; }), use.end());
+  }
+  sol.excluded_prns = excluded;
+  if (sol.valid) {
+    seed_.head<3>() = sol.r_ecef_m;
+    seed_(3) = sol.clock_bias_m;
+  }
+  return sol;
+}
+
+PvtSolution PvtSolver::solve_once(const GpsTime& t_rx, const std::vector<PseudorangeObservation>& obs,
+                                  const std::map<int, Ephemeris>& ephemerides, const IonoParameters& iono) const {
+  PvtSolution sol;
+  sol.t = t_rx;
+  Eigen::Vector4d x = seed_;
+  std::vector<const PseudorangeObservation*> used;
+  std::vector<SatGeometry> geo;
+  Eigen::MatrixXd H;
+  Eigen::VectorXd W;
+  for (int iter = 0; iter < 10; ++iter) {
+    used.clear();
+    geo.clear();
+    std::vector<Eigen::Vector4d> rows;
+    std::vector<double> resid, weights;
+    const bool have_position = x.head<3>().norm() > 6e6;
+    const wgs84::Llh llh = have_position ? wgs84::ecef_to_llh(x.head<3>()) : wgs84::Llh{};
+    for (const auto& o : obs) {
+      const auto it = ephemerides.find(o.prn);
+      if (it == ephemerides.end()) continue;
+      const Ephemeris& eph = it->second;
+      const GpsTime t_tx = t_rx.plus_seconds(-o.pseudorange_m / c);
+      // Satellite clock first, so the orbit is evaluated at the true transmit time.
+      const double dts = l1_clock_correction_s(eph, t_tx);
+      const SatelliteState s = satellite_state(eph, t_tx.plus_seconds(-dts));
+      const double tau = (s.r_ecef_m - x.head<3>()).norm() / c;
+      SatGeometry g{earth_rotation_corrected(s.r_ecef_m, tau), earth_rotation_corrected(s.v_ecef_mps, tau), c * dts,
+                    c * s.clock_drift_sps};
+      const Eigen::Vector3d d = g.r - x.head<3>();
+      const double range = d.norm();
+      double el = M_PI / 2, az = 0.0, corr = 0.0;
+      if (have_position) {
+        const LookAngles la = look_angles(llh, x.head<3>(), g.r);
+        el = la.elevation_rad;
+        az = la.azimuth_rad;
+        if (el < cfg_.elevation_mask_rad) continue;
+        if (cfg_.ionosphere && iono.valid) corr += c * klobuchar_delay_s(iono, llh.lat_rad, llh.lon_rad, az, el, t_rx.sow);
+        if (cfg_.troposphere) corr += troposphere_delay_m(llh.lat_rad, llh.height_m, el);
+      }
+      rows.emplace_back(-d.x() / range, -d.y() / range, -d.z() / range, 1.0);
+      resid.push_back(o.pseudorange_m - (range + x(3) - g.clock_m + corr));
+      weights.push_back(1.0 / sigma2_m2(el, o.cn0_dbhz));
+      sol.elevation_rad[o.prn] = el;
+      used.push_back(&o);
+      geo.push_back(g);
+    }
+    if (used.size() < 4) {
+      sol.reason = "fewer than 4 usable satellites (" + std::to_string(used.size()) + ")";
+      return sol;
+    }
+    const auto n = static_cast<Eigen::Index>(used.size());
+    H.resize(n, 4);
+    W.resize(n);
+    Eigen::VectorXd y(n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      H.row(i) = rows[static_cast<std::size_t>(i)].transpose();
+      W(i) = weights[static_cast<std::size_t>(i)];
+      y(i) = resid[static_cast<std::size_t>(i)];
+    }
+    const Eigen::Matrix4d N = H.transpose() * W.asDiagonal() * H;
+    const Eigen::Vector4d dx = N.ldlt().solve(H.transpose() * W.asDiagonal() * y);
+    x += dx;
+    sol.iterations = iter + 1;
+    if (dx.head<3>().norm() < 1e-4) break;
+  }
+  // Final residuals, velocity, DOPs.
+  sol.r_ecef_m = x.head<3>();
+  sol.clock_bias_m = x(3);
+  sol.llh = wgs84::ecef_to_llh(sol.r_ecef_m);
+  const auto n = static_cast<Eigen::Index>(used.size());
+  Eigen::VectorXd rr(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const auto& o = *used[static_cast<std::size_t>(i)];
+    const auto& g = geo[static_cast<std::size_t>(i)];
+    const Eigen::Vector3d d = g.r - sol.r_ecef_m;
+    sol.used_prns.push_back(o.prn);
+    // Pseudorange residual with the final state (atmosphere as in the last iteration).
+    const double el = sol.elevation_rad[o.prn];
+    double corr = 0.0;
+    if (cfg_.ionosphere && iono.valid) {
+      const LookAngles la = look_angles(sol.llh, sol.r_ecef_m, g.r);
+      corr += c * klobuchar_delay_s(iono, sol.llh.lat_rad, sol.llh.lon_rad, la.azimuth_rad, el, t_rx.sow);
+    }
+    if (cfg_.troposphere) corr += troposphere_delay_m(sol.llh.lat_rad, sol.llh.height_m, el);
+    sol.residuals_m[o.prn] = o.pseudorange_m - (d.norm() + sol.clock_bias_m - g.clock_m + corr);
+    // Range rate from Doppler: -lambda fd = u.(v_sat - v) + c (drift_rx - drift_sat).
+    rr(i) = -gps::kL1Wavelength_m * o.doppler_hz - d.normalized().dot(g.v) + g.drift_mps;
+  }
+  const Eigen::Matrix4d N = H.transpose() * W.asDiagonal() * H;
+  const Eigen::Vector4d vel = N.ldlt().solve(H.transpose() * W.asDiagonal() * rr);
+  sol.v_ecef_mps = vel.head<3>();
+  sol.clock_drift_mps = vel(3);
+  // DOPs in the local level frame.
+  const Eigen::Matrix4d Q = (H.transpose() * H).inverse();
+  const Eigen::Matrix3d C = C_e_n(sol.llh.lat_rad, sol.llh.lon_rad);
+  const Eigen::Matrix3d Qn = C * Q.topLeftCorner<3, 3>() * C.transpose();
+  sol.dops.gdop = std::sqrt(Q.trace());
+  sol.dops.pdop = std::sqrt(Q.topLeftCorner<3, 3>().trace());
+  sol.dops.hdop = std::sqrt(Qn(0, 0) + Qn(1, 1));
+  sol.dops.vdop = std::sqrt(Qn(2, 2));
+  sol.dops.tdop = std::sqrt(Q(3, 3));
+  sol.valid = std::isfinite(sol.r_ecef_m.norm()) && sol.r_ecef_m.norm() > 6.0e6 && sol.r_ecef_m.norm() < 7.0e6;
+  if (!sol.valid) sol.reason = "solution did not converge to the Earth's surface";
+  return sol;
+}
+
+}  // namespace deepnav
