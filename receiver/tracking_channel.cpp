@@ -82,9 +82,6 @@ void TrackingChannel::process(const SampleBlock& block, std::vector<CorrelatorEp
     next_sample_ = idx;
     if (n == to_period_end) finish_code_period(out);
   }
-  // The IF part of the carrier phase is kept exact through the sample index; keep the
-  // Doppler part bounded too.
-  if (std::abs(carrier_phase_cycles_) > 1e9) carrier_phase_cycles_ = std::fmod(carrier_phase_cycles_, 1.0);
 }
 
 void TrackingChannel::finish_code_period(std::vector<CorrelatorEpoch>& out) {
@@ -107,10 +104,24 @@ void TrackingChannel::finish_code_period(std::vector<CorrelatorEpoch>& out) {
   e.carrier_doppler_hz = nco_.carrier_doppler_hz;
   e.code_rate_cps = nco_.code_rate_cps;
   out.push_back(e);
+  phase_history_.emplace_back(next_sample_, carrier_phase_cycles_);
+  while (phase_history_.size() > 64) phase_history_.pop_front();
   acc_first_ = -1;
   acc_samples_ = 0;
   acc_ms_ = 0;
   acc_e_ = acc_p_ = acc_l_ = acc_n_ = 0.0;
+}
+
+std::optional<double> TrackingChannel::mean_doppler_hz(double window_s) const {
+  if (phase_history_.size() < 2) return std::nullopt;
+  const auto& last = phase_history_.back();
+  const auto window = static_cast<std::int64_t>(window_s * cfg_.sample_rate_hz);
+  for (auto it = phase_history_.rbegin(); it != phase_history_.rend(); ++it) {
+    if (last.first - it->first >= window) {
+      return (last.second - it->second) * cfg_.sample_rate_hz / static_cast<double>(last.first - it->first);
+    }
+  }
+  return std::nullopt;
 }
 
 void TrackingChannel::bit_sync_step(const CorrelatorEpoch& e) {

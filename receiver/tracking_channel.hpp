@@ -6,6 +6,7 @@
 // ScalarLoopController and feeds the command back.
 #include <array>
 #include <cstdint>
+#include <deque>
 #include <optional>
 #include <vector>
 
@@ -20,7 +21,7 @@ struct TrackingConfig {
   double sample_rate_hz = 4.092e6;
   double if_hz = 0.0;
   double spacing_chips = 0.5;
-  int coherent_ms_after_bit_sync = 20;  ///< 1, 2, 4, 5, 10 or 20
+  int coherent_ms_after_bit_sync = 10;  ///< 1, 2, 4, 5, 10 or 20
   double lost_cn0_dbhz = 22.0;          ///< below this for `lost_after_s`: loss of lock
   double lost_after_s = 1.0;
 };
@@ -60,6 +61,12 @@ class TrackingChannel {
   /// sample index inside or just after the last block processed.
   double code_chips_at(std::int64_t sample_index) const;
   std::int64_t next_sample() const { return next_sample_; }
+  /// Mean carrier Doppler (Hz) over about the last `window_s` seconds, from the NCO phase
+  /// accumulated between integration ends: far less noisy than the loop's instantaneous
+  /// frequency. nullopt until that much has been tracked.
+  std::optional<double> mean_doppler_hz(double window_s) const;
+  /// Accumulated carrier phase (cycles, Doppler part) at the end of the last integration.
+  double carrier_phase_cycles() const { return carrier_phase_cycles_; }
 
  private:
   void finish_code_period(std::vector<CorrelatorEpoch>& out);
@@ -90,6 +97,7 @@ class TrackingChannel {
   std::optional<std::int64_t> bit_edge_;
   double low_cn0_since_s_ = -1.0;
   double tracked_s_ = 0.0;
+  std::deque<std::pair<std::int64_t, double>> phase_history_;  ///< (sample, carrier cycles) at integration ends
 };
 
 }  // namespace deepnav

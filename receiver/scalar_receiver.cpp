@@ -1,0 +1,233 @@
+#include "receiver/scalar_receiver.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <set>
+
+#include "receiver/nav_decoder.hpp"
+#include "signals/gps_constants.hpp"
+
+namespace deepnav {
+namespace {
+
+constexpr double c = gps::kSpeedOfLight_mps;
+
+int this_week() {
+  const auto now = std::chrono::system_clock::now();
+  const double unix_s = std::chrono::duration<double>(now.time_since_epoch()).count();
+  // GPS epoch 1980-01-06 is Unix 315964800 (leap seconds are irrelevant at week scale).
+  return static_cast<int>((unix_s - 315964800.0) / kSecondsPerWeek);
+}
+
+struct Channel {
+  std::unique_ptr<TrackingChannel> trk;
+  std::unique_ptr<ScalarLoopController> loop;
+  std::unique_ptr<NavDecoder> nav;
+  double last_doppler_hz = 0.0;
+  double start_t_s = 0.0;
+};
+
+}  // namespace
+
+struct ScalarReceiver::Impl {
+  ReceiverConfig cfg;
+  SampleSource& src;
+  double fs;
+  std::vector<Channel> channels;
+  std::vector<int> acquired;
+  std::map<int, Ephemeris> ephs;
+  IonoParameters iono;
+  UtcParameters utc;
+  PvtSolver pvt;
+  // Receiver time: t_rx(s) = time_ref + (s - sample_ref) / fs.
+  std::optional<GpsTime> time_ref;
+  std::int64_t sample_ref = 0;
+  double last_reacquire_s = 0.0;
+
+  Impl(ReceiverConfig c, SampleSource& s) : cfg(std::move(c)), src(s), fs(s.sample_rate_hz()), pvt(cfg.pvt) {
+    cfg.acquisition.sample_rate_hz = fs;
+    cfg.acquisition.if_hz = src.intermediate_frequency_hz();
+    cfg.tracking.sample_rate_hz = fs;
+    cfg.tracking.if_hz = src.intermediate_frequency_hz();
+    if (cfg.reference_week == 0) cfg.reference_week = this_week();
+    if (!(cfg.observation_rate_hz > 0.0 && cfg.observation_rate_hz <= 50.0))
+      throw std::invalid_argument("observation rate must be in (0, 50] Hz");
+  }
+
+  bool tracked(int prn) const {
+    return std::any_of(channels.begin(), channels.end(), [&](const Channel& ch) { return ch.trk->prn() == prn; });
+  }
+
+  /// Searches `samples` (starting at absolute index `first`) for satellites not tracked yet.
+  void acquire(const std::vector<Sample>& samples, std::int64_t first) {
+    if (static_cast<int>(channels.size()) >= cfg.channels) return;
+    AcquisitionConfig ac = cfg.acquisition;
+    ac.prns.clear();
+    for (int prn = 1; prn <= gps::kMaxPrn; ++prn)
+      if (!tracked(prn) && (cfg.acquisition.prns.empty() || std::count(cfg.acquisition.prns.begin(), cfg.acquisition.prns.end(), prn)))
+        ac.prns.push_back(prn);
+    if (ac.prns.empty()) return;
+    Acquisition acq(ac);
+    if (static_cast<std::int64_t>(samples.size()) < acq.samples_needed() / std::max(1, ac.noncoherent)) return;
+    auto results = acq.search(samples);
+    std::sort(results.begin(), results.end(), [](const auto& a, const auto& b) { return a.cn0_dbhz > b.cn0_dbhz; });
+    for (const auto& r : results) {
+      if (!r.detected || static_cast<int>(channels.size()) >= cfg.channels) continue;
+      Channel ch;
+      ch.trk = std::make_unique<TrackingChannel>(cfg.tracking, ChannelStart{r.prn, r.doppler_hz, r.code_phase_chips, first});
+      ch.loop = std::make_unique<ScalarLoopController>(r.doppler_hz, cfg.pull_in);
+      ch.nav = std::make_unique<NavDecoder>(r.prn, cfg.reference_week);
+      ch.last_doppler_hz = r.doppler_hz;
+      ch.start_t_s = static_cast<double>(first) / fs;
+      spdlog::debug("PRN {:2d} acquired: {:.1f} Hz, {:.2f} chips, {:.1f} dB-Hz", r.prn, r.doppler_hz, r.code_phase_chips, r.cn0_dbhz);
+      acquired.push_back(r.prn);
+      channels.push_back(std::move(ch));
+    }
+  }
+
+  void track(const SampleBlock& block,
+             const std::function<void(const CorrelatorEpoch&, const ChannelSnapshot&)>& on_correlation) {
+    std::vector<CorrelatorEpoch> epochs;
+    for (auto& ch : channels) {
+      epochs.clear();
+      ch.trk->process(block, epochs);
+      for (const auto& e : epochs) {
+        ch.trk->monitor(e);
+        const bool pulling_in = ch.trk->state() == ChannelState::pull_in;
+        ch.loop->set_bandwidths(ch.trk->state() == ChannelState::tracking ? cfg.tracking_loops : cfg.pull_in);
+        const NcoCommand cmd = ch.loop->update(e, pulling_in);
+        ch.trk->apply(cmd);
+        ch.last_doppler_hz = cmd.carrier_doppler_hz;
+        if (ch.trk->bit_edge_period() && ch.nav->add(e, *ch.trk->bit_edge_period())) {
+          ephs[ch.trk->prn()] = *ch.nav->ephemeris();
+          if (ch.nav->iono().valid) iono = ch.nav->iono();
+          if (ch.nav->utc().valid) utc = ch.nav->utc();
+          spdlog::debug("PRN {:2d}: ephemeris IODE {}", ch.trk->prn(), ch.nav->ephemeris()->iode);
+        }
+        if (on_correlation) {
+          on_correlation(e, ChannelSnapshot{ch.trk->prn(), ch.trk->state(), ch.trk->cn0_dbhz(), ch.nav->ephemeris().has_value()});
+        }
+      }
+    }
+    const auto lost = std::remove_if(channels.begin(), channels.end(), [](const Channel& ch) {
+      if (ch.trk->state() == ChannelState::lost) spdlog::info("PRN {:2d}: loss of lock", ch.trk->prn());
+      return ch.trk->state() == ChannelState::lost;
+    });
+    channels.erase(lost, channels.end());
+  }
+
+  ReceiverEpoch observe(std::int64_t s) {
+    ReceiverEpoch ep;
+    ep.sample_index = s;
+    ep.t_s = static_cast<double>(s) / fs;
+    struct Tx {
+      const Channel* ch;
+      double t_tx_sow;
+    };
+    std::vector<Tx> tx;
+    for (const auto& ch : channels) {
+      if (ch.trk->state() == ChannelState::tracking) ++ep.channels_tracking;
+      if (!ch.nav->synchronised()) continue;
+      const double chips = ch.trk->code_chips_at(s);
+      const auto period = static_cast<std::int64_t>(std::floor(chips / gps::kCodeLength_chips));
+      const auto t = ch.nav->transmit_time_sow(period, chips - static_cast<double>(period) * gps::kCodeLength_chips);
+      if (t) tx.push_back({&ch, *t});
+    }
+    if (!time_ref && tx.size() >= 4) {
+      double latest = tx.front().t_tx_sow;
+      for (const auto& x : tx) latest = std::max(latest, x.t_tx_sow);
+      time_ref = GpsTime::normalized(cfg.reference_week, latest + 0.068);
+      if (!ephs.empty()) time_ref->week = ephs.begin()->second.week;  // the data's week, not today's
+      sample_ref = s;
+    }
+    if (!time_ref) return ep;
+    const GpsTime t_rx = time_ref->plus_seconds(static_cast<double>(s - sample_ref) / fs);
+    ep.t_rx = t_rx;
+    std::vector<PseudorangeObservation> obs;
+    for (const auto& x : tx) {
+      double dt = t_rx.sow - x.t_tx_sow;
+      if (dt < -302400.0) dt += kSecondsPerWeek;
+      if (dt > 302400.0) dt -= kSecondsPerWeek;
+      ChannelObservation o;
+      o.prn = x.ch->trk->prn();
+      o.pseudorange_m = c * dt;
+      // Doppler from the carrier phase over the last 100 ms (the loop's instantaneous
+      // frequency carries its own noise); the loop frequency until that much exists.
+      o.doppler_hz = x.ch->trk->mean_doppler_hz(0.1).value_or(x.ch->last_doppler_hz);
+      o.carrier_phase_cycles = x.ch->trk->carrier_phase_cycles();
+      o.cn0_dbhz = x.ch->trk->cn0_dbhz();
+      o.lock_time_s = x.ch->trk->seconds_tracked();
+      ep.observations.push_back(o);
+      if (ephs.count(o.prn)) obs.push_back({o.prn, o.pseudorange_m, o.doppler_hz, o.cn0_dbhz});
+    }
+    ep.pvt = pvt.solve(t_rx, obs, ephs, iono);
+    if (ep.pvt.valid && std::abs(ep.pvt.clock_bias_m) > 1e3) {
+      // Steer the receiver clock so pseudoranges stay near the geometric ranges.
+      time_ref = time_ref->plus_seconds(-ep.pvt.clock_bias_m / c);
+    }
+    return ep;
+  }
+};
+
+ScalarReceiver::ScalarReceiver(ReceiverConfig config, SampleSource& source)
+    : impl_(std::make_unique<Impl>(std::move(config), source)) {}
+ScalarReceiver::~ScalarReceiver() = default;
+
+void ScalarReceiver::run(const std::function<void(const ReceiverEpoch&)>& on_epoch,
+                         const std::function<void(const CorrelatorEpoch&, const ChannelSnapshot&)>& on_correlation,
+                         const std::function<void(double)>& progress) {
+  Impl& m = *impl_;
+  const auto block_samples = static_cast<std::size_t>(std::llround(m.fs / 100.0));  // 10 ms blocks
+  const auto obs_step = static_cast<std::int64_t>(std::llround(m.fs / m.cfg.observation_rate_hz));
+  // Cold start: acquisition over the first samples, then those samples are tracked too.
+  const std::int64_t acq_samples = static_cast<std::int64_t>(std::llround(m.fs * 1e-3)) *
+                                   m.cfg.acquisition.coherent_ms * m.cfg.acquisition.noncoherent;
+  std::vector<Sample> recent;
+  SampleBlock block;
+  std::int64_t next_obs = -1;
+  std::int64_t recent_first = 0;
+  bool first = true;
+  while (m.src.read_block(block, first ? static_cast<std::size_t>(acq_samples) : block_samples)) {
+    if (first) {
+      m.acquire(block.samples, block.first_sample_index);
+      next_obs = block.first_sample_index + obs_step;
+      first = false;
+    }
+    m.track(block, on_correlation);
+    const std::int64_t end = block.first_sample_index + static_cast<std::int64_t>(block.samples.size());
+    // Keep the last acquisition window of samples for re-acquisition.
+    recent.insert(recent.end(), block.samples.begin(), block.samples.end());
+    if (static_cast<std::int64_t>(recent.size()) > acq_samples) {
+      const auto drop = static_cast<std::int64_t>(recent.size()) - acq_samples;
+      recent.erase(recent.begin(), recent.begin() + drop);
+    }
+    recent_first = end - static_cast<std::int64_t>(recent.size());
+    while (next_obs <= end) {
+      on_epoch(m.observe(next_obs));
+      next_obs += obs_step;
+    }
+    const double t = static_cast<double>(end) / m.fs;
+    if (t - m.last_reacquire_s >= m.cfg.reacquire_interval_s && static_cast<int>(m.channels.size()) < m.cfg.channels &&
+        static_cast<std::int64_t>(recent.size()) == acq_samples) {
+      m.last_reacquire_s = t;
+      // The new channels start at the window's first sample, already processed: they begin
+      // with the next block, carried across by their NCOs.
+      m.acquire(recent, recent_first);
+    }
+    if (progress) progress(t);
+  }
+  for (const auto& ch : m.channels) {
+    spdlog::debug("PRN {:2d}: {} subframes decoded, {} preamble candidates failed parity, ephemeris {}", ch.trk->prn(),
+                  ch.nav->subframes_decoded(), ch.nav->parity_failures(), ch.nav->ephemeris() ? "yes" : "no");
+  }
+}
+
+std::map<int, Ephemeris> ScalarReceiver::ephemerides() const { return impl_->ephs; }
+IonoParameters ScalarReceiver::iono() const { return impl_->iono; }
+UtcParameters ScalarReceiver::utc() const { return impl_->utc; }
+std::vector<int> ScalarReceiver::acquired_prns() const { return impl_->acquired; }
+
+}  // namespace deepnav

@@ -1,0 +1,28 @@
+#pragma once
+// The synthesizer's receiver truth (truth.csv) for scoring a run: position and velocity
+// at receiver clock time t_s (seconds since the first sample), linearly interpolated.
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace deepnav {
+
+struct TruthSample {
+  double t_s = 0.0;
+  Eigen::Vector3d r_ecef_m = Eigen::Vector3d::Zero();
+  Eigen::Vector3d v_ecef_mps = Eigen::Vector3d::Zero();
+};
+
+class TruthFile {
+ public:
+  /// Throws std::runtime_error naming the file and line for malformed input.
+  explicit TruthFile(const std::string& path);
+  /// nullopt outside the file's time span.
+  std::optional<TruthSample> at(double t_s) const;
+
+ private:
+  std::vector<TruthSample> rows_;
+};
+
+}  // namespace deepnav

@@ -1,0 +1,185 @@
+// `deepnav run`: the receiver on an IF file, with its products in an output folder.
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "ins/frames.hpp"
+#include "receiver/file_sample_source.hpp"
+#include "receiver/scalar_receiver.hpp"
+#include "receiver/truth_file.hpp"
+#include "signals/rinex_nav.hpp"
+#include "signals/text_output_file.hpp"
+#include "tools/command_registry.hpp"
+#include "tools/progress.hpp"
+
+namespace deepnav::cli {
+namespace {
+
+constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+
+struct RunOptions {
+  std::string input, format = "ibyte", out_dir, truth_path;
+  double fs_hz = 0.0, if_hz = 0.0, skip_s = 0.0;
+  bool inverted = false;
+  ReceiverConfig receiver;
+};
+
+/// Error statistics of one quantity.
+struct Stats {
+  std::vector<double> v;
+  nlohmann::json json() const {
+    if (v.empty()) return nullptr;
+    std::vector<double> s = v;
+    std::sort(s.begin(), s.end());
+    double sum2 = 0.0;
+    for (double x : s) sum2 += x * x;
+    return {{"rms", std::sqrt(sum2 / static_cast<double>(s.size()))},
+            {"p95", s[static_cast<std::size_t>(0.95 * static_cast<double>(s.size() - 1))]},
+            {"max", s.back()},
+            {"count", s.size()}};
+  }
+};
+
+void run_receiver(RunOptions o) {
+  SampleFormat format;
+  try {
+    format = parse_sample_format(o.format);
+  } catch (const std::invalid_argument& e) {
+    throw UserError(std::string("--format: ") + e.what());
+  }
+  std::optional<TruthFile> truth;
+  try {
+    if (!o.truth_path.empty()) truth.emplace(o.truth_path);
+  } catch (const std::runtime_error& e) {
+    throw UserError(e.what());
+  }
+  FileSampleSourceOptions so;
+  so.path = o.input;
+  so.format = format;
+  so.sample_rate_hz = o.fs_hz;
+  so.intermediate_frequency_hz = o.if_hz;
+  so.skip_s = o.skip_s;
+  so.inverted_spectrum = o.inverted;
+  std::unique_ptr<FileSampleSource> source;
+  try {
+    source = std::make_unique<FileSampleSource>(so);
+  } catch (const std::exception& e) {
+    throw UserError(e.what());
+  }
+  std::error_code ec;
+  std::filesystem::create_directories(o.out_dir, ec);
+  if (ec) throw UserError("cannot create output folder '" + o.out_dir + "': " + ec.message());
+  const auto path = [&](const char* name) { return (std::filesystem::path(o.out_dir) / name).string(); };
+
+  TextOutputFile pvt_csv(path("pvt.csv"));
+  pvt_csv.write(
+      "t_s,gps_week,gps_sow,valid,x_ecef_m,y_ecef_m,z_ecef_m,lat_deg,lon_deg,height_m,vn_mps,ve_mps,vd_mps,"
+      "clock_bias_m,clock_drift_mps,satellites,gdop,pdop,hdop,vdop,excluded\n");
+  TextOutputFile tracking_csv(path("tracking.csv"));
+  tracking_csv.write("first_sample,prn,state,integration_s,i_prompt,q_prompt,i_early,q_early,i_late,q_late,doppler_hz,code_rate_cps,cn0_dbhz\n");
+
+  ScalarReceiver receiver(o.receiver, *source);
+  const double total_s = static_cast<double>(source->total_samples()) / o.fs_hz;
+  ProgressLine progress("run", total_s);
+  std::optional<double> first_fix_s;
+  int fixes = 0, epochs = 0;
+  Stats horizontal, vertical, speed_error;
+  Stats pdop, sats;
+  receiver.run(
+      [&](const ReceiverEpoch& ep) {
+        ++epochs;
+        const PvtSolution& p = ep.pvt;
+        if (!p.valid) return;
+        ++fixes;
+        if (!first_fix_s) first_fix_s = ep.t_s;
+        const Eigen::Vector3d v_ned = C_e_n(p.llh.lat_rad, p.llh.lon_rad) * p.v_ecef_mps;
+        std::string excluded;
+        for (int prn : p.excluded_prns) excluded += (excluded.empty() ? "" : " ") + std::to_string(prn);
+        pvt_csv.write(fmt::format("{:.3f},{},{:.6f},1,{:.4f},{:.4f},{:.4f},{:.9f},{:.9f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{},{:.2f},{:.2f},{:.2f},{:.2f},{}\n",
+                                  ep.t_s, p.t.week, p.t.sow, p.r_ecef_m.x(), p.r_ecef_m.y(), p.r_ecef_m.z(),
+                                  p.llh.lat_rad * kRadToDeg, p.llh.lon_rad * kRadToDeg, p.llh.height_m, v_ned.x(),
+                                  v_ned.y(), v_ned.z(), p.clock_bias_m, p.clock_drift_mps, p.used_prns.size(),
+                                  p.dops.gdop, p.dops.pdop, p.dops.hdop, p.dops.vdop, excluded));
+        pdop.v.push_back(p.dops.pdop);
+        sats.v.push_back(static_cast<double>(p.used_prns.size()));
+        if (truth) {
+          if (const auto t = truth->at(ep.t_s)) {
+            const Eigen::Vector3d d = C_e_n(p.llh.lat_rad, p.llh.lon_rad) * (p.r_ecef_m - t->r_ecef_m);
+            horizontal.v.push_back(d.head<2>().norm());
+            vertical.v.push_back(std::abs(d.z()));
+            speed_error.v.push_back((p.v_ecef_mps - t->v_ecef_mps).norm());
+          }
+        }
+      },
+      [&](const CorrelatorEpoch& e, const ChannelSnapshot& ch) {
+        tracking_csv.write(fmt::format("{},{},{},{:.3f},{:.1f},{:.1f},{:.1f},{:.1f},{:.1f},{:.1f},{:.3f},{:.4f},{:.1f}\n",
+                                       e.first_sample, e.prn, static_cast<int>(ch.state), e.integration_s,
+                                       e.prompt.real(), e.prompt.imag(), e.early.real(), e.early.imag(),
+                                       e.late.real(), e.late.imag(), e.carrier_doppler_hz, e.code_rate_cps, ch.cn0_dbhz));
+      },
+      [&](double t) { progress.update(t / std::max(total_s, 1e-9)); });
+  progress.finish();
+
+  NavData nav;
+  for (const auto& [prn, eph] : receiver.ephemerides()) nav.ephemerides.push_back(eph);
+  nav.iono = receiver.iono();
+  nav.utc = receiver.utc();
+  std::ostringstream rinex;
+  write_rinex3_nav(rinex, nav, "deepnav");
+  TextOutputFile nav_file(path("nav.rnx"));
+  nav_file.write(rinex.str());
+
+  nlohmann::json summary = {{"input", o.input},
+                            {"duration_s", total_s},
+                            {"epochs", epochs},
+                            {"fixes", fixes},
+                            {"time_to_first_fix_s", first_fix_s ? nlohmann::json(*first_fix_s) : nlohmann::json(nullptr)},
+                            {"acquired_prns", receiver.acquired_prns()},
+                            {"ephemerides", nav.ephemerides.size()},
+                            {"satellites_used", sats.json()},
+                            {"pdop", pdop.json()}};
+  if (truth) {
+    summary["truth"] = o.truth_path;
+    summary["horizontal_error_m"] = horizontal.json();
+    summary["vertical_error_m"] = vertical.json();
+    summary["velocity_error_mps"] = speed_error.json();
+  }
+  TextOutputFile summary_file(path("summary.json"));
+  summary_file.write(summary.dump(2) + "\n");
+  pvt_csv.commit();
+  tracking_csv.commit();
+  nav_file.commit();
+  summary_file.commit();
+  fmt::print("{} fixes in {} epochs; first fix at {} s; satellites acquired: {}\n", fixes, epochs,
+             first_fix_s ? fmt::format("{:.1f}", *first_fix_s) : std::string("-"), receiver.acquired_prns().size());
+  if (truth && !horizontal.v.empty()) {
+    const auto h = horizontal.json(), v = vertical.json(), s = speed_error.json();
+    fmt::print("error vs truth: horizontal RMS {:.2f} m, vertical RMS {:.2f} m, velocity RMS {:.3f} m/s\n",
+               h["rms"].get<double>(), v["rms"].get<double>(), s["rms"].get<double>());
+  }
+}
+
+const bool registered = register_command([](CommandParents& parents) {
+  auto o = std::make_shared<RunOptions>();
+  CLI::App* cmd = parents.root.add_subcommand("run", "Run the receiver on an IF file: PVT and products in --out");
+  cmd->add_option("--input", o->input, "IF sample file")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--format", o->format, "ibyte|cs8, ishort|cs16, gr_complex|cf32, byte|s8")->capture_default_str();
+  cmd->add_option("--fs", o->fs_hz, "Sample rate (Hz)")->required();
+  cmd->add_option("--if", o->if_hz, "Intermediate frequency (Hz)")->capture_default_str();
+  cmd->add_option("--skip", o->skip_s, "Seconds skipped at the start")->capture_default_str();
+  cmd->add_flag("--inverted-spectrum", o->inverted, "The front end delivers I - jQ");
+  cmd->add_option("--out", o->out_dir, "Output folder")->required();
+  cmd->add_option("--truth", o->truth_path, "Synthesizer truth.csv: adds error statistics to summary.json");
+  cmd->add_option("--channels", o->receiver.channels, "Tracking channels")->capture_default_str();
+  cmd->add_option("--rate", o->receiver.observation_rate_hz, "Observation/PVT rate (Hz, up to 50)")->capture_default_str();
+  cmd->add_option("--doppler-max", o->receiver.acquisition.doppler_max_hz, "Acquisition Doppler half-width (Hz)")->capture_default_str();
+  cmd->add_option("--week", o->receiver.reference_week, "GPS week near the data (resolves the 10-bit week; default: today)");
+  cmd->callback([o] { run_receiver(*o); });
+});
+
+}  // namespace
+}  // namespace deepnav::cli
