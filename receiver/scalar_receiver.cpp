@@ -225,6 +225,10 @@ void ScalarReceiver::run(const std::function<void(const ReceiverEpoch&)>& on_epo
   }
 }
 
+void ScalarReceiver::set_assisted_iono(const IonoParameters& iono) {
+  if (!impl_->iono.valid) impl_->iono = iono;
+}
+
 std::map<int, Ephemeris> ScalarReceiver::ephemerides() const { return impl_->ephs; }
 IonoParameters ScalarReceiver::iono() const { return impl_->iono; }
 UtcParameters ScalarReceiver::utc() const { return impl_->utc; }

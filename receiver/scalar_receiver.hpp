@@ -69,6 +69,9 @@ class ScalarReceiver {
   void run(const std::function<void(const ReceiverEpoch&)>& on_epoch,
            const std::function<void(const CorrelatorEpoch&, const ChannelSnapshot&)>& on_correlation = {},
            const std::function<void(double)>& progress = {});
+  /// Ionosphere parameters to use until the broadcast ones (subframe 4 page 18, sent once
+  /// every 12.5 min) are decoded, e.g. from a navigation file given as assistance.
+  void set_assisted_iono(const IonoParameters& iono);
   /// Ephemerides, ionosphere and UTC decoded so far.
   std::map<int, Ephemeris> ephemerides() const;
   IonoParameters iono() const;

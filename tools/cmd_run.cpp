@@ -22,7 +22,7 @@ namespace {
 constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 
 struct RunOptions {
-  std::string input, format = "ibyte", out_dir, truth_path;
+  std::string input, format = "ibyte", out_dir, truth_path, assist_nav;
   double fs_hz = 0.0, if_hz = 0.0, skip_s = 0.0;
   bool inverted = false;
   ReceiverConfig receiver;
@@ -83,6 +83,13 @@ void run_receiver(RunOptions o) {
   tracking_csv.write("first_sample,prn,state,integration_s,i_prompt,q_prompt,i_early,q_early,i_late,q_late,doppler_hz,code_rate_cps,cn0_dbhz\n");
 
   ScalarReceiver receiver(o.receiver, *source);
+  if (!o.assist_nav.empty()) {
+    try {
+      receiver.set_assisted_iono(read_rinex_nav(o.assist_nav).iono);
+    } catch (const std::runtime_error& e) {
+      throw UserError(e.what());
+    }
+  }
   const double total_s = static_cast<double>(source->total_samples()) / o.fs_hz;
   ProgressLine progress("run", total_s);
   std::optional<double> first_fix_s;
@@ -177,6 +184,9 @@ const bool registered = register_command([](CommandParents& parents) {
   cmd->add_option("--channels", o->receiver.channels, "Tracking channels")->capture_default_str();
   cmd->add_option("--rate", o->receiver.observation_rate_hz, "Observation/PVT rate (Hz, up to 50)")->capture_default_str();
   cmd->add_option("--doppler-max", o->receiver.acquisition.doppler_max_hz, "Acquisition Doppler half-width (Hz)")->capture_default_str();
+  cmd->add_option("--iono-from", o->assist_nav,
+                  "RINEX navigation file whose ionosphere parameters are used until the broadcast ones are decoded")
+      ->check(CLI::ExistingFile);
   cmd->add_option("--week", o->receiver.reference_week, "GPS week near the data (resolves the 10-bit week; default: today)");
   cmd->callback([o] { run_receiver(*o); });
 });
