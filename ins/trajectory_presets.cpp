@@ -1,6 +1,7 @@
 #include "ins/trajectory_presets.hpp"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -23,7 +24,29 @@ struct PlanarState {
   double speed_mps = 0.0;
   double accel_mps2 = 0.0;
   double turn_rate_radps = 0.0;
+  /// Turn rate the bank angle follows: equal to turn_rate_radps except within half a
+  /// roll-reversal time of a change of turn rate, where it blends smoothly (a bank that
+  /// jumped would be an infinite roll rate no IMU could report).
+  double bank_turn_rate_radps = 0.0;
 };
+
+/// Quintic smoothstep: 0 -> 1 on [0, 1] with zero first and second derivatives at both ends.
+double smoothstep(double u) {
+  u = std::clamp(u, 0.0, 1.0);
+  return u * u * u * (10.0 + u * (-15.0 + 6.0 * u));
+}
+
+/// Bank turn rate at `time_in_segment` of a segment of length `duration`, blending
+/// over `reversal_s` centred on each end with the neighbouring segments' rates.
+double blended_turn_rate(double prev, double cur, double next, double time_in_segment, double duration,
+                         double reversal_s) {
+  if (reversal_s <= 0.0) return cur;
+  const double half = 0.5 * reversal_s;
+  if (time_in_segment < half) return prev + (cur - prev) * smoothstep((time_in_segment + half) / reversal_s);
+  const double to_end = duration - time_in_segment;
+  if (to_end < half) return cur + (next - cur) * smoothstep((half - to_end) / reversal_s);
+  return cur;
+}
 
 /// Advances a planar state by dt within one segment (closed form).
 PlanarState advance(const PlanarState& s, const PathSegment& seg, double dt) {
@@ -76,23 +99,45 @@ class PathTrajectory : public Trajectory {
     PlanarState s;
     s.course_rad = spec_.heading_rad;
     s.speed_mps = spec_.speed_mps;
-    if (t <= 0.0) return advance(s, spec_.segments.front(), t);
+    const auto& segs = spec_.segments;
+    const PathSegment straight_on{std::numeric_limits<double>::infinity(), 0.0, 0.0};
+    if (t <= 0.0) return with_bank_rate(advance(s, segs.front(), t), segs.front().turn_rate_radps, segs.front(),
+                                        next_turn_rate(0), t, segs.front().duration_s);
     double elapsed = 0.0;
     std::size_t i = 0;
+    double prev_rate = segs.front().turn_rate_radps;  // the first segment extends backwards unchanged
     while (true) {
-      const PathSegment& seg = spec_.segments[i];
-      if (t - elapsed <= seg.duration_s) return advance(s, seg, t - elapsed);
+      const PathSegment& seg = segs[i];
+      if (t - elapsed <= seg.duration_s) {
+        return with_bank_rate(advance(s, seg, t - elapsed), prev_rate, seg, next_turn_rate(i), t - elapsed,
+                              seg.duration_s);
+      }
       s = advance(s, seg, seg.duration_s);
       elapsed += seg.duration_s;
+      prev_rate = seg.turn_rate_radps;
       ++i;
-      if (i == spec_.segments.size()) {
+      if (i == segs.size()) {
         if (!spec_.repeat) {
           // Past the last finite segment: continue straight at constant speed.
-          return advance(s, PathSegment{0.0, 0.0, 0.0}, t - elapsed);
+          return with_bank_rate(advance(s, straight_on, t - elapsed), prev_rate, straight_on, 0.0, t - elapsed,
+                                straight_on.duration_s);
         }
         i = 0;
       }
     }
+  }
+
+  /// Turn rate of the segment after segment i (straight on after the last one unless repeating).
+  double next_turn_rate(std::size_t i) const {
+    if (i + 1 < spec_.segments.size()) return spec_.segments[i + 1].turn_rate_radps;
+    return spec_.repeat ? spec_.segments.front().turn_rate_radps : 0.0;
+  }
+
+  PlanarState with_bank_rate(PlanarState s, double prev_rate, const PathSegment& seg, double next_rate,
+                             double time_in_segment, double duration) const {
+    s.bank_turn_rate_radps = blended_turn_rate(prev_rate, seg.turn_rate_radps, next_rate, time_in_segment, duration,
+                                               spec_.roll_reversal_s);
+    return s;
   }
 
   /// Tangent-frame (start NED) position, velocity, acceleration.
@@ -110,7 +155,7 @@ class PathTrajectory : public Trajectory {
     EulerAngles e;
     e.yaw_rad = ps.course_rad;
     e.pitch_rad = std::atan2(spec_.climb_mps, std::abs(ps.speed_mps));
-    if (spec_.bank_in_turns) e.roll_rad = std::atan(ps.speed_mps * ps.turn_rate_radps / kStandardGravity);
+    if (spec_.bank_in_turns) e.roll_rad = std::atan(ps.speed_mps * ps.bank_turn_rate_radps / kStandardGravity);
     if (spec_.wingrock_amplitude_rad != 0.0) {
       e.roll_rad += spec_.wingrock_amplitude_rad * std::sin(2.0 * kPi * t / spec_.wingrock_period_s);
     }

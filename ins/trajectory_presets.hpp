@@ -18,7 +18,9 @@
 //   land-circle     r = 87.27 m at 10 km/h (turn rate ~ pi/100 rad/s)
 //   land-s          half circle of land-circle, then half circle the other way, repeated
 //   air-circle      r = 4422 m at 500 km/h (turn rate pi/100 rad/s), coordinated bank
-//   air-s           half circle of air-circle, then the other way, repeated
+//   air-s           half circle of air-circle, then the other way, repeated; the bank
+//                   reverses smoothly over 4 s centred on each reversal (the path itself
+//                   switches curvature at once; only the roll anticipates and lags)
 //   air-spiral      r = 4422 m at turn rate pi/50 rad/s (as the paper states), climbing 0.2 m/s
 //   air-wingrock    straight and level at 500 km/h, roll +-20 deg with a 10 s period
 //                   (the paper gives no period)
@@ -50,6 +52,9 @@ struct PathSpec {
   std::vector<PathSegment> segments;  ///< repeated cyclically when `repeat`
   bool repeat = false;
   bool bank_in_turns = false;    ///< aircraft: coordinated-turn roll = atan(v * turn rate / g)
+  /// Aircraft: time over which the bank follows a change of turn rate (quintic blend centred
+  /// on the change, e.g. the S-shape's reversals); 0 makes the bank jump with the turn rate.
+  double roll_reversal_s = 4.0;
   double wingrock_amplitude_rad = 0.0;
   double wingrock_period_s = 10.0;
   double duration_s = 0.0;       ///< reported by duration_s() (the path itself is defined beyond it)

@@ -84,6 +84,36 @@ TEST(TrajectoryPresets, AircraftBankInCoordinatedTurns) {
   EXPECT_NEAR(traj->at(50.0).w_nb_b_radps.norm(), kPi / 100.0, 1e-4);
 }
 
+TEST(TrajectoryPresets, SShapeReversesTheBankSmoothly) {
+  // air-s reverses its turn every 100 s; the bank blends over 4 s centred on the reversal.
+  const auto traj = make_preset_trajectory("air-s", kStart, 0.0, 200.0);
+  const double bank = std::atan(500.0 / 3.6 * (kPi / 100.0) / 9.80665);
+  EXPECT_NEAR(euler_from_quaternion(traj->at(97.0).q_b_n).roll_rad, bank, 2e-3);
+  EXPECT_NEAR(euler_from_quaternion(traj->at(100.0).q_b_n).roll_rad, 0.0, 2e-3);
+  EXPECT_NEAR(euler_from_quaternion(traj->at(103.0).q_b_n).roll_rad, -bank, 2e-3);
+  // The blended quantity is the turn rate, so tan(roll) follows the quintic: the peak roll
+  // rate (at zero roll) is 1.875 * 2 * tan(bank) / 4 s.
+  const double peak_rate = 1.875 * 2.0 * std::tan(bank) / 4.0;
+  double max_step = 0.0;
+  double prev = euler_from_quaternion(traj->at(97.0).q_b_n).roll_rad;
+  for (double t = 97.05; t < 103.0; t += 0.05) {
+    const double roll = euler_from_quaternion(traj->at(t).q_b_n).roll_rad;
+    max_step = std::max(max_step, std::abs(roll - prev));
+    prev = roll;
+  }
+  EXPECT_LT(max_step, 1.01 * peak_rate * 0.05);
+  EXPECT_NEAR(std::abs(traj->at(100.0).w_nb_b_radps.x()), peak_rate, 2e-3);
+  // Body rate and its derivative stay consistent with the attitude inside the blend.
+  for (double t : {98.5, 99.3, 100.6, 101.7}) {
+    const TrajectoryState s = traj->at(t);
+    const double h = 1e-3;
+    const Eigen::Quaterniond dq = traj->at(t - h).q_b_n.conjugate() * traj->at(t + h).q_b_n;
+    EXPECT_LE((rotation_vector_from_quaternion(dq) / (2 * h) - s.w_nb_b_radps).norm(), 1e-6) << t;
+    const Eigen::Vector3d dw_fd = derivative([&](double x) { return traj->at(x).w_nb_b_radps; }, t, 1e-2);
+    EXPECT_LE((dw_fd - s.dw_nb_b_radps2).norm(), 1e-5 + 1e-4 * s.dw_nb_b_radps2.norm()) << t;
+  }
+}
+
 TEST(TrajectoryPresets, WingRockRollsTwentyDegrees) {
   const auto traj = make_preset_trajectory("air-wingrock", kStart, 1.0, 200.0);
   double max_roll = 0.0, min_roll = 0.0;
