@@ -117,6 +117,7 @@ PvtSolution PvtSolver::solve_once(const GpsTime& t_rx, const std::vector<Pseudor
       resid.push_back(o.pseudorange_m - (range + x(3) - g.clock_m + corr));
       weights.push_back(1.0 / sigma2_m2(el, o.cn0_dbhz));
       sol.elevation_rad[o.prn] = el;
+      sol.azimuth_rad[o.prn] = az;
       used.push_back(&o);
       geo.push_back(g);
     }

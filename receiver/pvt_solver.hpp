@@ -45,6 +45,7 @@ struct PvtSolution {
   std::vector<int> used_prns, excluded_prns;
   std::map<int, double> residuals_m;
   std::map<int, double> elevation_rad;
+  std::map<int, double> azimuth_rad;
   int iterations = 0;
 };
 

@@ -9,6 +9,9 @@
 
 #include "ins/frames.hpp"
 #include "receiver/file_sample_source.hpp"
+#include "receiver/nmea_writer.hpp"
+#include "receiver/rinex_obs_writer.hpp"
+#include "receiver/track_writers.hpp"
 #include "receiver/scalar_receiver.hpp"
 #include "receiver/truth_file.hpp"
 #include "signals/rinex_nav.hpp"
@@ -96,11 +99,20 @@ void run_receiver(RunOptions o) {
   int fixes = 0, epochs = 0;
   Stats horizontal, vertical, speed_error;
   Stats pdop, sats;
+  std::vector<ReceiverEpoch> all_epochs;
+  std::vector<PvtSolution> fix_list;
+  std::string nmea;
+  const auto leap_seconds = [&] { return receiver.utc().valid ? receiver.utc().delta_t_ls : 18; };
   receiver.run(
       [&](const ReceiverEpoch& ep) {
         ++epochs;
+        all_epochs.push_back(ep);
         const PvtSolution& p = ep.pvt;
         if (!p.valid) return;
+        fix_list.push_back(p);
+        std::map<int, double> cn0;
+        for (const auto& ob : ep.observations) cn0[ob.prn] = ob.cn0_dbhz;
+        nmea += nmea_sentences(p, cn0, leap_seconds());
         ++fixes;
         if (!first_fix_s) first_fix_s = ep.t_s;
         const Eigen::Vector3d v_ned = C_e_n(p.llh.lat_rad, p.llh.lon_rad) * p.v_ecef_mps;
@@ -155,11 +167,26 @@ void run_receiver(RunOptions o) {
     summary["vertical_error_m"] = vertical.json();
     summary["velocity_error_mps"] = speed_error.json();
   }
+  RinexObsHeader obs_header;
+  obs_header.interval_s = 1.0 / o.receiver.observation_rate_hz;
+  if (!fix_list.empty()) obs_header.approx_position_ecef_m = fix_list.front().r_ecef_m;
+  TextOutputFile obs_file(path("obs.rnx"));
+  obs_file.write(rinex3_observation_file(obs_header, all_epochs));
+  TextOutputFile nmea_file(path("fixes.nmea"));
+  nmea_file.write(nmea);
+  TextOutputFile kml_file(path("track.kml"));
+  kml_file.write(kml_track(fix_list, std::filesystem::path(o.input).filename().string()));
+  TextOutputFile gpx_file(path("track.gpx"));
+  gpx_file.write(gpx_track(fix_list, std::filesystem::path(o.input).filename().string(), leap_seconds()));
   TextOutputFile summary_file(path("summary.json"));
   summary_file.write(summary.dump(2) + "\n");
   pvt_csv.commit();
   tracking_csv.commit();
   nav_file.commit();
+  obs_file.commit();
+  nmea_file.commit();
+  kml_file.commit();
+  gpx_file.commit();
   summary_file.commit();
   fmt::print("{} fixes in {} epochs; first fix at {} s; satellites acquired: {}\n", fixes, epochs,
              first_fix_s ? fmt::format("{:.1f}", *first_fix_s) : std::string("-"), receiver.acquired_prns().size());

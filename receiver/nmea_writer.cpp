@@ -1,0 +1,73 @@
+#include "receiver/nmea_writer.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "ins/frames.hpp"
+
+namespace deepnav {
+namespace {
+
+constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+
+std::string sentence(const std::string& body) { return "$" + body + nmea_checksum(body) + "\r\n"; }
+
+/// ddmm.mmmmm / dddmm.mmmmm with hemisphere letter.
+std::string angle(double deg, int degree_digits, char pos, char neg) {
+  const char hemi = deg >= 0 ? pos : neg;
+  deg = std::abs(deg);
+  int d = static_cast<int>(deg);
+  double m = (deg - d) * 60.0;
+  if (m >= 59.9999995) {  // rounding would print 60.00000
+    m = 0.0;
+    ++d;
+  }
+  return fmt::format("{:0{}d}{:08.5f},{}", d, degree_digits, m, hemi);
+}
+
+}  // namespace
+
+std::string nmea_checksum(const std::string& body) {
+  unsigned char sum = 0;
+  for (char ch : body) sum ^= static_cast<unsigned char>(ch);
+  return fmt::format("*{:02X}", sum);
+}
+
+std::string nmea_sentences(const PvtSolution& fix, const std::map<int, double>& cn0_dbhz, int leap_seconds) {
+  const CalendarTime utc = calendar_from_gps_time(fix.t.plus_seconds(-leap_seconds));
+  const std::string hms = fmt::format("{:02d}{:02d}{:05.2f}", utc.hour, utc.minute, std::floor(utc.second * 100.0) / 100.0);
+  const double lat = fix.llh.lat_rad * kRadToDeg, lon = fix.llh.lon_rad * kRadToDeg;
+  const std::string pos = angle(lat, 2, 'N', 'S') + "," + angle(lon, 3, 'E', 'W');
+  std::string out;
+  out += sentence(fmt::format("GPGGA,{},{},1,{:02d},{:.1f},{:.2f},M,0.0,M,,", hms, pos, fix.used_prns.size(),
+                              fix.dops.hdop, fix.llh.height_m));
+  const Eigen::Vector3d v = C_e_n(fix.llh.lat_rad, fix.llh.lon_rad) * fix.v_ecef_mps;
+  const double speed_knots = v.head<2>().norm() * 3600.0 / 1852.0;
+  double course = std::atan2(v.y(), v.x()) * kRadToDeg;
+  if (course < 0) course += 360.0;
+  out += sentence(fmt::format("GPRMC,{},A,{},{:.2f},{:.1f},{:02d}{:02d}{:02d},,,A", hms, pos, speed_knots, course,
+                              utc.day, utc.month, utc.year % 100));
+  std::string prns;
+  for (int i = 0; i < 12; ++i)
+    prns += (i < static_cast<int>(fix.used_prns.size()) ? fmt::format("{:02d}", fix.used_prns[static_cast<std::size_t>(i)]) : "") + ",";
+  out += sentence(fmt::format("GPGSA,A,3,{}{:.1f},{:.1f},{:.1f}", prns, fix.dops.pdop, fix.dops.hdop, fix.dops.vdop));
+  // GSV: four satellites per sentence.
+  const int n = static_cast<int>(fix.used_prns.size());
+  const int messages = std::max(1, (n + 3) / 4);
+  for (int m = 0; m < messages; ++m) {
+    std::string body = fmt::format("GPGSV,{},{},{:02d}", messages, m + 1, n);
+    for (int i = 4 * m; i < std::min(n, 4 * m + 4); ++i) {
+      const int prn = fix.used_prns[static_cast<std::size_t>(i)];
+      const double el = fix.elevation_rad.count(prn) ? fix.elevation_rad.at(prn) * kRadToDeg : 0.0;
+      const auto it = cn0_dbhz.find(prn);
+      const double az = fix.azimuth_rad.count(prn) ? fix.azimuth_rad.at(prn) * kRadToDeg : 0.0;
+      body += fmt::format(",{:02d},{:02.0f},{:03.0f},{}", prn, std::max(0.0, el), az,
+                          it != cn0_dbhz.end() ? fmt::format("{:02.0f}", it->second) : std::string());
+    }
+    out += sentence(body);
+  }
+  return out;
+}
+
+}  // namespace deepnav

@@ -1,0 +1,22 @@
+#pragma once
+// RINEX 3.04 GPS observation file: C1C (pseudorange, m), L1C (carrier phase, cycles,
+// growing with range), D1C (Doppler, Hz), S1C (C/N0, dB-Hz) per epoch.
+#include <string>
+#include <vector>
+
+#include "ins/gps_time.hpp"
+#include "receiver/scalar_receiver.hpp"
+
+namespace deepnav {
+
+struct RinexObsHeader {
+  std::string marker = "DEEPNAV";
+  std::string program = "deepnav";
+  Eigen::Vector3d approx_position_ecef_m = Eigen::Vector3d::Zero();
+  double interval_s = 1.0;
+};
+
+/// The whole file; `epochs` carry the receiver time of each epoch (those without are skipped).
+std::string rinex3_observation_file(const RinexObsHeader& header, const std::vector<ReceiverEpoch>& epochs);
+
+}  // namespace deepnav
