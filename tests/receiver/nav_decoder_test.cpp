@@ -77,3 +77,29 @@ TEST(NavDecoder, NoiseAloneNeverSynchronises) {
 
 }  // namespace
 }  // namespace deepnav
+
+namespace deepnav {
+namespace {
+
+TEST(NavDecoder, RandomBitStreamsNeverCrashOrYieldData) {
+  // 200 seeded streams of random bits with random integration lengths: the decoder must
+  // neither crash nor assemble an ephemeris out of noise.
+  for (std::uint64_t seed = 1; seed <= 200; ++seed) {
+    std::mt19937_64 rng(seed);
+    NavDecoder dec(5, 2190);
+    std::int64_t period = static_cast<std::int64_t>(rng() % 1000);
+    for (int k = 0; k < 1200; ++k) {
+      CorrelatorEpoch e;
+      const int ms = (rng() % 4 == 0) ? 1 : 20;
+      period += ms;
+      e.code_period = period;
+      e.integration_s = ms * 1e-3;
+      e.prompt = {(rng() & 1) ? 1.0 : -1.0, 0.0};
+      dec.add(e, static_cast<std::int64_t>(seed % 20));
+    }
+    EXPECT_FALSE(dec.ephemeris().has_value()) << seed;
+  }
+}
+
+}  // namespace
+}  // namespace deepnav
