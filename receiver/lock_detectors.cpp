@@ -6,7 +6,9 @@
 namespace deepnav {
 
 void LockDetector::add(const std::complex<double>& prompt, const std::complex<double>& noise, double t) {
-  if (t != integration_s_) reset();  // integration length changed: start a new window
+  // A new integration length (1 ms -> 10 ms after bit sync) starts a new window; the one-
+  // sample jitter of code-period lengths does not.
+  if (std::abs(t - integration_s_) > 0.25e-3) reset();
   integration_s_ = t;
   const double p2 = std::norm(prompt);
   prompt_power_.push_back(p2);
