@@ -138,29 +138,6 @@ RunResult track(const TestSignal& sig, double seconds, double doppler_error_hz, 
   return r;
 }
 
-TEST(Correlator, MatchesADirectReference) {
-  TestSignal sig;
-  sig.cn0_dbhz = 60.0;
-  const auto x = sig.generate(0.002);
-  CorrelatorSpan span;
-  span.code_phase_chips = 17.25;
-  span.code_step_chips = 1.023e6 / kFs * 1.000001;
-  span.carrier_phase_cycles = 0.125;
-  span.carrier_step_cycles = 1500.0 / kFs;
-  const int n = 3000;
-  const CorrelatorSums s = correlate(x.data(), n, span, ca_code_chips(5), ca_code_chips(6));
-  std::complex<double> p = 0.0, e = 0.0;
-  for (int k = 0; k < n; ++k) {
-    const std::complex<double> w = std::polar(1.0, -2.0 * M_PI * (span.carrier_phase_cycles + k * span.carrier_step_cycles));
-    const std::complex<double> v = std::complex<double>(x[static_cast<std::size_t>(k)].real(), x[static_cast<std::size_t>(k)].imag()) * w;
-    const double chip = span.code_phase_chips + k * span.code_step_chips;
-    p += v * static_cast<double>(ca_code_chips(5)[static_cast<std::size_t>(static_cast<int>(std::floor(chip)) % 1023)]);
-    e += v * static_cast<double>(ca_code_chips(5)[static_cast<std::size_t>(static_cast<int>(std::floor(chip + 0.25)) % 1023)]);
-  }
-  EXPECT_LT(std::abs(s.prompt - p), 1e-3 * std::abs(p) + 1.0);
-  EXPECT_LT(std::abs(s.early - e), 1e-3 * std::abs(e) + 1.0);
-}
-
 TEST(TrackingLoops, Discriminators) {
   EXPECT_NEAR(costas_phase_error_cycles(std::polar(1.0, 0.2)), 0.2 / (2 * M_PI), 1e-12);
   EXPECT_NEAR(costas_phase_error_cycles(-std::polar(1.0, 0.2)), 0.2 / (2 * M_PI), 1e-12);  // data bit flip
