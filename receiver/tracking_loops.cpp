@@ -1,6 +1,8 @@
 #include "receiver/tracking_loops.hpp"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "signals/gps_constants.hpp"
 
@@ -25,10 +27,48 @@ double dll_code_error_chips(const std::complex<double>& early, const std::comple
   return (1.0 - 0.5 * spacing) * (e - l) / (e + l);
 }
 
-ScalarLoopController::ScalarLoopController(double initial_doppler_hz, LoopBandwidths b)
-    : bw_(b), velocity_radps_(2.0 * M_PI * initial_doppler_hz), last_output_hz_(initial_doppler_hz) {}
+CarrierLoopFilter::CarrierLoopFilter(int order, double pll_hz, double fll_hz, double initial_hz)
+    : order_(2), pll_hz_(0.0), fll_hz_(0.0), velocity_radps_(2.0 * M_PI * initial_hz), output_hz_(initial_hz) {
+  set_bandwidths(order, pll_hz, fll_hz);
+}
 
-double ScalarLoopController::doppler_hz() const { return last_output_hz_; }
+void CarrierLoopFilter::set_bandwidths(int order, double pll_hz, double fll_hz) {
+  if (order != 2 && order != 3)
+    throw std::invalid_argument("carrier loop: PLL order must be 2 or 3, got " + std::to_string(order));
+  if (!(pll_hz >= 0.0) || !(fll_hz >= 0.0))
+    throw std::invalid_argument("carrier loop: bandwidths must be >= 0 Hz");
+  order_ = order;
+  pll_hz_ = pll_hz;
+  fll_hz_ = fll_hz;
+}
+
+double CarrierLoopFilter::update(double e_phase_rad, double e_freq_radps, double t) {
+  double output_radps = 0.0;
+  if (order_ == 2) {
+    const double w0p = pll_hz_ / 0.53, w0f = fll_hz_ / 0.25;
+    velocity_radps_ += t * (w0p * w0p * e_phase_rad + w0f * e_freq_radps);
+    output_radps = velocity_radps_ + 1.414 * w0p * e_phase_rad;
+  } else {
+    const double w0p = pll_hz_ / 0.7845, w0f = fll_hz_ / 0.53;
+    acceleration_radps2_ += t * (w0p * w0p * w0p * e_phase_rad + w0f * w0f * e_freq_radps);
+    velocity_radps_ += t * (acceleration_radps2_ + 1.1 * w0p * w0p * e_phase_rad + 1.414 * w0f * e_freq_radps);
+    output_radps = velocity_radps_ + 2.4 * w0p * e_phase_rad;
+  }
+  output_hz_ = output_radps / (2.0 * M_PI);
+  return output_hz_;
+}
+
+double carrier_aided_code_rate_cps(double carrier_doppler_hz, double code_error_chips, double dll_hz) {
+  return gps::kCodeRate_cps * (1.0 + carrier_doppler_hz / gps::kL1_Hz) + 4.0 * dll_hz * code_error_chips;
+}
+
+ScalarLoopController::ScalarLoopController(double initial_doppler_hz, LoopBandwidths b)
+    : bw_(b), carrier_(b.pll_order, b.pll_hz, b.fll_hz, initial_doppler_hz) {}
+
+void ScalarLoopController::set_bandwidths(const LoopBandwidths& b) {
+  carrier_.set_bandwidths(b.pll_order, b.pll_hz, b.fll_hz);
+  bw_ = b;
+}
 
 NcoCommand ScalarLoopController::update(const CorrelatorEpoch& epoch, bool use_fll) {
   const double t = epoch.integration_s;
@@ -38,16 +78,10 @@ NcoCommand ScalarLoopController::update(const CorrelatorEpoch& epoch, bool use_f
     e_freq_radps = 2.0 * M_PI * fll_frequency_error_hz(*previous_prompt_, epoch.prompt, t);
   }
   previous_prompt_ = epoch.prompt;
-  const double w0p = bw_.pll_hz / 0.53;
-  const double w0f = bw_.fll_hz / 0.25;
-  velocity_radps_ += t * (w0p * w0p * e_phase_rad + (use_fll ? w0f * e_freq_radps : 0.0));
-  const double output_radps = velocity_radps_ + 1.414 * w0p * e_phase_rad;
-  last_output_hz_ = output_radps / (2.0 * M_PI);
-
   NcoCommand cmd;
-  cmd.carrier_doppler_hz = last_output_hz_;
+  cmd.carrier_doppler_hz = carrier_.update(e_phase_rad, e_freq_radps, t);
   const double e_code = dll_code_error_chips(epoch.early, epoch.late, bw_.dll_spacing_chips);
-  cmd.code_rate_cps = gps::kCodeRate_cps * (1.0 + last_output_hz_ / gps::kL1_Hz) + 4.0 * bw_.dll_hz * e_code;
+  cmd.code_rate_cps = carrier_aided_code_rate_cps(cmd.carrier_doppler_hz, e_code, bw_.dll_hz);
   return cmd;
 }
 

@@ -5,27 +5,44 @@
 // which one is driving it.
 #include <complex>
 #include <cstdint>
+#include <optional>
 
 namespace deepnav {
 
 /// Rates for the channel's numerically controlled oscillators from the next sample on.
+/// The carrier NCO runs at IF + carrier_doppler_hz; the IF belongs to the front end and is
+/// part of the channel's configuration, so a steering filter deals in Doppler only.
 struct NcoCommand {
   double code_rate_cps = 1.023e6;       ///< code chips per second
   double carrier_doppler_hz = 0.0;      ///< carrier frequency minus the IF
+  /// One-off jumps applied at the next sample, before the new rates: a filter that
+  /// estimates the phase errors directly (vector/ultra-tight tracking) corrects them here
+  /// instead of through a rate. Positive advances the replica.
+  std::optional<double> code_phase_correction_chips;
+  std::optional<double> carrier_phase_correction_cycles;
 };
 
 /// One integration of one channel: correlator sums and the NCO state at its end.
+/// Correlator sums are in sample units (a noise-free aligned signal of amplitude A over
+/// n samples gives |prompt| = A n); the lock flags and C/N0 include this integration.
 struct CorrelatorEpoch {
   int prn = 0;
+  int channel = 0;                      ///< the owner's channel number (ChannelStart::channel)
   std::int64_t first_sample = 0;        ///< absolute index of the first sample integrated
   int samples = 0;
   double integration_s = 0.0;
   std::int64_t code_period = 0;         ///< code periods (ms) completed since tracking started, at the end
   std::complex<double> early, prompt, late;  ///< E/P/L at +-spacing/2 chips
+  std::complex<double> very_early, very_late;  ///< at +-very_spacing/2 chips; zero when not configured
   std::complex<double> noise;           ///< a correlator on an unused PRN code: noise power reference
+  double code_phase_chips = 0.0;        ///< prompt code phase at the end, [0, 1023) (0 right after a period)
   double carrier_phase_cycles = 0.0;    ///< accumulated carrier NCO phase at the end (Doppler part, cycles)
   double carrier_doppler_hz = 0.0;      ///< NCO Doppler used over this integration
   double code_rate_cps = 0.0;           ///< NCO code rate used over this integration
+  double cn0_dbhz = 0.0;                ///< estimate over the lock detector's window (0 until it is full)
+  bool pll_lock = false;                ///< carrier phase lock (with hysteresis)
+  bool code_lock = false;               ///< C/N0 above the code-lock threshold (with hysteresis)
+  bool bit_synced = false;              ///< data-bit edges known; integrations now end on them
 };
 
 }  // namespace deepnav

@@ -138,14 +138,6 @@ RunResult track(const TestSignal& sig, double seconds, double doppler_error_hz, 
   return r;
 }
 
-TEST(TrackingLoops, Discriminators) {
-  EXPECT_NEAR(costas_phase_error_cycles(std::polar(1.0, 0.2)), 0.2 / (2 * M_PI), 1e-12);
-  EXPECT_NEAR(costas_phase_error_cycles(-std::polar(1.0, 0.2)), 0.2 / (2 * M_PI), 1e-12);  // data bit flip
-  EXPECT_NEAR(fll_frequency_error_hz(std::polar(1.0, 0.0), std::polar(1.0, 2 * M_PI * 0.05), 1e-3), 50.0, 1e-9);
-  EXPECT_NEAR(dll_code_error_chips(1.0, 1.0, 0.5), 0.0, 1e-12);
-  EXPECT_GT(dll_code_error_chips(1.0, 0.5, 0.5), 0.0);  // early stronger: replica late, advance
-}
-
 TEST(TrackingChannel, PullsInAndTracksAt45DbHz) {
   TestSignal sig;
   const RunResult r = track(sig, 3.0, 200.0, 0.3);
