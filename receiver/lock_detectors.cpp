@@ -1,32 +1,70 @@
 #include "receiver/lock_detectors.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 
 namespace deepnav {
+namespace {
+
+/// The noise density changes slowly (front-end gain): its average spans this many lock windows.
+constexpr std::size_t kNoiseWindowFactor = 10;
+
+double mean(const std::deque<double>& d) { return std::accumulate(d.begin(), d.end(), 0.0) / static_cast<double>(d.size()); }
+
+/// One hysteresis step: `count` epochs in a row that argue for the other state flip `flag`.
+void hysteresis(bool& flag, int& count, bool above_on, bool below_off, int confirm) {
+  const bool argues_flip = flag ? below_off : above_on;
+  count = argues_flip ? count + 1 : 0;
+  if (count >= confirm) {
+    flag = !flag;
+    count = 0;
+  }
+}
+
+}  // namespace
+
+LockDetector::LockDetector(LockThresholds thresholds) : th_(thresholds) {}
 
 void LockDetector::add(const std::complex<double>& prompt, const std::complex<double>& noise, double t) {
   // A new integration length (1 ms -> 10 ms after bit sync) starts a new window; the one-
-  // sample jitter of code-period lengths does not.
-  if (std::abs(t - integration_s_) > 0.25e-3) reset();
+  // sample jitter of code-period lengths does not. The flags keep their state meanwhile.
+  if (std::abs(t - integration_s_) > 0.25e-3) {
+    prompt_power_.clear();
+    abs_i_.clear();
+    abs_q_.clear();
+    i2_.clear();
+    q2_.clear();
+  }
   integration_s_ = t;
-  const double p2 = std::norm(prompt);
-  prompt_power_.push_back(p2);
-  noise_power_.push_back(std::norm(noise));
+  window_ = std::max<std::size_t>(20, static_cast<std::size_t>(std::lround(th_.window_s / t)));
+  prompt_power_.push_back(std::norm(prompt));
+  noise_power_.push_back(std::norm(noise) / t);
+  while (noise_power_.size() > kNoiseWindowFactor * window_) noise_power_.pop_front();
   abs_i_.push_back(std::abs(prompt.real()));
   abs_q_.push_back(std::abs(prompt.imag()));
+  i2_.push_back(prompt.real() * prompt.real());
+  q2_.push_back(prompt.imag() * prompt.imag());
   while (prompt_power_.size() > window_) {
     prompt_power_.pop_front();
-    noise_power_.pop_front();
     abs_i_.pop_front();
     abs_q_.pop_front();
+    i2_.pop_front();
+    q2_.pop_front();
   }
+  update_flags();
+}
+
+void LockDetector::update_flags() {
+  if (!ready()) return;
+  const double ind = phase_lock_indicator(), cn0 = cn0_dbhz();
+  hysteresis(pll_lock_, pll_count_, ind > th_.pll_on, ind < th_.pll_off, th_.confirm_epochs);
+  hysteresis(code_lock_, code_count_, cn0 > th_.code_on_dbhz, cn0 < th_.code_off_dbhz, th_.confirm_epochs);
 }
 
 double LockDetector::cn0_dbhz() const {
   if (prompt_power_.empty()) return 0.0;
-  const double p = std::accumulate(prompt_power_.begin(), prompt_power_.end(), 0.0) / prompt_power_.size();
-  const double n = std::accumulate(noise_power_.begin(), noise_power_.end(), 0.0) / noise_power_.size();
+  const double p = mean(prompt_power_), n = mean(noise_power_) * integration_s_;
   if (n <= 0.0 || p <= n) return 0.0;
   return 10.0 * std::log10((p - n) / (n * integration_s_));
 }
@@ -37,11 +75,21 @@ double LockDetector::phase_lock_indicator() const {
   return q > 0.0 ? i / q : 0.0;
 }
 
+double LockDetector::cos_two_phi() const {
+  const double i = std::accumulate(i2_.begin(), i2_.end(), 0.0);
+  const double q = std::accumulate(q2_.begin(), q2_.end(), 0.0);
+  return i + q > 0.0 ? (i - q) / (i + q) : 0.0;
+}
+
 void LockDetector::reset() {
   prompt_power_.clear();
   noise_power_.clear();
   abs_i_.clear();
   abs_q_.clear();
+  i2_.clear();
+  q2_.clear();
+  pll_lock_ = code_lock_ = false;
+  pll_count_ = code_count_ = 0;
 }
 
 }  // namespace deepnav

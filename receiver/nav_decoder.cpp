@@ -36,8 +36,13 @@ bool NavDecoder::add(const CorrelatorEpoch& e, std::int64_t bit_edge_period) {
   bit_sum_ = 0.0;
   bit_ms_ = 0;
   if (!whole) return false;
-  bits_.push_back(sum.real() < 0.0 ? 1 : 0);
-  bit_start_period_.push_back(e.code_period - 20);
+  return add_bit(PromptBit{sum.real(), e.first_sample, e.code_period - 20});
+}
+
+bool NavDecoder::add_bit(const PromptBit& bit) {
+  // Bit 1 is sent as -1 (IS-GPS-200 3.2.2); an inverted stream is caught at the preamble.
+  bits_.push_back(bit.soft < 0.0 ? 1 : 0);
+  bit_start_period_.push_back(bit.code_period);
   const int before = assembler_.ephemeris() ? assembler_.ephemeris()->iode : -1;
   const bool had = assembler_.ephemeris().has_value();
   try_decode();
@@ -61,6 +66,7 @@ void NavDecoder::try_decode() {
       }
       if (const auto decoded = lnav::decode_subframe(sf)) {
         anchor_ = Anchor{bit_start_period_.front(), decoded->tlm_how.tow_count};
+        polarity_ = normal ? 1 : -1;
         assembler_.add(*decoded);
         ++subframes_;
         bits_.erase(bits_.begin(), bits_.begin() + kSubframeBits);
@@ -72,6 +78,18 @@ void NavDecoder::try_decode() {
     bits_.pop_front();
     bit_start_period_.pop_front();
   }
+}
+
+std::optional<std::pair<double, std::int64_t>> NavDecoder::last_subframe_start() const {
+  if (!anchor_) return std::nullopt;
+  return std::make_pair((anchor_->tow_count - 1) * 6.0, anchor_->period);
+}
+
+std::optional<double> transmit_time_sow(const NavDecoder& nav, const TrackingChannel& channel,
+                                        std::int64_t sample_index) {
+  const double chips = channel.code_chips_at(sample_index);
+  const double periods = std::floor(chips / gps::kCodeLength_chips);
+  return nav.transmit_time_sow(static_cast<std::int64_t>(periods), chips - periods * gps::kCodeLength_chips);
 }
 
 std::optional<double> NavDecoder::transmit_time_sow(std::int64_t period, double code_phase_chips) const {

@@ -10,6 +10,7 @@
 #include <optional>
 #include <vector>
 
+#include "receiver/tracking_channel.hpp"
 #include "receiver/tracking_types.hpp"
 #include "signals/lnav_message.hpp"
 
@@ -24,6 +25,9 @@ class NavDecoder {
   /// bits start, modulo 20). Integrations of 1 to 20 ms are summed into whole bits.
   /// Returns true when a new ephemeris was completed.
   bool add(const CorrelatorEpoch& epoch, std::int64_t bit_edge_period);
+  /// Feeds one data bit as the channel delivers it (TrackingChannel::take_bits()); the
+  /// alternative to add(). Returns true when a new ephemeris was completed.
+  bool add_bit(const PromptBit& bit);
 
   bool synchronised() const { return anchor_.has_value(); }
   const std::optional<Ephemeris>& ephemeris() const { return assembler_.ephemeris(); }
@@ -32,7 +36,12 @@ class NavDecoder {
   /// Satellite transmit time (seconds of week) of the code period `period` plus
   /// `code_phase_chips` into it; nullopt before the first subframe.
   std::optional<double> transmit_time_sow(std::int64_t period, double code_phase_chips) const;
+  /// HOW TOW (seconds of week) at the start of the last subframe decoded and the code period
+  /// at which that subframe's first bit starts.
+  std::optional<std::pair<double, std::int64_t>> last_subframe_start() const;
   int subframes_decoded() const { return subframes_; }
+  /// Bit polarity found by the preamble: +1 upright, -1 inverted (Costas ambiguity); 0 unknown.
+  int polarity() const { return polarity_; }
   int parity_failures() const { return failures_; }
 
  private:
@@ -52,6 +61,13 @@ class NavDecoder {
   std::optional<Anchor> anchor_;
   int subframes_ = 0;
   int failures_ = 0;
+  int polarity_ = 0;
 };
+
+/// Satellite transmit time (seconds of week) of the signal the channel's prompt replica is
+/// aligned with at an absolute sample index (inside or just after the last block the channel
+/// processed): what a pseudorange needs. nullopt before the first subframe is decoded.
+std::optional<double> transmit_time_sow(const NavDecoder& nav, const TrackingChannel& channel,
+                                        std::int64_t sample_index);
 
 }  // namespace deepnav

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "receiver/correlator.hpp"
 #include "signals/gps_constants.hpp"
@@ -12,7 +13,10 @@ namespace {
 
 constexpr double kPeriod = gps::kCodeLength_chips;
 
-/// An untracked PRN's code for the noise correlator (the next PRN, wrapping).
+/// The code of the noise correlator: the next PRN. At zero lag two C/A codes correlate to
+/// exactly -1/1023 (the G1 sequence cancels and two shifts of G2 are a third shift of an
+/// m-sequence), so the tracked signal, which the noise correlator sees with the same code
+/// timing and carrier, leaks only 1e-6 of its power into the noise estimate.
 int noise_prn(int prn) { return prn % gps::kMaxPrn + 1; }
 
 }  // namespace
@@ -23,15 +27,46 @@ TrackingChannel::TrackingChannel(const TrackingConfig& config, const ChannelStar
       code_(&ca_code_chips(start.prn)),
       noise_code_(&ca_code_chips(noise_prn(start.prn))),
       next_sample_(start.sample_index),
-      code_phase_chips_(start.code_phase_chips) {
+      code_phase_chips_(start.code_phase_chips),
+      lock_(config.lock) {
   if (!(cfg_.sample_rate_hz > 0.0)) throw std::invalid_argument("tracking: sample rate must be positive");
-  if (20 % cfg_.coherent_ms_after_bit_sync != 0)
-    throw std::invalid_argument("tracking: coherent_ms_after_bit_sync must divide 20");
+  if (cfg_.coherent_ms_after_bit_sync < 1 || 20 % cfg_.coherent_ms_after_bit_sync != 0)
+    throw std::invalid_argument("tracking: coherent_ms_after_bit_sync must divide 20 (1, 2, 4, 5, 10 or 20), got " +
+                                std::to_string(cfg_.coherent_ms_after_bit_sync));
+  if (start.prn < 1 || start.prn > gps::kMaxPrn)
+    throw std::invalid_argument("tracking: PRN must be in 1..32, got " + std::to_string(start.prn));
+  if (!(cfg_.spacing_chips > 0.0 && cfg_.spacing_chips < 2.0) || !(cfg_.very_spacing_chips >= 0.0))
+    throw std::invalid_argument("tracking: early-late spacing must be in (0, 2) chips and very-early/late spacing >= 0");
   nco_.carrier_doppler_hz = start.doppler_hz;
   nco_.code_rate_cps = gps::kCodeRate_cps * (1.0 + start.doppler_hz / gps::kL1_Hz);
 }
 
-void TrackingChannel::apply(const NcoCommand& command) { nco_ = command; }
+void TrackingChannel::apply(const NcoCommand& command) {
+  nco_.code_rate_cps = command.code_rate_cps;
+  nco_.carrier_doppler_hz = command.carrier_doppler_hz;
+  if (command.carrier_phase_correction_cycles) carrier_phase_cycles_ += *command.carrier_phase_correction_cycles;
+  if (command.code_phase_correction_chips) {
+    // Keep the phase in [0, 1023) with the period count carrying the whole periods, so
+    // code_chips_at() stays continuous across the jump.
+    const double chips = code_phase_chips_ + *command.code_phase_correction_chips;
+    const double periods = std::floor(chips / kPeriod);
+    code_period_ += static_cast<std::int64_t>(periods);
+    code_phase_chips_ = chips - periods * kPeriod;
+  }
+}
+
+void TrackingChannel::reset_integration() {
+  acc_first_ = -1;
+  acc_samples_ = 0;
+  acc_ms_ = 0;
+  acc_e_ = acc_p_ = acc_l_ = acc_ve_ = acc_vl_ = acc_n_ = 0.0;
+}
+
+std::vector<PromptBit> TrackingChannel::take_bits() {
+  std::vector<PromptBit> b;
+  b.swap(bits_);
+  return b;
+}
 
 double TrackingChannel::seconds_tracked() const { return tracked_s_; }
 
@@ -53,10 +88,8 @@ void TrackingChannel::process(const SampleBlock& block, std::vector<CorrelatorEp
     code_phase_chips_ = std::fmod(chips, kPeriod);
     carrier_phase_cycles_ += dt * nco_.carrier_doppler_hz;
     next_sample_ = idx;
-    acc_first_ = -1;
-    acc_samples_ = 0;
-    acc_ms_ = 0;
-    acc_e_ = acc_p_ = acc_l_ = acc_n_ = 0.0;
+    reset_integration();
+    bit_ms_ = 0;  // the bit in progress lost samples too
   }
   const double fs = cfg_.sample_rate_hz;
   while (idx < block_end) {
@@ -69,11 +102,14 @@ void TrackingChannel::process(const SampleBlock& block, std::vector<CorrelatorEp
     span.code_phase_chips = code_phase_chips_;
     span.code_step_chips = code_step;
     span.spacing_chips = cfg_.spacing_chips;
+    span.very_spacing_chips = cfg_.very_spacing_chips;
     const CorrelatorSums s = correlate(block.samples.data() + (idx - block.first_sample_index), n, span, *code_, *noise_code_);
     if (acc_first_ < 0) acc_first_ = idx;
     acc_e_ += s.early;
     acc_p_ += s.prompt;
     acc_l_ += s.late;
+    acc_ve_ += s.very_early;
+    acc_vl_ += s.very_late;
     acc_n_ += s.noise;
     acc_samples_ += n;
     code_phase_chips_ += n * code_step;
@@ -92,6 +128,7 @@ void TrackingChannel::finish_code_period(std::vector<CorrelatorEpoch>& out) {
   if (bit_edge_ && ((code_period_ - *bit_edge_) % coherent_ms_ + coherent_ms_) % coherent_ms_ != 0) return;
   CorrelatorEpoch e;
   e.prn = start_.prn;
+  e.channel = start_.channel;
   e.first_sample = acc_first_;
   e.samples = acc_samples_;
   e.integration_s = acc_samples_ / cfg_.sample_rate_hz;
@@ -99,17 +136,42 @@ void TrackingChannel::finish_code_period(std::vector<CorrelatorEpoch>& out) {
   e.early = acc_e_;
   e.prompt = acc_p_;
   e.late = acc_l_;
+  e.very_early = acc_ve_;
+  e.very_late = acc_vl_;
   e.noise = acc_n_;
+  e.code_phase_chips = code_phase_chips_;
   e.carrier_phase_cycles = carrier_phase_cycles_;
   e.carrier_doppler_hz = nco_.carrier_doppler_hz;
   e.code_rate_cps = nco_.code_rate_cps;
-  out.push_back(e);
   phase_history_.emplace_back(next_sample_, carrier_phase_cycles_);
   while (phase_history_.size() > 64) phase_history_.pop_front();
-  acc_first_ = -1;
-  acc_samples_ = 0;
-  acc_ms_ = 0;
-  acc_e_ = acc_p_ = acc_l_ = acc_n_ = 0.0;
+  reset_integration();
+  // Monitoring may switch the integration length; the next integration starts afterwards.
+  monitor(e);
+  e.cn0_dbhz = lock_.cn0_dbhz();
+  e.pll_lock = lock_.pll_locked();
+  e.code_lock = lock_.code_locked();
+  e.bit_synced = bit_edge_.has_value();
+  out.push_back(e);
+}
+
+void TrackingChannel::collect_bit(const CorrelatorEpoch& e) {
+  // Integrations never straddle a bit edge once synchronised; a bit is complete when the
+  // 20 code periods from its edge have been summed (the first, partial one is skipped).
+  const int ms = static_cast<int>(std::lround(e.integration_s * 1000.0));
+  const std::int64_t start = e.code_period - ms;
+  const auto phase = [&](std::int64_t p) { return ((p - *bit_edge_) % 20 + 20) % 20; };
+  if (phase(start) == 0) {
+    bit_sum_ = 0.0;
+    bit_ms_ = 0;
+    bit_first_sample_ = e.first_sample;
+    bit_first_period_ = start;
+  }
+  bit_sum_ += e.prompt.real();
+  bit_ms_ += ms;
+  if (phase(e.code_period) != 0) return;
+  if (bit_ms_ == 20) bits_.push_back(PromptBit{bit_sum_, bit_first_sample_, bit_first_period_});
+  bit_ms_ = 0;
 }
 
 std::optional<double> TrackingChannel::mean_doppler_hz(double window_s) const {
@@ -125,33 +187,29 @@ std::optional<double> TrackingChannel::mean_doppler_hz(double window_s) const {
 }
 
 void TrackingChannel::bit_sync_step(const CorrelatorEpoch& e) {
-  // Sign changes of the 1 ms prompt (carrier locked: data in I) vote for the code period
-  // at which a bit starts, modulo 20.
-  if (last_prompt_ms_ && (last_prompt_ms_->real() * e.prompt.real() < 0.0)) {
-    ++edge_votes_[static_cast<std::size_t>(((e.code_period - 1) % 20 + 20) % 20)];
-    ++transitions_;
-  }
-  last_prompt_ms_ = e.prompt;
-  if (transitions_ < 12) return;
-  const auto best = std::max_element(edge_votes_.begin(), edge_votes_.end());
-  if (*best >= 0.8 * transitions_) {
-    bit_edge_ = static_cast<std::int64_t>(std::distance(edge_votes_.begin(), best));
+  // The epoch covers code period e.code_period - 1 (counted from 0).
+  if (const auto edge = bit_sync_.add(e.code_period - 1, e.prompt, e.noise)) {
+    bit_edge_ = *edge;
     coherent_ms_ = cfg_.coherent_ms_after_bit_sync;
     state_ = ChannelState::tracking;
-  } else if (transitions_ > 60) {
-    edge_votes_.fill(0);  // no clear edge: start over
-    transitions_ = 0;
   }
 }
 
 void TrackingChannel::monitor(const CorrelatorEpoch& e) {
+  if (e.code_period <= last_monitored_period_) return;  // already seen (process() monitors itself)
+  last_monitored_period_ = e.code_period;
+  const bool synced_before = bit_edge_.has_value();
   tracked_s_ += e.integration_s;
   lock_.add(e.prompt, e.noise, e.integration_s);
-  if (state_ == ChannelState::pull_in && tracked_s_ > 0.3 && phase_locked()) state_ = ChannelState::bit_sync;
+  // Pull-in (FLL assistance) lasts a fixed time: long enough to bring an acquisition
+  // frequency error of a few hundred hertz into the PLL's range, short enough that the FLL's
+  // own noise (tens of hertz at 30 dB-Hz with 1 ms) does not keep the PLL from locking.
+  if (state_ == ChannelState::pull_in && tracked_s_ >= cfg_.pull_in_s) state_ = ChannelState::bit_sync;
   if (state_ == ChannelState::bit_sync && e.integration_s < 1.5e-3) bit_sync_step(e);
+  if (synced_before) collect_bit(e);
   if (lock_.ready()) {
-    // Weak or not phase-coherent for lost_after_s: the 1 ms C/N0 estimate alone has a noise
-    // floor of about 25 dB-Hz over the window, the |I|/|Q| ratio separates noise from signal.
+    // Weak or not phase-coherent for lost_after_s: either test alone can be passed by noise
+    // now and then (a Costas loop turns noise into I), together they rarely are.
     if (lock_.cn0_dbhz() < cfg_.lost_cn0_dbhz || lock_.phase_lock_indicator() < 1.2) {
       if (low_cn0_since_s_ < 0.0) low_cn0_since_s_ = tracked_s_;
       if (tracked_s_ - low_cn0_since_s_ > cfg_.lost_after_s) state_ = ChannelState::lost;

@@ -10,6 +10,7 @@
 #include <optional>
 #include <vector>
 
+#include "receiver/bit_synchronizer.hpp"
 #include "receiver/lock_detectors.hpp"
 #include "receiver/sample_source.hpp"
 #include "receiver/tracking_types.hpp"
@@ -24,6 +25,9 @@ struct TrackingConfig {
   int coherent_ms_after_bit_sync = 10;  ///< 1, 2, 4, 5, 10 or 20
   double lost_cn0_dbhz = 22.0;          ///< below this for `lost_after_s`: loss of lock
   double lost_after_s = 1.0;
+  double very_spacing_chips = 0.0;      ///< very-early/very-late spacing; 0: not computed
+  double pull_in_s = 0.25;              ///< FLL-assisted pull-in time before bit synchronisation
+  LockThresholds lock;                  ///< PLL and code lock flags (CorrelatorEpoch::pll_lock, code_lock)
 };
 
 /// Where tracking starts: an acquisition result.
@@ -32,6 +36,15 @@ struct ChannelStart {
   double doppler_hz = 0.0;
   double code_phase_chips = 0.0;  ///< prompt code phase at sample `sample_index`, [0, 1023)
   std::int64_t sample_index = 0;
+  int channel = 0;                ///< the owner's channel number, copied into every epoch
+};
+
+/// One data bit from the prompt, once the bits are synchronised: the sum of the prompt
+/// integrations over the bit's 20 code periods.
+struct PromptBit {
+  double soft = 0.0;                 ///< in-phase sum (sign = bit, up to the Costas ambiguity)
+  std::int64_t first_sample = 0;     ///< absolute sample index at which the bit starts
+  std::int64_t code_period = 0;      ///< channel code-period count at the bit start (see CorrelatorEpoch::code_period)
 };
 
 enum class ChannelState { pull_in, bit_sync, tracking, lost };
@@ -42,18 +55,23 @@ class TrackingChannel {
 
   /// Consumes a block (any size, any alignment); completed integrations are appended to `out`.
   /// Samples before the channel's next sample are skipped; a gap in the indices drops the
-  /// integration in progress and carries the NCOs across it.
+  /// integration in progress and carries the NCOs across it. Every completed epoch has
+  /// already been through the lock monitor and the bit synchroniser (its flags are set).
   void process(const SampleBlock& block, std::vector<CorrelatorEpoch>& out);
-  /// New NCO rates from the next sample on.
+  /// New NCO rates (and optional one-off phase corrections) from the next sample on.
   void apply(const NcoCommand& command);
-  /// Feeds the lock monitor and the bit synchroniser with a completed epoch (the owner calls
-  /// it after process(), whoever steers the channel); switches integration length and state.
+  /// Lock monitoring and bit synchronisation of an epoch. process() does this itself;
+  /// calling it again with an epoch already seen has no effect.
   void monitor(const CorrelatorEpoch& epoch);
+  /// Data bits completed since the last call (empty before bit synchronisation).
+  std::vector<PromptBit> take_bits();
 
   int prn() const { return start_.prn; }
   ChannelState state() const { return state_; }
   double cn0_dbhz() const { return lock_.cn0_dbhz(); }
-  bool phase_locked() const { return lock_.ready() && lock_.phase_lock_indicator() > 1.5; }
+  bool phase_locked() const { return lock_.pll_locked(); }
+  bool code_locked() const { return lock_.code_locked(); }
+  const LockDetector& lock_detector() const { return lock_; }
   /// Code period (ms count since the start) at which data bits begin, once synchronised.
   std::optional<std::int64_t> bit_edge_period() const { return bit_edge_; }
   double seconds_tracked() const;
@@ -71,6 +89,8 @@ class TrackingChannel {
  private:
   void finish_code_period(std::vector<CorrelatorEpoch>& out);
   void bit_sync_step(const CorrelatorEpoch& epoch);
+  void collect_bit(const CorrelatorEpoch& epoch);
+  void reset_integration();
 
   TrackingConfig cfg_;
   ChannelStart start_;
@@ -84,20 +104,24 @@ class TrackingChannel {
   double carrier_phase_cycles_ = 0.0;  ///< Doppler part only; the IF part follows the sample index
   NcoCommand nco_;
   // Integration in progress.
-  std::complex<double> acc_e_, acc_p_, acc_l_, acc_n_;
+  std::complex<double> acc_e_, acc_p_, acc_l_, acc_ve_, acc_vl_, acc_n_;
   std::int64_t acc_first_ = -1;
   int acc_samples_ = 0;
   int acc_ms_ = 0;
   int coherent_ms_ = 1;
   // Monitoring.
   LockDetector lock_;
-  std::array<int, 20> edge_votes_{};
-  int transitions_ = 0;
-  std::optional<std::complex<double>> last_prompt_ms_;
+  BitSynchronizer bit_sync_;
   std::optional<std::int64_t> bit_edge_;
   double low_cn0_since_s_ = -1.0;
   double tracked_s_ = 0.0;
   std::deque<std::pair<std::int64_t, double>> phase_history_;  ///< (sample, carrier cycles) at integration ends
+  std::int64_t last_monitored_period_ = -1;
+  // Bit assembly after bit sync.
+  double bit_sum_ = 0.0;
+  int bit_ms_ = 0;
+  std::int64_t bit_first_sample_ = 0, bit_first_period_ = 0;
+  std::vector<PromptBit> bits_;
 };
 
 }  // namespace deepnav

@@ -78,6 +78,11 @@ NcoCommand ScalarLoopController::update(const CorrelatorEpoch& epoch, bool use_f
     e_freq_radps = 2.0 * M_PI * fll_frequency_error_hz(*previous_prompt_, epoch.prompt, t);
   }
   previous_prompt_ = epoch.prompt;
+  if (use_fll) {
+    const double fade = bw_.fll_fade_s > 0.0 ? std::exp(-fll_time_s_ / bw_.fll_fade_s) : 1.0;
+    carrier_.set_bandwidths(bw_.pll_order, bw_.pll_hz, bw_.fll_hz * fade);
+    fll_time_s_ += t;
+  }
   NcoCommand cmd;
   cmd.carrier_doppler_hz = carrier_.update(e_phase_rad, e_freq_radps, t);
   const double e_code = dll_code_error_chips(epoch.early, epoch.late, bw_.dll_spacing_chips);

@@ -59,6 +59,10 @@ struct LoopBandwidths {
   double dll_hz = 1.0;
   double dll_spacing_chips = 0.5;  ///< early-late spacing the channel uses
   int pll_order = 2;               ///< 2 or 3
+  /// The FLL assistance fades out with this time constant (counted over the epochs it is
+  /// used), so the PLL takes over without the FLL's frequency noise (tens of hertz at
+  /// 30 dB-Hz with 1 ms integrations); 0 keeps it at full bandwidth.
+  double fll_fade_s = 0.08;
 };
 
 /// The scalar receiver's steering: CorrelatorEpoch in, NcoCommand out. The ultra-tight
@@ -75,6 +79,7 @@ class ScalarLoopController {
   LoopBandwidths bw_;
   CarrierLoopFilter carrier_;
   std::optional<std::complex<double>> previous_prompt_;
+  double fll_time_s_ = 0.0;  ///< time the FLL assistance has been applied
 };
 
 }  // namespace deepnav
