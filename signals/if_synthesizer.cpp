@@ -301,47 +301,43 @@ void write_sat_truth_header(TextOutputFile& f) {
 
 }  // namespace
 
-SynthesisSummary IfSynthesizer::run(const std::string& out_dir, const SynthesisOptions& options) {
-  Impl& m = *impl_;
-  const auto wall_start = std::chrono::steady_clock::now();
-  std::error_code ec;
-  std::filesystem::create_directories(out_dir, ec);
-  if (ec) throw std::runtime_error(fmt::format("cannot create output folder '{}': {}", out_dir, ec.message()));
+/// The chunk loop shared by run() and the streaming generator: clock steps, epoch
+/// boundaries and satellite signals (in parallel), then the front end in sample order.
+struct IfChunkGenerator::State {
+  const IfSynthesizer::Impl& m;
+  FrontEnd front_end;
+  ReceiverClockModel clock;
+  double bias0;
+  unsigned threads;
+  std::int64_t n;  ///< samples per epoch
+  std::vector<float> i_buf, q_buf;
+  std::vector<std::complex<float>> iq;
+  std::vector<ClockState> clocks;
+  std::vector<BoundaryState> boundaries;  ///< of the last chunk: [0] is its first epoch
+  ClockState current;
+  std::int64_t k0 = 0;                    ///< first epoch of the next chunk
 
-  SynthesisSummary summary;
-  summary.if_path = (std::filesystem::path(out_dir) / if_file_name(m.sc.format)).string();
-  summary.truth_path = (std::filesystem::path(out_dir) / "truth.csv").string();
-  summary.sat_truth_path = (std::filesystem::path(out_dir) / "sat_truth.csv").string();
-  summary.scenario_path = (std::filesystem::path(out_dir) / "scenario.yaml").string();
+  State(const IfSynthesizer::Impl& impl, unsigned thread_count)
+      : m(impl),
+        front_end(make_front_end_config(impl.sc), impl.sc.seed),
+        clock(impl.sc.clock.bias_s, impl.sc.clock.drift_sps, impl.sc.clock.h0, impl.sc.clock.h_minus2,
+              impl.sc.seed ^ 0x9E3779B97F4A7C15ULL),
+        bias0(impl.sc.clock.bias_s),
+        threads(thread_count == 0 ? std::max(1u, std::thread::hardware_concurrency()) : thread_count),
+        n(impl.samples_per_epoch),
+        i_buf(static_cast<std::size_t>(kEpochsPerChunk * n)),
+        q_buf(i_buf.size()),
+        iq(i_buf.size()),
+        clocks(kEpochsPerChunk + 1),
+        boundaries(kEpochsPerChunk + 1),
+        current(clock.state()) {}
 
-  IfFileWriter if_writer(summary.if_path);
-  std::unique_ptr<TextOutputFile> truth, sat_truth;
-  if (!options.if_only) {
-    truth = std::make_unique<TextOutputFile>(summary.truth_path);
-    sat_truth = std::make_unique<TextOutputFile>(summary.sat_truth_path);
-    write_truth_header(*truth);
-    write_sat_truth_header(*sat_truth);
-  }
-
-  FrontEnd front_end(make_front_end_config(m.sc), m.sc.seed);
-  ReceiverClockModel clock(m.sc.clock.bias_s, m.sc.clock.drift_sps, m.sc.clock.h0, m.sc.clock.h_minus2,
-                           m.sc.seed ^ 0x9E3779B97F4A7C15ULL);
-  const double bias0 = m.sc.clock.bias_s;
-  const unsigned threads =
-      options.threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : options.threads;
-  const std::int64_t truth_stride = std::llround(1000.0 / m.sc.truth_rate_hz);
-  const std::int64_t sat_stride = std::llround(1000.0 / m.sc.sat_truth_rate_hz);
-  const auto n = m.samples_per_epoch;
-
-  std::vector<float> i_buf(static_cast<std::size_t>(kEpochsPerChunk * n));
-  std::vector<float> q_buf(i_buf.size());
-  std::vector<std::complex<float>> iq(i_buf.size());
-  std::vector<std::byte> bytes;
-  std::vector<ClockState> clocks(kEpochsPerChunk + 1);
-  std::vector<BoundaryState> boundaries(kEpochsPerChunk + 1);
-  ClockState current = clock.state();
-
-  for (std::int64_t k0 = 0; k0 < m.epochs; k0 += kEpochsPerChunk) {
+  /// Generates the next chunk into `bytes`; returns its epoch count (0 at the end).
+  int generate(std::vector<std::byte>& bytes) {
+    if (k0 >= m.epochs) {
+      bytes.clear();
+      return 0;
+    }
     const int count = static_cast<int>(std::min<std::int64_t>(kEpochsPerChunk, m.epochs - k0));
     clocks[0] = current;
     for (int j = 1; j <= count; ++j) clocks[j] = clock.step(1e-3);
@@ -374,9 +370,61 @@ SynthesisSummary IfSynthesizer::run(const std::string& out_dir, const SynthesisO
     });
     for (std::size_t s = 0; s < static_cast<std::size_t>(count * n); ++s) iq[s] = {i_buf[s], q_buf[s]};
     front_end.process(std::span<std::complex<float>>(iq.data(), static_cast<std::size_t>(count * n)), k0 * n, bytes);
+    k0 += count;
+    return count;
+  }
+};
+
+IfChunkGenerator::IfChunkGenerator(std::unique_ptr<State> state) : state_(std::move(state)) {}
+IfChunkGenerator::~IfChunkGenerator() = default;
+
+bool IfChunkGenerator::next(std::vector<std::byte>& bytes) { return state_->generate(bytes) > 0; }
+
+std::int64_t IfChunkGenerator::next_sample_index() const { return state_->k0 * state_->n; }
+
+std::unique_ptr<IfChunkGenerator> IfSynthesizer::chunk_generator(unsigned threads) const {
+  return std::unique_ptr<IfChunkGenerator>(
+      new IfChunkGenerator(std::make_unique<IfChunkGenerator::State>(*impl_, threads)));
+}
+
+const Scenario& IfSynthesizer::scenario() const { return impl_->sc; }
+
+std::int64_t IfSynthesizer::total_samples() const { return impl_->epochs * impl_->samples_per_epoch; }
+
+SynthesisSummary IfSynthesizer::run(const std::string& out_dir, const SynthesisOptions& options) {
+  Impl& m = *impl_;
+  const auto wall_start = std::chrono::steady_clock::now();
+  std::error_code ec;
+  std::filesystem::create_directories(out_dir, ec);
+  if (ec) throw std::runtime_error(fmt::format("cannot create output folder '{}': {}", out_dir, ec.message()));
+
+  SynthesisSummary summary;
+  summary.if_path = (std::filesystem::path(out_dir) / if_file_name(m.sc.format)).string();
+  summary.truth_path = (std::filesystem::path(out_dir) / "truth.csv").string();
+  summary.sat_truth_path = (std::filesystem::path(out_dir) / "sat_truth.csv").string();
+  summary.scenario_path = (std::filesystem::path(out_dir) / "scenario.yaml").string();
+
+  IfFileWriter if_writer(summary.if_path);
+  std::unique_ptr<TextOutputFile> truth, sat_truth;
+  if (!options.if_only) {
+    truth = std::make_unique<TextOutputFile>(summary.truth_path);
+    sat_truth = std::make_unique<TextOutputFile>(summary.sat_truth_path);
+    write_truth_header(*truth);
+    write_sat_truth_header(*sat_truth);
+  }
+
+  const std::int64_t truth_stride = std::llround(1000.0 / m.sc.truth_rate_hz);
+  const std::int64_t sat_stride = std::llround(1000.0 / m.sc.sat_truth_rate_hz);
+  const auto n = m.samples_per_epoch;
+  IfChunkGenerator::State gen(m, options.threads);
+  std::vector<std::byte> bytes;
+
+  for (std::int64_t k0 = 0;; k0 += kEpochsPerChunk) {
+    const int count = gen.generate(bytes);
+    if (count == 0) break;
+    const std::vector<BoundaryState>& boundaries = gen.boundaries;
     if_writer.write(bytes);
     summary.bytes += static_cast<std::int64_t>(bytes.size());
-
     if (!options.if_only) {
       for (int j = 0; j < count; ++j) {
         const std::int64_t k = k0 + j;

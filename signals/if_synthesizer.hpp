@@ -49,6 +49,8 @@ struct SynthesisOptions {
   bool if_only = false;
 };
 
+class IfChunkGenerator;
+
 class IfSynthesizer {
  public:
   IfSynthesizer(Scenario scenario, NavData nav);
@@ -61,10 +63,40 @@ class IfSynthesizer {
   /// Writes if.<ext>, truth.csv, sat_truth.csv and scenario.yaml into out_dir
   /// (created if missing). Every file appears under its final name only when complete.
   SynthesisSummary run(const std::string& out_dir, const SynthesisOptions& options);
+  /// The same IF samples as run() writes, chunk by chunk and without any file (streaming).
+  /// The generator reads this synthesizer, which must outlive it; several generators may
+  /// run at once, each from the first sample.
+  std::unique_ptr<IfChunkGenerator> chunk_generator(unsigned threads) const;
+
+  const Scenario& scenario() const;
+  /// Samples in the whole run (whole milliseconds of the scenario's duration).
+  std::int64_t total_samples() const;
 
  private:
+  friend class IfChunkGenerator;
   struct Impl;
   std::unique_ptr<Impl> impl_;
+};
+
+/// Block-wise synthesis: each call to next() gives the next chunk of up to 100 ms of IF
+/// samples in the scenario's format (noise, jammers, AGC and ADC applied in sample order,
+/// so the concatenated chunks are byte-identical to the file run() writes).
+class IfChunkGenerator {
+ public:
+  ~IfChunkGenerator();
+  IfChunkGenerator(const IfChunkGenerator&) = delete;
+  IfChunkGenerator& operator=(const IfChunkGenerator&) = delete;
+
+  /// Replaces `bytes` with the next chunk; false (and `bytes` empty) after the last one.
+  bool next(std::vector<std::byte>& bytes);
+  /// Absolute index of the first sample the next chunk starts with.
+  std::int64_t next_sample_index() const;
+
+ private:
+  friend class IfSynthesizer;
+  struct State;
+  explicit IfChunkGenerator(std::unique_ptr<State> state);
+  std::unique_ptr<State> state_;
 };
 
 /// The IF file name for a format (if.cs8 / if.cs16 / if.cf32 / if.s8 ...).

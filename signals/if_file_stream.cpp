@@ -1,0 +1,60 @@
+#include "signals/if_file_stream.hpp"
+
+#include <fmt/format.h>
+#include <sys/types.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+namespace deepnav {
+
+IfFileStream::IfFileStream(IfFileStreamOptions options) : options_(std::move(options)) {
+  const std::string name = options_.path.string();
+  if (!(options_.sample_rate_hz > 0.0) || !std::isfinite(options_.sample_rate_hz))
+    throw std::invalid_argument(fmt::format("sample file '{}': sample rate must be a positive number of Hz, got {}",
+                                            name, options_.sample_rate_hz));
+  file_ = std::fopen(name.c_str(), "rb");
+  if (file_ == nullptr)
+    throw std::runtime_error(fmt::format("cannot open sample file '{}': {}", name, std::strerror(errno)));
+  std::error_code ec;
+  const auto size_bytes = std::filesystem::file_size(options_.path, ec);
+  if (ec) throw std::runtime_error(fmt::format("cannot read the size of sample file '{}': {}", name, ec.message()));
+  total_samples_ = static_cast<std::int64_t>(size_bytes / bytes_per_sample(options_.format));
+  if (total_samples_ == 0)
+    throw std::runtime_error(fmt::format("sample file '{}' holds no whole {} sample ({} bytes)", name,
+                                         to_string(options_.format), size_bytes));
+}
+
+IfFileStream::~IfFileStream() {
+  if (file_ != nullptr) std::fclose(file_);
+}
+
+std::size_t IfFileStream::read(std::vector<std::byte>& out, std::size_t max_samples) {
+  const std::size_t bps = bytes_per_sample(options_.format);
+  const auto wanted = static_cast<std::size_t>(std::min<std::int64_t>(static_cast<std::int64_t>(max_samples),
+                                                                       total_samples_ - next_index_));
+  out.resize(wanted * bps);
+  const std::size_t got = wanted == 0 ? 0 : std::fread(out.data(), bps, wanted, file_);
+  if (got < wanted && std::ferror(file_))
+    throw std::runtime_error(
+        fmt::format("error reading sample file '{}': {}", options_.path.string(), std::strerror(errno)));
+  out.resize(got * bps);
+  next_index_ += static_cast<std::int64_t>(got);
+  return got;
+}
+
+void IfFileStream::seek(std::int64_t sample_index) {
+  if (sample_index < next_index_ || sample_index > total_samples_)
+    throw std::invalid_argument(fmt::format("sample file '{}': cannot seek to sample {} (next sample {}, {} in all)",
+                                            options_.path.string(), sample_index, next_index_, total_samples_));
+  const auto offset = static_cast<off_t>(sample_index) * static_cast<off_t>(bytes_per_sample(options_.format));
+  if (::fseeko(file_, offset, SEEK_SET) != 0)
+    throw std::runtime_error(
+        fmt::format("cannot seek in sample file '{}': {}", options_.path.string(), std::strerror(errno)));
+  next_index_ = sample_index;
+}
+
+}  // namespace deepnav

@@ -1,0 +1,44 @@
+#pragma once
+// A recorded IF file as a byte stream (for serving it over the network): whole samples
+// of the given format, read in bounded pieces.
+#include <cstdio>
+#include <filesystem>
+
+#include "signals/if_byte_stream.hpp"
+
+namespace deepnav {
+
+struct IfFileStreamOptions {
+  std::filesystem::path path;
+  SampleFormat format = SampleFormat::ibyte;
+  double sample_rate_hz = 0.0;
+  double if_hz = 0.0;
+  std::optional<GpsTime> start_time;  ///< GPS time of the file's first sample, when known
+};
+
+class IfFileStream final : public IfByteStream {
+ public:
+  /// Throws std::runtime_error naming the file when it cannot be opened or holds no
+  /// whole sample, std::invalid_argument for a sample rate that is not positive.
+  explicit IfFileStream(IfFileStreamOptions options);
+  ~IfFileStream() override;
+  IfFileStream(const IfFileStream&) = delete;
+  IfFileStream& operator=(const IfFileStream&) = delete;
+
+  SampleFormat format() const override { return options_.format; }
+  double sample_rate_hz() const override { return options_.sample_rate_hz; }
+  double if_hz() const override { return options_.if_hz; }
+  std::optional<GpsTime> start_time() const override { return options_.start_time; }
+  std::optional<std::int64_t> total_samples() const override { return total_samples_; }
+  std::size_t read(std::vector<std::byte>& out, std::size_t max_samples) override;
+  void seek(std::int64_t sample_index) override;
+  std::int64_t next_sample_index() const override { return next_index_; }
+
+ private:
+  IfFileStreamOptions options_;
+  std::FILE* file_ = nullptr;
+  std::int64_t total_samples_ = 0;
+  std::int64_t next_index_ = 0;
+};
+
+}  // namespace deepnav
