@@ -90,12 +90,9 @@ struct ScalarReceiver::Impl {
 
   void track(const SampleBlock& block,
              const std::function<void(const CorrelatorEpoch&, const ChannelSnapshot&)>& on_correlation) {
-    std::vector<CorrelatorEpoch> epochs;
     for (auto& ch : channels) {
-      epochs.clear();
-      ch.trk->process(block, epochs);
-      for (const auto& e : epochs) {
-        ch.trk->monitor(e);
+      // Each epoch's command acts from the very next sample (not after the block).
+      ch.trk->process(block, [&](const CorrelatorEpoch& e) {
         const bool pulling_in = ch.trk->state() == ChannelState::pull_in;
         ch.loop->set_bandwidths(ch.trk->state() == ChannelState::tracking ? cfg.tracking_loops : cfg.pull_in);
         const NcoCommand cmd = ch.loop->update(e, pulling_in);
@@ -110,7 +107,7 @@ struct ScalarReceiver::Impl {
         if (on_correlation) {
           on_correlation(e, ChannelSnapshot{ch.trk->prn(), ch.trk->state(), ch.trk->cn0_dbhz(), ch.nav->ephemeris().has_value()});
         }
-      }
+      });
     }
     const auto lost = std::remove_if(channels.begin(), channels.end(), [](const Channel& ch) {
       if (ch.trk->state() == ChannelState::lost) spdlog::info("PRN {:2d}: loss of lock", ch.trk->prn());

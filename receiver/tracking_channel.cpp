@@ -76,6 +76,10 @@ double TrackingChannel::code_chips_at(std::int64_t sample_index) const {
 }
 
 void TrackingChannel::process(const SampleBlock& block, std::vector<CorrelatorEpoch>& out) {
+  process(block, [&out](const CorrelatorEpoch& e) { out.push_back(e); });
+}
+
+void TrackingChannel::process(const SampleBlock& block, const std::function<void(const CorrelatorEpoch&)>& on_epoch) {
   if (state_ == ChannelState::lost) return;
   const std::int64_t block_end = block.first_sample_index + static_cast<std::int64_t>(block.samples.size());
   if (next_sample_ >= block_end) return;
@@ -116,16 +120,21 @@ void TrackingChannel::process(const SampleBlock& block, std::vector<CorrelatorEp
     carrier_phase_cycles_ += n * nco_.carrier_doppler_hz / fs;
     idx += n;
     next_sample_ = idx;
-    if (n == to_period_end) finish_code_period(out);
+    if (n == to_period_end) {
+      if (const auto e = finish_code_period()) {
+        on_epoch(*e);
+        if (state_ == ChannelState::lost) return;
+      }
+    }
   }
 }
 
-void TrackingChannel::finish_code_period(std::vector<CorrelatorEpoch>& out) {
+std::optional<CorrelatorEpoch> TrackingChannel::finish_code_period() {
   code_phase_chips_ -= kPeriod;
   ++code_period_;
   ++acc_ms_;
   // Extended integrations end on data-bit edges.
-  if (bit_edge_ && ((code_period_ - *bit_edge_) % coherent_ms_ + coherent_ms_) % coherent_ms_ != 0) return;
+  if (bit_edge_ && ((code_period_ - *bit_edge_) % coherent_ms_ + coherent_ms_) % coherent_ms_ != 0) return std::nullopt;
   CorrelatorEpoch e;
   e.prn = start_.prn;
   e.channel = start_.channel;
@@ -152,7 +161,7 @@ void TrackingChannel::finish_code_period(std::vector<CorrelatorEpoch>& out) {
   e.pll_lock = lock_.pll_locked();
   e.code_lock = lock_.code_locked();
   e.bit_synced = bit_edge_.has_value();
-  out.push_back(e);
+  return e;
 }
 
 void TrackingChannel::collect_bit(const CorrelatorEpoch& e) {

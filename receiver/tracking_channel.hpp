@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -58,6 +59,11 @@ class TrackingChannel {
   /// integration in progress and carries the NCOs across it. Every completed epoch has
   /// already been through the lock monitor and the bit synchroniser (its flags are set).
   void process(const SampleBlock& block, std::vector<CorrelatorEpoch>& out);
+  /// The same, handing each epoch to `on_epoch` as soon as it completes; a command the
+  /// callback apply()s takes effect from the very next sample. This is the form a loop
+  /// should use: with the vector form the commands of all epochs in a block only act after
+  /// the block, which delays the loop by up to a block.
+  void process(const SampleBlock& block, const std::function<void(const CorrelatorEpoch&)>& on_epoch);
   /// New NCO rates (and optional one-off phase corrections) from the next sample on.
   void apply(const NcoCommand& command);
   /// Lock monitoring and bit synchronisation of an epoch. process() does this itself;
@@ -87,7 +93,8 @@ class TrackingChannel {
   double carrier_phase_cycles() const { return carrier_phase_cycles_; }
 
  private:
-  void finish_code_period(std::vector<CorrelatorEpoch>& out);
+  /// Ends a code period; returns the epoch when an integration ends with it.
+  std::optional<CorrelatorEpoch> finish_code_period();
   void bit_sync_step(const CorrelatorEpoch& epoch);
   void collect_bit(const CorrelatorEpoch& epoch);
   void reset_integration();
