@@ -9,6 +9,7 @@
 
 #include "ins/frames.hpp"
 #include "receiver/file_sample_source.hpp"
+#include "receiver/mitigation_sample_source.hpp"
 #include "receiver/nmea_writer.hpp"
 #include "receiver/rinex_obs_writer.hpp"
 #include "receiver/track_writers.hpp"
@@ -28,6 +29,7 @@ struct RunOptions {
   std::string input, format = "ibyte", out_dir, truth_path, assist_nav;
   double fs_hz = 0.0, if_hz = 0.0, skip_s = 0.0;
   bool inverted = false;
+  std::string mitigation = "none";
   ReceiverConfig receiver;
 };
 
@@ -85,7 +87,10 @@ void run_receiver(RunOptions o) {
   TextOutputFile tracking_csv(path("tracking.csv"));
   tracking_csv.write("first_sample,prn,state,integration_s,i_prompt,q_prompt,i_early,q_early,i_late,q_late,doppler_hz,code_rate_cps,cn0_dbhz\n");
 
-  ScalarReceiver receiver(o.receiver, *source);
+  MitigationConfig mitigation;
+  mitigation.mode = parse_mitigation_mode(o.mitigation);
+  MitigationSampleSource mitigated(*source, mitigation);  // --mitigation none: samples pass untouched
+  ScalarReceiver receiver(o.receiver, mitigated);
   if (!o.assist_nav.empty()) {
     try {
       receiver.set_assisted_iono(read_rinex_nav(o.assist_nav).iono);
@@ -206,6 +211,9 @@ const bool registered = register_command([](CommandParents& parents) {
   cmd->add_option("--if", o->if_hz, "Intermediate frequency (Hz)")->capture_default_str();
   cmd->add_option("--skip", o->skip_s, "Seconds skipped at the start")->capture_default_str();
   cmd->add_flag("--inverted-spectrum", o->inverted, "The front end delivers I - jQ");
+  cmd->add_option("--mitigation", o->mitigation, "Interference mitigation: none, notch, excision, blanking, auto (blanking then excision)")
+      ->check(CLI::IsMember(mitigation_mode_names()))
+      ->capture_default_str();
   cmd->add_option("--out", o->out_dir, "Output folder")->required();
   cmd->add_option("--truth", o->truth_path, "Synthesizer truth.csv: adds error statistics to summary.json");
   cmd->add_option("--channels", o->receiver.channels, "Tracking channels")->capture_default_str();
