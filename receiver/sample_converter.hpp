@@ -1,0 +1,41 @@
+#pragma once
+// Raw IF bytes of a sample format -> the receiver's complex int16 samples, exactly as
+// FileSampleSource converts a file (same rounding, saturation, spectrum inversion and
+// gr_complex scaling), so a stream and a file of the same bytes give the same samples.
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include "receiver/sample_source.hpp"
+#include "signals/sample_format.hpp"
+
+namespace deepnav {
+
+class SampleConverter {
+ public:
+  /// gr_complex values are scaled so the RMS of the first kCalibrationSamples lands at
+  /// 2048 (24 dB below int16 full scale), as FileSampleSource does.
+  static constexpr std::size_t kCalibrationSamples = 1 << 16;
+
+  SampleConverter(SampleFormat format, bool inverted_spectrum);
+
+  /// Sets the gr_complex scale from the first samples of the stream (no-op for the
+  /// integer formats); convert() before this uses unit scale.
+  void calibrate(std::span<const std::byte> first_samples);
+  bool needs_calibration() const { return format_ == SampleFormat::gr_complex && !calibrated_; }
+
+  /// Converts raw.size() / bytes_per_sample whole samples into out (which must hold them);
+  /// `first_index` only names a non-finite gr_complex sample in the error it throws.
+  void convert(std::span<const std::byte> raw, std::span<Sample> out, std::int64_t first_index) const;
+
+  SampleFormat format() const { return format_; }
+  float float_scale() const { return float_scale_; }
+
+ private:
+  SampleFormat format_;
+  bool inverted_;
+  bool calibrated_ = false;
+  float float_scale_ = 1.0f;
+};
+
+}  // namespace deepnav
