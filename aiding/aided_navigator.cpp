@@ -1,0 +1,137 @@
+#include "aiding/aided_navigator.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "ins/frames.hpp"
+#include "ins/rotations.hpp"
+
+namespace deepnav::aiding {
+
+StateMatrix initial_covariance(const InitialUncertainty& u) {
+  StateVector sigma;
+  sigma << u.position_ned_m, u.velocity_ned_mps, u.attitude_rad, u.accel_bias_mps2, u.gyro_bias_radps, u.clock_bias_m,
+      u.clock_drift_mps;
+  return sigma.cwiseAbs2().asDiagonal();
+}
+
+AidedNavigator::AidedNavigator(const NavState& initial, double clock_bias_m, double clock_drift_mps,
+                               const NavigatorConfig& config, const InitialUncertainty& uncertainty)
+    : ins_(initial),
+      kf_(StateVector::Zero(), initial_covariance(uncertainty)),
+      cfg_(config),
+      clock_bias_m_(clock_bias_m),
+      clock_drift_mps_(clock_drift_mps) {}
+
+void AidedNavigator::propagate(const ImuSample& sample) {
+  const double dt = sample.t_s - ins_.state().t_s;
+  ins_.update(sample);  // validates the time step and the increments
+  clock_bias_m_ += clock_drift_mps_ * dt;
+  last_f_b_mps2_ = sample.dv_b_mps / dt - ins_.accel_bias_compensation_mps2();
+  last_w_b_radps_ = sample.dtheta_b_rad / dt - ins_.gyro_bias_compensation_radps();
+  StateMatrix Phi, Qd;
+  discretize(error_dynamics(ins_.state(), last_f_b_mps2_, cfg_.noise), cfg_.noise, dt, Phi, Qd);
+  kf_.predict(Phi, Qd);
+}
+
+Eigen::Vector3d AidedNavigator::antenna_ecef_m() const {
+  const NavState& s = ins_.state();
+  const Eigen::Vector3d lever_ned = s.q_b_n * cfg_.lever_arm_imu_to_antenna_b_m;
+  return wgs84::llh_to_ecef(s.llh) + ned_to_ecef_vector(s.llh, lever_ned);
+}
+
+Eigen::Vector3d AidedNavigator::antenna_velocity_ecef_mps() const {
+  const NavState& s = ins_.state();
+  const Eigen::Vector3d v_ned = s.v_ned_mps + s.q_b_n * last_w_b_radps_.cross(cfg_.lever_arm_imu_to_antenna_b_m);
+  return ned_to_ecef_vector(s.llh, v_ned);
+}
+
+Eigen::Vector3d AidedNavigator::antenna_ecef_at(double t_s) const {
+  return antenna_ecef_m() + antenna_velocity_ecef_mps() * (t_s - ins_.state().t_s);
+}
+
+wgs84::Llh AidedNavigator::antenna_llh() const { return wgs84::ecef_to_llh(antenna_ecef_m()); }
+
+Eigen::Vector3d AidedNavigator::position_sigma_ned_m() const {
+  return kf_.P().diagonal().segment<3>(kPos).cwiseSqrt();
+}
+
+StateRow AidedNavigator::position_row(const Eigen::Vector3d& u_ned) const {
+  // d(antenna) = dr - [(C l) x] eps, so a row u^T on the antenna error is
+  // u^T on dr and -u^T [(C l) x] on eps.
+  const Eigen::Vector3d lever_ned = ins_.state().q_b_n * cfg_.lever_arm_imu_to_antenna_b_m;
+  StateRow h = StateRow::Zero();
+  h.segment<3>(kPos) = u_ned.transpose();
+  h.segment<3>(kAtt) = -u_ned.transpose() * skew(lever_ned);
+  return h;
+}
+
+UpdateResult AidedNavigator::update_position_velocity(const Eigen::Vector3d& r_antenna_ecef_m,
+                                                      const Eigen::Vector3d& v_antenna_ecef_mps,
+                                                      const Eigen::Vector3d& position_sigma_ned_m,
+                                                      const Eigen::Vector3d& velocity_sigma_ned_mps) {
+  const wgs84::Llh& at = ins_.state().llh;
+  Eigen::Matrix<double, 6, 1> z, r;
+  z.head<3>() = ecef_to_ned_vector(at, antenna_ecef_m() - r_antenna_ecef_m);
+  z.tail<3>() = ecef_to_ned_vector(at, antenna_velocity_ecef_mps() - v_antenna_ecef_mps);
+  r << position_sigma_ned_m.cwiseAbs2(), velocity_sigma_ned_mps.cwiseAbs2();
+  Eigen::Matrix<double, 6, kStates> H = Eigen::Matrix<double, 6, kStates>::Zero();
+  for (int i = 0; i < 3; ++i) {
+    H.row(i) = position_row(Eigen::Vector3d::Unit(i));
+    H(3 + i, kVel + i) = 1.0;
+  }
+  const UpdateResult result = kf_.update<6>(z, H, r, cfg_.gate_sigma);
+  if (result.applied) feed_back();
+  return result;
+}
+
+UpdateResult AidedNavigator::update_ranges(const std::vector<RangeMeasurement>& measurements) {
+  const wgs84::Llh& at = ins_.state().llh;
+  const Eigen::Vector3d v_ant = antenna_velocity_ecef_mps();
+  std::vector<StateRow> rows;
+  std::vector<double> z, r;
+  for (const auto& m : measurements) {
+    // The range falls as the antenna moves towards the satellite: d(rho) = -u . d(r).
+    const Eigen::Vector3d u_ned = ecef_to_ned_vector(at, m.geometry.los_ecef);
+    if (m.pseudorange_m) {
+      StateRow h = -position_row(u_ned);
+      h(kClockBias) = 1.0;
+      rows.push_back(h);
+      z.push_back(m.geometry.pseudorange_m(clock_bias_m()) - *m.pseudorange_m);
+      r.push_back(m.pseudorange_sigma_m * m.pseudorange_sigma_m);
+    }
+    if (m.rate_mps) {
+      StateRow h = StateRow::Zero();
+      h.segment<3>(kVel) = -u_ned.transpose();
+      h(kClockDrift) = 1.0;
+      rows.push_back(h);
+      z.push_back(m.geometry.pseudorange_rate_mps(v_ant, clock_drift_mps()) - *m.rate_mps);
+      r.push_back(m.rate_sigma_mps * m.rate_sigma_mps);
+    }
+  }
+  const auto n = static_cast<Eigen::Index>(rows.size());
+  Eigen::MatrixXd H(n, kStates);
+  Eigen::VectorXd zv(n), rv(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    H.row(i) = rows[static_cast<std::size_t>(i)];
+    zv(i) = z[static_cast<std::size_t>(i)];
+    rv(i) = r[static_cast<std::size_t>(i)];
+  }
+  const UpdateResult result = kf_.update(zv, H, rv, cfg_.gate_sigma);
+  if (result.applied) feed_back();
+  return result;
+}
+
+void AidedNavigator::feed_back() {
+  const StateVector& x = kf_.x();
+  ins_.correct_position(-x.segment<3>(kPos));
+  ins_.correct_velocity(-x.segment<3>(kVel));
+  ins_.correct_attitude(-x.segment<3>(kAtt));
+  ins_.set_bias_compensation(ins_.accel_bias_compensation_mps2() + x.segment<3>(kAccelBias),
+                             ins_.gyro_bias_compensation_radps() + x.segment<3>(kGyroBias));
+  clock_bias_m_ -= x(kClockBias);
+  clock_drift_mps_ -= x(kClockDrift);
+  kf_.clear_fed_back_states();
+}
+
+}  // namespace deepnav::aiding

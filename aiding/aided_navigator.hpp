@@ -1,0 +1,98 @@
+#pragma once
+// The strapdown INS with its 17-state error filter, closed loop: after every measurement
+// update the estimated position, velocity and attitude errors are taken out of the INS
+// and the bias estimates added to its bias compensation, then those states return to
+// zero. The antenna is where GNSS measures; the INS computes the IMU's position, so every
+// measurement goes through the lever arm (IMU -> antenna, body axes).
+//
+// Measurements (each z = predicted - measured = H dx + v):
+//   loose:  antenna position (NED metres) and velocity from a GNSS PVT solution;
+//   ranges: per satellite, a pseudorange and/or a pseudorange rate (tight coupling, and
+//           the ultra-tight receiver's discriminator-corrected ranges and rates).
+#include <Eigen/Core>
+#include <optional>
+#include <vector>
+
+#include "aiding/error_state_kalman.hpp"
+#include "aiding/ins_error_model.hpp"
+#include "ins/strapdown.hpp"
+#include "receiver/range_model.hpp"
+
+namespace deepnav::aiding {
+
+/// 1-sigma uncertainty of the starting state (P0 is diagonal).
+struct InitialUncertainty {
+  Eigen::Vector3d position_ned_m{5.0, 5.0, 10.0};
+  Eigen::Vector3d velocity_ned_mps{0.5, 0.5, 0.5};
+  Eigen::Vector3d attitude_rad{0.03 * M_PI / 180, 0.03 * M_PI / 180, 5.0 * M_PI / 180};
+  Eigen::Vector3d accel_bias_mps2 = Eigen::Vector3d::Constant(500e-6 * 9.80665);
+  Eigen::Vector3d gyro_bias_radps = Eigen::Vector3d::Constant(3.0 * M_PI / 180 / 3600);
+  double clock_bias_m = 10.0;
+  double clock_drift_mps = 1.0;
+};
+
+struct NavigatorConfig {
+  ProcessNoise noise;
+  Eigen::Vector3d lever_arm_imu_to_antenna_b_m = Eigen::Vector3d::Zero();
+  double gate_sigma = 5.0;   ///< innovation gate of the GNSS updates (0: none)
+};
+
+/// A satellite's measurement for a range update; either part may be absent.
+struct RangeMeasurement {
+  RangePrediction geometry;              ///< satellite geometry at the antenna estimate
+  std::optional<double> pseudorange_m;
+  double pseudorange_sigma_m = 5.0;
+  std::optional<double> rate_mps;        ///< pseudorange rate (= -lambda * Doppler)
+  double rate_sigma_mps = 0.1;
+};
+
+class AidedNavigator {
+ public:
+  AidedNavigator(const NavState& initial, double clock_bias_m, double clock_drift_mps, const NavigatorConfig& config,
+                 const InitialUncertainty& uncertainty);
+
+  /// Strapdown update with one IMU sample, then the covariance over the same interval.
+  void propagate(const ImuSample& sample);
+
+  UpdateResult update_position_velocity(const Eigen::Vector3d& r_antenna_ecef_m, const Eigen::Vector3d& v_antenna_ecef_mps,
+                                        const Eigen::Vector3d& position_sigma_ned_m,
+                                        const Eigen::Vector3d& velocity_sigma_ned_mps);
+  UpdateResult update_ranges(const std::vector<RangeMeasurement>& measurements);
+
+  /// Adds a known step to the receiver clock bias (the receiver re-set its clock).
+  void shift_clock_bias(double step_m) { clock_bias_m_ += step_m; }
+
+  const NavState& ins() const { return ins_.state(); }
+  double time_s() const { return ins_.state().t_s; }
+  Eigen::Vector3d antenna_ecef_m() const;
+  Eigen::Vector3d antenna_velocity_ecef_mps() const;
+  wgs84::Llh antenna_llh() const;
+  double clock_bias_m() const { return clock_bias_m_; }
+  double clock_drift_mps() const { return clock_drift_mps_; }
+  const StateMatrix& covariance() const { return kf_.P(); }
+  /// 1-sigma position uncertainty, north/east/down (m).
+  Eigen::Vector3d position_sigma_ned_m() const;
+  const Eigen::Vector3d& accel_bias_mps2() const { return ins_.accel_bias_compensation_mps2(); }
+  const Eigen::Vector3d& gyro_bias_radps() const { return ins_.gyro_bias_compensation_radps(); }
+  bool healthy() const { return kf_.healthy(); }
+  const std::string& health_reason() const { return kf_.reason(); }
+
+  /// Antenna position/velocity extrapolated dt seconds ahead at the current velocity (for
+  /// measurements stamped between IMU samples).
+  Eigen::Vector3d antenna_ecef_at(double t_s) const;
+
+ private:
+  StateRow position_row(const Eigen::Vector3d& u_ned) const;
+  void feed_back();
+  StrapdownNed ins_;
+  ErrorStateKalman kf_;
+  NavigatorConfig cfg_;
+  double clock_bias_m_, clock_drift_mps_;  ///< receiver clock model (c * dt, c * dt')
+  Eigen::Vector3d last_f_b_mps2_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d last_w_b_radps_ = Eigen::Vector3d::Zero();
+};
+
+/// P0 from the 1-sigma figures.
+StateMatrix initial_covariance(const InitialUncertainty& u);
+
+}  // namespace deepnav::aiding

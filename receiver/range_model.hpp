@@ -1,0 +1,43 @@
+#pragma once
+// Predicted pseudorange and pseudorange rate of one satellite for a receiver position,
+// velocity and clock: what a tightly coupled filter compares with the measurements and
+// what an ultra-tight receiver steers its NCOs by. The same corrections as the PVT
+// solution: satellite clock with relativity and TGD, orbit at the transmit time, Earth
+// rotation during the flight, Klobuchar ionosphere and Saastamoinen troposphere.
+#include <Eigen/Core>
+#include <optional>
+
+#include "ins/gps_time.hpp"
+#include "signals/ephemeris.hpp"
+#include "signals/iono_utc.hpp"
+
+namespace deepnav {
+
+struct RangePrediction {
+  Eigen::Vector3d r_sat_ecef_m;      ///< at transmit time, in the ECEF frame of the receive time
+  Eigen::Vector3d v_sat_ecef_mps;
+  Eigen::Vector3d los_ecef;          ///< unit vector receiver -> satellite
+  double geometric_range_m = 0.0;
+  double satellite_clock_m = 0.0;    ///< c * satellite clock offset (subtracted from the range)
+  double satellite_drift_mps = 0.0;  ///< c * satellite clock drift
+  double atmosphere_m = 0.0;         ///< ionosphere + troposphere delay
+  double elevation_rad = 0.0;
+  double azimuth_rad = 0.0;
+
+  /// Pseudorange with the receiver clock bias c*dt (m).
+  double pseudorange_m(double clock_bias_m) const {
+    return geometric_range_m + clock_bias_m - satellite_clock_m + atmosphere_m;
+  }
+  /// Pseudorange rate with the receiver velocity and clock drift c*dt' (m/s); the carrier
+  /// Doppler is -rate / lambda.
+  double pseudorange_rate_mps(const Eigen::Vector3d& v_rx_ecef_mps, double clock_drift_mps) const {
+    return los_ecef.dot(v_sat_ecef_mps - v_rx_ecef_mps) + clock_drift_mps - satellite_drift_mps;
+  }
+};
+
+/// Prediction at receiver time t_rx (receiver clock corrected by `clock_bias_m`).
+/// `iono` may be invalid (no ionosphere applied).
+RangePrediction predict_range(const Ephemeris& eph, const GpsTime& t_rx, double clock_bias_m,
+                              const Eigen::Vector3d& r_rx_ecef_m, const IonoParameters& iono, bool troposphere = true);
+
+}  // namespace deepnav
