@@ -14,9 +14,13 @@ namespace {
 constexpr std::size_t kPieceSamples = 16384;
 /// Samples whose RMS sets the output gain.
 constexpr std::size_t kGainSamples = 4096;
-/// RMS (int16 units) that the floating-point filters' output is scaled to; 24 dB below
+/// RMS (int16 units) that the floating-point filters' output is held at; 24 dB below
 /// full scale, as FileSampleSource scales float files.
 constexpr double kTargetRms = 2048.0;
+/// The output level control: power measured over windows of this many samples ...
+constexpr int kLevelWindow = 64;
+/// ... and smoothed with this time constant (the same as a typical front-end AGC).
+constexpr double kLevelTimeConstantS = 0.01;
 
 std::int16_t saturate_int16(float v) {
   return static_cast<std::int16_t>(std::clamp(std::nearbyint(v), -32768.0f, 32767.0f));
@@ -47,6 +51,8 @@ MitigationSampleSource::MitigationSampleSource(SampleSource& inner, const Mitiga
       stages_.push_back(std::make_unique<FrequencyExcision>(config, fs));
       break;
   }
+  // Blanking alone only zeroes samples and passes the others bit-exact.
+  normalize_ = !stages_.empty() && config.mode != MitigationMode::blanking;
   next_index_ = inner.next_sample_index();
   to_drop_ = total_delay();
 }
@@ -120,9 +126,10 @@ void MitigationSampleSource::pull() {
     inner_done_ = true;
     return;
   }
-  // Until the gain is set, gather kGainSamples contiguous samples first, so that the gain
-  // (and every output) does not depend on how the wrapped source cuts its reads.
-  while (!gain_chosen_ && raw_.size() < kGainSamples) {
+  // Until the level is set, gather enough contiguous samples for it to see kGainSamples
+  // filtered ones, so that it (and every output) does not depend on how the wrapped
+  // source cuts its reads.
+  while (!level_set_ && raw_.size() < kGainSamples + total_delay()) {
     std::int64_t next_first = 0;
     if (!take_piece(piece_, next_first)) break;
     if (next_first != first + static_cast<std::int64_t>(raw_.size())) {
@@ -141,7 +148,6 @@ void MitigationSampleSource::pull() {
     next_output_index_ = first;
   }
   next_input_index_ = first + static_cast<std::int64_t>(got);
-  if (!gain_chosen_) choose_gain(std::span<const Sample>(raw_).first(std::min(got, kGainSamples)));
   work_.resize(got);
   for (std::size_t k = 0; k < got; ++k) work_[k] = {static_cast<float>(raw_[k].real()), static_cast<float>(raw_[k].imag())};
   filter_into_queue(got);
@@ -158,23 +164,40 @@ void MitigationSampleSource::filter_into_queue(std::size_t count) {
   const std::span<std::complex<float>> w(work_.data(), count);
   for (auto& s : stages_) s->process(w, w);
   const std::size_t skip = std::min(to_drop_, count);
+  if (normalize_) {
+    if (!level_set_ && skip < count) set_level(w.subspan(skip, std::min(count - skip, kGainSamples)));
+    hold_level(w);
+  }
   to_drop_ -= skip;
   if (skip == count) return;
   Segment& seg = queue_.emplace_back();
   seg.first_index = next_output_index_;
   seg.samples.reserve(count - skip);
   for (std::size_t k = skip; k < count; ++k)
-    seg.samples.emplace_back(saturate_int16(w[k].real() * gain_), saturate_int16(w[k].imag() * gain_));
+    seg.samples.emplace_back(saturate_int16(w[k].real()), saturate_int16(w[k].imag()));
   next_output_index_ += static_cast<std::int64_t>(count - skip);
 }
 
-void MitigationSampleSource::choose_gain(std::span<const Sample> first) {
-  gain_chosen_ = true;
-  if (config_.mode == MitigationMode::blanking) return;  // zeroing only: keep samples bit-exact
+void MitigationSampleSource::set_level(std::span<const std::complex<float>> first) {
+  level_set_ = true;
   double sum = 0.0;
-  for (const Sample& s : first) sum += std::norm(std::complex<double>(s.real(), s.imag()));
-  const double rms = std::sqrt(sum / static_cast<double>(first.size()));
-  gain_ = static_cast<float>(rms > 0.0 ? std::max(1.0, kTargetRms / rms) : 1.0);
+  for (const auto& x : first) sum += std::norm(x);
+  level_power_ = sum / static_cast<double>(first.size());
+  gain_ = level_power_ > 0.0 ? static_cast<float>(kTargetRms / std::sqrt(level_power_)) : 1.0f;
+}
+
+void MitigationSampleSource::hold_level(std::span<std::complex<float>> w) {
+  const double alpha = -std::expm1(-kLevelWindow / (kLevelTimeConstantS * inner_.sample_rate_hz()));
+  for (auto& x : w) {
+    window_power_ += std::norm(x);
+    x *= gain_;
+    if (++window_count_ == kLevelWindow) {
+      level_power_ += alpha * (window_power_ / kLevelWindow - level_power_);
+      if (level_power_ > 0.0) gain_ = static_cast<float>(kTargetRms / std::sqrt(level_power_));
+      window_power_ = 0.0;
+      window_count_ = 0;
+    }
+  }
 }
 
 }  // namespace deepnav

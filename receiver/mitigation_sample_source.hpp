@@ -4,10 +4,14 @@
 // adaptive notch, frequency excision or blanking followed by excision) and delivers
 // them with their original absolute indices, so the receiver needs no change.
 //
-// Scaling: blanking alone passes samples bit-exact. Filters that work in floating
-// point multiply their output by one fixed gain, set from the first samples so that
-// their RMS lands at 2048 (never below 1): after a strong interferer is removed the
-// residual is then still many int16 steps wide instead of being rounded away.
+// Level: blanking alone passes samples bit-exact. After the floating-point filters an
+// output level control holds the RMS at 2048 (power over 64-sample windows, 10 ms time
+// constant, started from the first 4096 filtered samples). When a jammer appears the
+// converter's AGC turns its gain down, so after the jammer is removed the satellites and
+// noise are much weaker in converter units; the level control gives the receiver the
+// same level as before, within about 10 ms, instead of a step that its slowly averaged
+// C/N0 noise reference would read as a signal loss, and keeps the residual many int16
+// steps wide instead of rounding it away.
 // Gaps: a jump in the wrapped source's indices flushes the filters' pending samples,
 // restarts them after the gap and reports the gap before the samples that follow it.
 #include <cstdint>
@@ -37,7 +41,7 @@ class MitigationSampleSource final : public SampleSource {
   bool at_end() const override { return at_end_; }
 
   MitigationMode mode() const { return config_.mode; }
-  /// Gain applied to the filtered floating-point samples (1 for none and blanking).
+  /// Gain the level control applies now (1 for none and blanking).
   float output_gain() const { return gain_; }
   /// The stages in processing order (for statistics and tests).
   const std::vector<std::unique_ptr<MitigationStage>>& stages() const { return stages_; }
@@ -58,7 +62,10 @@ class MitigationSampleSource final : public SampleSource {
   void filter_into_queue(std::size_t count);
   /// Pushes the samples still inside the filters out by feeding zeros.
   void flush();
-  void choose_gain(std::span<const Sample> first);
+  /// Starts the level control from the power of the first filtered samples.
+  void set_level(std::span<const std::complex<float>> first);
+  /// Scales filtered samples in place by the level control's gain and updates it.
+  void hold_level(std::span<std::complex<float>> w);
   std::size_t total_delay() const;
 
   SampleSource& inner_;
@@ -75,7 +82,10 @@ class MitigationSampleSource final : public SampleSource {
   std::int64_t next_output_index_ = 0; ///< index of the next sample the filters hand out
   std::size_t to_drop_ = 0;            ///< filter outputs that precede the current stream start
   float gain_ = 1.0f;
-  bool gain_chosen_ = false, inner_done_ = false, at_end_ = false;
+  bool normalize_ = false;
+  double level_power_ = 0.0, window_power_ = 0.0;  ///< filtered output power (before the gain)
+  int window_count_ = 0;
+  bool level_set_ = false, inner_done_ = false, at_end_ = false;
 };
 
 }  // namespace deepnav
