@@ -1,0 +1,302 @@
+#include "tools/jam_point.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <sstream>
+
+#include "ins/frames.hpp"
+#include "receiver/truth_file.hpp"
+#include "signals/if_synthesizer.hpp"
+#include "signals/rinex_nav.hpp"
+#include "signals/scenario.hpp"
+#include "signals/text_output_file.hpp"
+#include "tools/child_process.hpp"
+#include "tools/command_registry.hpp"
+#include "tools/receiver_modes.hpp"
+
+namespace deepnav::cli {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+/// A tracked channel's carrier must follow the true Doppler within this.
+constexpr double kDopplerToleranceHz = 10.0;
+/// The receiver's C/N0 estimate averages over 2 s: skip that long after the onset.
+constexpr double kCn0SettleS = 2.0;
+
+/// A CSV file as rows of strings with a column lookup by header name.
+struct Csv {
+  std::map<std::string, std::size_t> column;
+  std::vector<std::vector<std::string>> rows;
+  explicit Csv(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw UserError("cannot read '" + path + "'");
+    std::string line;
+    std::getline(in, line);
+    std::vector<std::string> header = split(line);
+    for (std::size_t i = 0; i < header.size(); ++i) column[header[i]] = i;
+    while (std::getline(in, line))
+      if (!line.empty()) rows.push_back(split(line));
+  }
+  std::size_t at(const std::string& name, const std::string& path) const {
+    const auto it = column.find(name);
+    if (it == column.end()) throw UserError("'" + path + "' has no column '" + name + "'");
+    return it->second;
+  }
+  static std::vector<std::string> split(const std::string& line) {
+    std::vector<std::string> out;
+    std::stringstream s(line);
+    std::string cell;
+    while (std::getline(s, cell, ',')) out.push_back(cell);
+    return out;
+  }
+};
+
+double number(const std::vector<std::string>& row, std::size_t i) { return i < row.size() ? std::stod(row[i]) : kNaN; }
+
+struct ErrorStats {
+  double rms = kNaN, max = kNaN;
+  static ErrorStats of(const std::vector<double>& v) {
+    ErrorStats s;
+    if (v.empty()) return s;
+    double sum2 = 0.0;
+    for (double x : v) sum2 += x * x;
+    s.rms = std::sqrt(sum2 / static_cast<double>(v.size()));
+    s.max = *std::max_element(v.begin(), v.end());
+    return s;
+  }
+};
+
+nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+/// Per-satellite tracked fraction and C/N0 in the jammed window, from tracking.csv and
+/// the synthesizer's sat_truth.csv (true Doppler, 10 Hz).
+nlohmann::json channel_figures(const std::string& tracking_path, const std::string& sat_truth_path, double fs_hz,
+                               double window_start_s, double window_end_s) {
+  const Csv truth(sat_truth_path);
+  const std::size_t t_col = truth.at("t_s", sat_truth_path), prn_col = truth.at("prn", sat_truth_path),
+                    dop_col = truth.at("doppler_hz", sat_truth_path);
+  std::map<int, std::vector<std::pair<double, double>>> doppler;
+  for (const auto& r : truth.rows) doppler[std::stoi(r[prn_col])].emplace_back(number(r, t_col), number(r, dop_col));
+  const auto true_doppler = [&](int prn, double t) {
+    const auto& v = doppler[prn];
+    const auto it = std::lower_bound(v.begin(), v.end(), std::make_pair(t, -1e300));
+    return it == v.end() ? v.back().second : it->second;
+  };
+  const Csv tracking(tracking_path);
+  const std::size_t first_col = tracking.at("first_sample", tracking_path), tp = tracking.at("prn", tracking_path),
+                    st = tracking.at("state", tracking_path), it = tracking.at("integration_s", tracking_path),
+                    dp = tracking.at("doppler_hz", tracking_path), cn = tracking.at("cn0_dbhz", tracking_path);
+  std::map<int, double> tracked_s, cn0_sum;
+  std::map<int, int> cn0_count;
+  for (const auto& r : tracking.rows) {
+    const double t = number(r, first_col) / fs_hz;
+    const int prn = std::stoi(r[tp]);
+    if (t < window_start_s || t >= window_end_s || !doppler.count(prn)) continue;
+    if (std::stoi(r[st]) != 2 || std::abs(number(r, dp) - true_doppler(prn, t)) > kDopplerToleranceHz) continue;
+    tracked_s[prn] += number(r, it);
+    if (t >= window_start_s + kCn0SettleS) {
+      cn0_sum[prn] += number(r, cn);
+      ++cn0_count[prn];
+    }
+  }
+  nlohmann::json channels = nlohmann::json::object();
+  const double window = window_end_s - window_start_s;
+  for (const auto& [prn, samples] : doppler) {
+    const double cn0 = cn0_count[prn] ? cn0_sum[prn] / cn0_count[prn] : kNaN;
+    channels[std::to_string(prn)] = {{"tracked_fraction", std::min(1.0, tracked_s[prn] / window)},
+                                     {"cn0_dbhz", finite_or_null(cn0)}};
+  }
+  return channels;
+}
+
+/// Horizontal/vertical error and fix availability of pvt.csv in the jammed window.
+nlohmann::json solution_figures(const std::string& pvt_path, const std::string& truth_path, double window_start_s,
+                                double window_end_s) {
+  const TruthFile truth(truth_path);
+  const Csv pvt(pvt_path);
+  const std::size_t t = pvt.at("t_s", pvt_path), x = pvt.at("x_ecef_m", pvt_path), y = pvt.at("y_ecef_m", pvt_path),
+                    z = pvt.at("z_ecef_m", pvt_path), lat = pvt.at("lat_deg", pvt_path), lon = pvt.at("lon_deg", pvt_path);
+  std::vector<double> horizontal, vertical;
+  for (const auto& r : pvt.rows) {
+    const double ts = number(r, t);
+    if (ts < window_start_s || ts >= window_end_s) continue;
+    const auto ref = truth.at(ts);
+    if (!ref) continue;
+    const Eigen::Vector3d d = C_e_n(number(r, lat) * kDegToRad, number(r, lon) * kDegToRad) *
+                              (Eigen::Vector3d(number(r, x), number(r, y), number(r, z)) - ref->r_ecef_m);
+    horizontal.push_back(d.head<2>().norm());
+    vertical.push_back(std::abs(d.z()));
+  }
+  // Fixes come at whole seconds (1 Hz): the epochs expected in [start, end). The epoch at
+  // the very end of the samples may not be formed, so it is not counted either way.
+  const double expected = std::ceil(window_end_s) - std::ceil(window_start_s);
+  const ErrorStats h = ErrorStats::of(horizontal), v = ErrorStats::of(vertical);
+  return {{"fixes", horizontal.size()},
+          {"fix_availability", std::min(1.0, static_cast<double>(horizontal.size()) / expected)},
+          {"horizontal_rms_m", finite_or_null(h.rms)},
+          {"horizontal_max_m", finite_or_null(h.max)},
+          {"vertical_rms_m", finite_or_null(v.rms)},
+          {"vertical_max_m", finite_or_null(v.max)}};
+}
+
+/// Adds the summary over channels and the pass/fail verdict.
+void judge(nlohmann::json& fig) {
+  const FailureCriteria c;
+  double sum = 0.0, min = 1.0, cn0_sum = 0.0;
+  int n = 0, n_cn0 = 0;
+  for (const auto& [prn, ch] : fig["channels"].items()) {
+    const double f = ch["tracked_fraction"].get<double>();
+    sum += f;
+    min = std::min(min, f);
+    ++n;
+    if (!ch["cn0_dbhz"].is_null()) {
+      cn0_sum += ch["cn0_dbhz"].get<double>();
+      ++n_cn0;
+    }
+  }
+  fig["tracked_fraction_mean"] = n ? sum / n : 0.0;
+  fig["tracked_fraction_min"] = n ? min : 0.0;
+  fig["cn0_mean_dbhz"] = n_cn0 ? nlohmann::json(cn0_sum / n_cn0) : nlohmann::json(nullptr);
+  std::vector<std::string> reasons;
+  const auto& s = fig["solution"];
+  if (s["fix_availability"].get<double>() < c.min_fix_availability) reasons.push_back("fixes missing");
+  const auto over = [&](const char* key) { return !s[key].is_null() && s[key].get<double>() > c.max_error_m; };
+  if (over("horizontal_max_m") || over("vertical_max_m")) reasons.push_back("error over 10 m");
+  if (fig["tracked_fraction_mean"].get<double>() < c.min_tracked_fraction) reasons.push_back("tracking lost");
+  std::string joined;
+  for (const auto& r : reasons) joined += (joined.empty() ? "" : "; ") + r;
+  fig["failed"] = !reasons.empty();
+  fig["failure"] = joined;
+}
+
+}  // namespace
+
+JammerConfig benchmark_jammer(const std::string& type, double js_db, double onset_s) {
+  JammerConfig j;
+  try {
+    j.type = parse_jammer_type(type);
+  } catch (const std::invalid_argument& e) {
+    throw UserError(std::string("--jammer: ") + e.what());
+  }
+  j.js_db = js_db;
+  j.start_s = onset_s;
+  switch (j.type) {
+    case JammerType::cw:
+      j.center_offset_hz = 151.7e3;  // between C/A spectral lines, inside the main lobe
+      break;
+    case JammerType::chirp:
+      j.bandwidth_hz = 2.0e6;
+      j.sweep_period_s = 1e-3;
+      break;
+    case JammerType::wideband:
+      j.bandwidth_hz = 2.046e6;  // the C/A main lobe
+      break;
+    case JammerType::pulsed:
+      j.bandwidth_hz = 2.046e6;
+      j.duty_cycle = 0.1;
+      j.pulse_rate_hz = 3000.0;
+      break;
+  }
+  return j;
+}
+
+std::string point_id(const JamPoint& p) {
+  return fmt::format("{}_{}_js{:05.1f}_{}_{}_s{}", fs::path(p.scenario).stem().string(), p.jammer, p.js_db, p.mode,
+                     p.mitigation, p.seed);
+}
+
+std::string point_dir(const std::string& out_dir, const JamPoint& p) {
+  return (fs::path(out_dir) / "points" / point_id(p)).string();
+}
+
+bool point_done(const std::string& out_dir, const JamPoint& p) {
+  return fs::exists(fs::path(point_dir(out_dir, p)) / "point.json");
+}
+
+nlohmann::json run_jam_point(const JamPoint& p, const std::string& out_dir, const std::string& deepnav_exe) {
+  const auto start = std::chrono::steady_clock::now();
+  const ReceiverMode& mode = find_receiver_mode(p.mode);
+  Scenario sc;
+  try {
+    sc = load_scenario(p.scenario, DEEPNAV_SOURCE_DIR);
+    sc.seed = p.seed;
+    if (!(p.onset_s >= 0.0 && p.onset_s < sc.duration_s))
+      throw UserError(fmt::format("--onset {} s: expected within the scenario's {} s", p.onset_s, sc.duration_s));
+    sc.jammers = {benchmark_jammer(p.jammer, p.js_db, p.onset_s)};
+    validate_scenario(sc);
+  } catch (const std::invalid_argument& e) {
+    throw UserError(e.what());
+  } catch (const std::runtime_error& e) {
+    if (dynamic_cast<const UserError*>(&e)) throw;
+    throw UserError(e.what());
+  }
+  const fs::path dir = point_dir(out_dir, p);
+  const fs::path work = dir / "work";
+  fs::create_directories(work);
+  SynthesisOptions so;
+  so.threads = 1;
+  const SynthesisSummary s = IfSynthesizer(sc, read_rinex_nav(sc.nav_file)).run((work / "sim").string(), so);
+
+  std::vector<std::string> argv = {deepnav_exe,
+                                   "-q",
+                                   "run",
+                                   "--input",
+                                   s.if_path,
+                                   "--format",
+                                   std::string(to_string(sc.format)),
+                                   "--fs",
+                                   fmt::format("{}", sc.sample_rate_hz),
+                                   "--if",
+                                   fmt::format("{}", sc.if_hz),
+                                   "--week",
+                                   std::to_string(sc.start_time.week),
+                                   "--iono-from",
+                                   sc.nav_file,
+                                   "--truth",
+                                   s.truth_path,
+                                   "--mitigation",
+                                   p.mitigation,
+                                   "--out",
+                                   (work / "run").string()};
+  for (const auto& a : receiver_mode_run_arguments(mode, s.imu_path)) argv.push_back(a);
+  const std::string log = (dir / "run.log").string();
+  fs::remove(log);
+  const int rc = wait_child(start_child(argv, log));
+  if (rc != 0) throw UserError(fmt::format("'deepnav run' for point {} exited with {}; see {}", point_id(p), rc, log));
+
+  const fs::path run = work / "run";
+  nlohmann::json fig = {{"id", point_id(p)},
+                        {"scenario", fs::path(p.scenario).stem().string()},
+                        {"jammer", p.jammer},
+                        {"js_db", p.js_db},
+                        {"mode", p.mode},
+                        {"mitigation", p.mitigation},
+                        {"seed", p.seed},
+                        {"onset_s", p.onset_s},
+                        {"duration_s", sc.duration_s},
+                        {"adc_bits", sc.adc.bits},
+                        {"command", shell_command_line(argv)}};
+  fig["channels"] = channel_figures((run / "tracking.csv").string(), s.sat_truth_path, sc.sample_rate_hz, p.onset_s,
+                                    sc.duration_s);
+  fig["solution"] = solution_figures((run / "pvt.csv").string(), s.truth_path, p.onset_s, sc.duration_s);
+  judge(fig);
+  fs::copy_file(run / "summary.json", dir / "summary.json", fs::copy_options::overwrite_existing);
+  fs::remove_all(work);
+  fig["wall_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  TextOutputFile out((dir / "point.json").string());
+  out.write(fig.dump(2) + "\n");
+  out.commit();
+  return fig;
+}
+
+}  // namespace deepnav::cli

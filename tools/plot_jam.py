@@ -1,0 +1,65 @@
+#!/usr/bin/env python3
+"""Plots of `deepnav bench jam`: for each jammer in DIR/runs.csv, one PNG (DIR/jam_<jammer>.png)
+with the horizontal position error (RMS and max), the post-correlation C/N0 and the
+tracked fraction against J/S, one line per receiver mode and mitigation (seeds averaged).
+usage: plot_jam.py DIR"""
+import csv
+import math
+import os
+import sys
+from collections import defaultdict
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def number(text):
+    return float(text) if text not in ("", None) else math.nan
+
+
+def mean(values):
+    values = [v for v in values if not math.isnan(v)]
+    return sum(values) / len(values) if values else math.nan
+
+
+def main(folder):
+    rows = list(csv.DictReader(open(os.path.join(folder, "runs.csv"))))
+    by_jammer = defaultdict(lambda: defaultdict(lambda: defaultdict(list)))
+    for r in rows:
+        key = f"{r['mode']} / {r['mitigation']}"
+        by_jammer[(r["scenario"], r["jammer"])][key][number(r["js_db"])].append(r)
+    for (scenario, jammer), series in sorted(by_jammer.items()):
+        fig, axes = plt.subplots(3, 1, figsize=(7.5, 9.5), sharex=True)
+        for i, (label, points) in enumerate(sorted(series.items())):
+            js = sorted(points)
+            color = f"C{i}"
+            h_rms = [mean([number(r["horizontal_rms_m"]) for r in points[x]]) for x in js]
+            h_max = [mean([number(r["horizontal_max_m"]) for r in points[x]]) for x in js]
+            cn0 = [mean([number(r["cn0_mean_dbhz"]) for r in points[x]]) for x in js]
+            tracked = [mean([number(r["tracked_fraction_mean"]) for r in points[x]]) for x in js]
+            axes[0].semilogy(js, h_rms, "o-", color=color, label=f"{label} RMS")
+            axes[0].semilogy(js, h_max, "x--", color=color, label=f"{label} max")
+            axes[1].plot(js, cn0, "o-", color=color, label=label)
+            axes[2].plot(js, tracked, "o-", color=color, label=label)
+        axes[0].axhline(10.0, color="k", lw=0.8, ls=":")
+        axes[0].set_ylabel("horizontal error (m)")
+        axes[0].legend(fontsize=7)
+        axes[1].set_ylabel("post-correlation C/N0 (dB-Hz)")
+        axes[1].legend(fontsize=7)
+        axes[2].set_ylabel("tracked fraction (mean)")
+        axes[2].set_ylim(-0.05, 1.05)
+        axes[2].set_xlabel("J/S (dB)")
+        for ax in axes:
+            ax.grid(True, which="both", alpha=0.3)
+        axes[0].set_title(f"{scenario}: {jammer} jammer (missing points: no fix / no tracking)")
+        fig.tight_layout()
+        fig.savefig(os.path.join(folder, f"jam_{jammer}.png"), dpi=110)
+        plt.close(fig)
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 2:
+        sys.exit(__doc__)
+    main(sys.argv[1])
