@@ -1,6 +1,8 @@
 #include "receiver/correlator.hpp"
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
 #include <memory>
 #include <stdexcept>
@@ -9,9 +11,10 @@
 
 #if defined(__x86_64__)
 // GCC 12 reports the deliberately undefined lanes of some AVX-512 intrinsics as
-// maybe-uninitialized; the diagnostic points into the header, so it is silenced there only.
+// (maybe-)uninitialized; the diagnostic points into the header, so it is silenced there only.
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic ignored "-Wuninitialized"
 #include <immintrin.h>
 #pragma GCC diagnostic pop
 #endif
@@ -19,237 +22,460 @@
 namespace deepnav {
 namespace {
 
-constexpr int kLanes = 16;
-constexpr int kRun = 1024;                // samples per run: phases restart exactly at each run
-constexpr int kFracBits = 21;             // code index: 11 integer bits (< 2048 chips), 21 fraction bits
-constexpr double kFracOne = 2097152.0;    // 2^21
-constexpr int kTableChips = 2048;         // code levels over two periods and a bit: no wrap inside a run
+constexpr int kRun = 4096;                 // samples per run: phases restart exactly at each run
+constexpr int kCarrierBits = 21;           // carrier phase accumulator: 1 cycle = 2^21
+constexpr double kCarrierOne = 2097152.0;  // 2^21
+constexpr int kCodeFracBits = 27;          // code position: chips with 27 fraction bits
+constexpr double kCodeOne = 134217728.0;   // 2^27
+constexpr int kTapFracBits = 11;           // tap offsets: chips with 11 fraction bits
+constexpr std::int64_t kCodeWrap = std::int64_t{1023} << kCodeFracBits;
 constexpr double kPeriodChips = 1023.0;
+constexpr int kPad = 64;   // code table chips before 0 and after 1022 (window loads, tap offsets)
+constexpr int kTaps = 6;   // early, prompt, late, very early, very late, noise
+constexpr int kNoise = 5;
+constexpr int kSmallBits = 7;  // inputs within +-2^7: exact products (see the header)
 
-#define DEEPNAV_SIMD_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
+/// Everything a kernel needs that does not change within a call.
+struct Setup {
+  const std::int16_t* cos_tab;  // 32 entries
+  const std::int16_t* sin_tab;
+  const std::int16_t* code16;  // code levels, index = chip (valid for -kPad .. 1022 + kPad)
+  const std::int16_t* noise16;
+  const std::int8_t* code8;
+  const std::int8_t* noise8;
+  int taps;  // 3 (E/P/L) or 5 (with VE/VL); the noise tap is always there
+  int h;     // whole chips the widest tap reaches beyond the prompt (>= 1)
+  std::int16_t d[5];  // tap offsets in 2^-11 chip: E, P (0), L, VE, VL
+};
 
-/// Carrier wipe-off of n <= kRun samples: (re, im) = x * conj(replica). The replica phasor
-/// of lane l starts at (cr[l], ci[l]) and advances by w every kLanes samples.
-DEEPNAV_SIMD_CLONES
-void wipe_carrier(const std::int16_t* __restrict iq, int n, float* __restrict re_out, float* __restrict im_out,
-                  float* __restrict cr, float* __restrict ci, float wr, float wi) {
-  int k = 0;
-  for (; k + kLanes <= n; k += kLanes) {
-    for (int l = 0; l < kLanes; ++l) {
-      const float xi = iq[2 * (k + l)], xq = iq[2 * (k + l) + 1];
-      // x * conj(c) = (xi cr + xq ci) + j (xq cr - xi ci)
-      re_out[k + l] = xi * cr[l] + xq * ci[l];
-      im_out[k + l] = xq * cr[l] - xi * ci[l];
-      const float nr = cr[l] * wr - ci[l] * wi;
-      const float ni = cr[l] * wi + ci[l] * wr;
-      cr[l] = nr;
-      ci[l] = ni;
+/// Phases at the first sample of a run.
+struct Run {
+  std::uint32_t phi0, dphi;  // carrier, 2^21 per cycle (bits above 20 are ignored)
+  std::int64_t pos0;         // prompt position in [0, 1023 * 2^27)
+  std::int64_t inc;          // code step, 2^27 per chip
+};
+
+using Acc = std::int64_t[kTaps][2];
+
+// ---------------------------------------------------------------------------------------
+// Tables.
+
+/// Carrier tables for one amplitude: cos/sin at (p + 1/2) * 2 pi / 32, built from one
+/// quarter wave so that every entry has an exact mirror (the AVX2 kernel looks up the
+/// quarter wave and applies the signs itself).
+struct CarrierTable {
+  std::array<std::int16_t, 8> quarter;
+  std::array<std::int16_t, 32> cos_tab, sin_tab;
+  double scale;  // sums in sample units = integer sums * scale
+};
+
+CarrierTable make_carrier_table(double amplitude, double scale) {
+  CarrierTable t{};
+  for (int r = 0; r < 8; ++r)
+    t.quarter[static_cast<std::size_t>(r)] = static_cast<std::int16_t>(std::lround(amplitude * std::cos((r + 0.5) * M_PI / 16.0)));
+  for (int p = 0; p < 32; ++p) {
+    const int q = p >> 3, r = p & 7;
+    const std::int16_t m = t.quarter[static_cast<std::size_t>(r)], mm = t.quarter[static_cast<std::size_t>(7 - r)];
+    const std::int16_t c[4] = {m, static_cast<std::int16_t>(-mm), static_cast<std::int16_t>(-m), mm};
+    const std::int16_t s[4] = {mm, m, static_cast<std::int16_t>(-mm), static_cast<std::int16_t>(-m)};
+    t.cos_tab[static_cast<std::size_t>(p)] = c[q];
+    t.sin_tab[static_cast<std::size_t>(p)] = s[q];
+  }
+  t.scale = scale;
+  return t;
+}
+
+/// Index b <= 7: inputs within +-2^b, amplitude 23170 / 2^b (|I c + Q s| <= sqrt(2) 2^b A
+/// < 2^15). Index 8: larger inputs, products rounded by 2^15, amplitude 23000 (the two
+/// rounded products add to at most sqrt(2) 23000 + 1 < 2^15).
+const CarrierTable& carrier_table(int bits) {
+  static const std::array<CarrierTable, kSmallBits + 2> tables = [] {
+    std::array<CarrierTable, kSmallBits + 2> t{};
+    for (int b = 0; b <= kSmallBits; ++b) {
+      const double a = std::floor(23170.0 / std::ldexp(1.0, b));
+      t[static_cast<std::size_t>(b)] = make_carrier_table(a, 1.0 / a);
     }
-  }
-  for (int l = 0; k < n; ++k, ++l) {
-    const float xi = iq[2 * k], xq = iq[2 * k + 1];
-    re_out[k] = xi * cr[l] + xq * ci[l];
-    im_out[k] = xq * cr[l] - xi * ci[l];
-  }
+    t[kSmallBits + 1] = make_carrier_table(23000.0, 32768.0 / 23000.0);
+    return t;
+  }();
+  return tables[static_cast<std::size_t>(std::min(bits, kSmallBits + 1))];
 }
 
-/// Code wipe-off and accumulation for T taps that share one code table, each starting at
-/// its own fixed-point index and advancing by `inc` per sample. Portable version: partial
-/// sums are kept per lane so the reduction vectorises without reassociation flags.
-template <int T>
-[[gnu::always_inline]] inline void tap_sums_portable(const float* __restrict re, const float* __restrict im, int n,
-                                                     const std::uint32_t* start, std::uint32_t inc,
-                                                     const float* __restrict table, float* out_re, float* out_im) {
-  float ar[T][kLanes] = {}, ai[T][kLanes] = {};
-  int k = 0;
-  for (; k + kLanes <= n; k += kLanes) {
-    for (int l = 0; l < kLanes; ++l) {
-      const std::uint32_t offset = static_cast<std::uint32_t>(k + l) * inc;
-      for (int t = 0; t < T; ++t) {
-        const float c = table[(start[t] + offset) >> kFracBits];
-        ar[t][l] += re[k + l] * c;
-        ai[t][l] += im[k + l] * c;
-      }
-    }
-  }
-  for (int l = 0; k < n; ++k, ++l) {
-    const std::uint32_t offset = static_cast<std::uint32_t>(k) * inc;
-    for (int t = 0; t < T; ++t) {
-      const float c = table[(start[t] + offset) >> kFracBits];
-      ar[t][l] += re[k] * c;
-      ai[t][l] += im[k] * c;
-    }
-  }
-  for (int t = 0; t < T; ++t) {
-    float sr = 0.0f, si = 0.0f;
-    for (int l = 0; l < kLanes; ++l) {
-      sr += ar[t][l];
-      si += ai[t][l];
-    }
-    out_re[t] = sr;
-    out_im[t] = si;
-  }
-}
-
-/// Scalar tail of the intrinsic kernels (the last n % lanes samples of a run).
-template <int T>
-[[gnu::always_inline]] inline void tap_tail(const float* re, const float* im, int k, int n, const std::uint32_t* start,
-                                            std::uint32_t inc, const float* table, float* out_re, float* out_im) {
-  for (; k < n; ++k) {
-    const std::uint32_t offset = static_cast<std::uint32_t>(k) * inc;
-    for (int t = 0; t < T; ++t) {
-      const float c = table[(start[t] + offset) >> kFracBits];
-      out_re[t] += re[k] * c;
-      out_im[t] += im[k] * c;
-    }
-  }
-}
-
-#if defined(__x86_64__)
-/// AVX-512: 16 samples of a tap span at most 16 step + 1 chips. With step below 14/15 chip
-/// they fit in one unaligned 16-entry load of the table, and a lane permutation replaces
-/// the gather; faster steps fall back to the gather.
-template <int T, bool kPermute>
-__attribute__((target("avx512f"), always_inline)) inline void tap_sums_avx512(
-    const float* re, const float* im, int n, const std::uint32_t* start, std::uint32_t inc, const float* table,
-    float* out_re, float* out_im) {
-  const __m512i lane_offset = _mm512_mullo_epi32(
-      _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15), _mm512_set1_epi32(static_cast<int>(inc)));
-  __m512 acc_re[T], acc_im[T];
-  for (int t = 0; t < T; ++t) acc_re[t] = acc_im[t] = _mm512_setzero_ps();
-  int k = 0;
-  for (; k + 16 <= n; k += 16) {
-    const __m512 x_re = _mm512_loadu_ps(re + k), x_im = _mm512_loadu_ps(im + k);
-    const std::uint32_t k_offset = static_cast<std::uint32_t>(k) * inc;
-    for (int t = 0; t < T; ++t) {
-      const std::uint32_t base = start[t] + k_offset;
-      const __m512i fixed = _mm512_add_epi32(_mm512_set1_epi32(static_cast<int>(base)), lane_offset);
-      const __m512i chip = _mm512_srli_epi32(fixed, kFracBits);
-      __m512 c;
-      if constexpr (kPermute) {
-        const int first = static_cast<int>(base >> kFracBits);
-        c = _mm512_permutexvar_ps(_mm512_sub_epi32(chip, _mm512_set1_epi32(first)), _mm512_loadu_ps(table + first));
-      } else {
-        c = _mm512_i32gather_ps(chip, table, 4);
-      }
-      acc_re[t] = _mm512_fmadd_ps(x_re, c, acc_re[t]);
-      acc_im[t] = _mm512_fmadd_ps(x_im, c, acc_im[t]);
-    }
-  }
-  for (int t = 0; t < T; ++t) {
-    out_re[t] = _mm512_reduce_add_ps(acc_re[t]);
-    out_im[t] = _mm512_reduce_add_ps(acc_im[t]);
-  }
-  tap_tail<T>(re, im, k, n, start, inc, table, out_re, out_im);
-}
-
-/// AVX2: the same with 8 lanes (permutation while 8 samples span at most 8 chips).
-template <int T, bool kPermute>
-__attribute__((target("avx2,fma"), always_inline)) inline void tap_sums_avx2(
-    const float* re, const float* im, int n, const std::uint32_t* start, std::uint32_t inc, const float* table,
-    float* out_re, float* out_im) {
-  const __m256i lane_offset =
-      _mm256_mullo_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), _mm256_set1_epi32(static_cast<int>(inc)));
-  __m256 acc_re[T], acc_im[T];
-  for (int t = 0; t < T; ++t) acc_re[t] = acc_im[t] = _mm256_setzero_ps();
-  int k = 0;
-  for (; k + 8 <= n; k += 8) {
-    const __m256 x_re = _mm256_loadu_ps(re + k), x_im = _mm256_loadu_ps(im + k);
-    const std::uint32_t k_offset = static_cast<std::uint32_t>(k) * inc;
-    for (int t = 0; t < T; ++t) {
-      const std::uint32_t base = start[t] + k_offset;
-      const __m256i fixed = _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(base)), lane_offset);
-      const __m256i chip = _mm256_srli_epi32(fixed, kFracBits);
-      __m256 c;
-      if constexpr (kPermute) {
-        const int first = static_cast<int>(base >> kFracBits);
-        c = _mm256_permutevar8x32_ps(_mm256_loadu_ps(table + first), _mm256_sub_epi32(chip, _mm256_set1_epi32(first)));
-      } else {
-        c = _mm256_i32gather_ps(table, chip, 4);
-      }
-      acc_re[t] = _mm256_fmadd_ps(x_re, c, acc_re[t]);
-      acc_im[t] = _mm256_fmadd_ps(x_im, c, acc_im[t]);
-    }
-  }
-  for (int t = 0; t < T; ++t) {
-    alignas(32) float r[8], i[8];
-    _mm256_store_ps(r, acc_re[t]);
-    _mm256_store_ps(i, acc_im[t]);
-    out_re[t] = ((r[0] + r[1]) + (r[2] + r[3])) + ((r[4] + r[5]) + (r[6] + r[7]));
-    out_im[t] = ((i[0] + i[1]) + (i[2] + i[3])) + ((i[4] + i[5]) + (i[6] + i[7]));
-  }
-  tap_tail<T>(re, im, k, n, start, inc, table, out_re, out_im);
-}
-#endif
-
-/// One kernel per instruction set and tap count (T taps share one code table).
-template <int T>
-void tap_sums(CorrelatorKernel kernel, const float* re, const float* im, int n, const std::uint32_t* start,
-              std::uint32_t inc, const float* table, float* out_re, float* out_im);
-
-#if defined(__x86_64__)
-template <int T>
-__attribute__((target("avx512f"))) void tap_sums_avx512_dispatch(const float* re, const float* im, int n,
-                                                                  const std::uint32_t* start, std::uint32_t inc,
-                                                                  const float* table, float* out_re, float* out_im) {
-  if (static_cast<double>(inc) * 15.0 < 14.0 * kFracOne)
-    tap_sums_avx512<T, true>(re, im, n, start, inc, table, out_re, out_im);
-  else
-    tap_sums_avx512<T, false>(re, im, n, start, inc, table, out_re, out_im);
-}
-
-template <int T>
-__attribute__((target("avx2,fma"))) void tap_sums_avx2_dispatch(const float* re, const float* im, int n,
-                                                                 const std::uint32_t* start, std::uint32_t inc,
-                                                                 const float* table, float* out_re, float* out_im) {
-  if (static_cast<double>(inc) * 7.0 < 6.0 * kFracOne)
-    tap_sums_avx2<T, true>(re, im, n, start, inc, table, out_re, out_im);
-  else
-    tap_sums_avx2<T, false>(re, im, n, start, inc, table, out_re, out_im);
-}
-#endif
-
-template <int T>
-void tap_sums_portable_call(const float* re, const float* im, int n, const std::uint32_t* start, std::uint32_t inc,
-                            const float* table, float* out_re, float* out_im) {
-  tap_sums_portable<T>(re, im, n, start, inc, table, out_re, out_im);
-}
-
-template <int T>
-void tap_sums(CorrelatorKernel kernel, const float* re, const float* im, int n, const std::uint32_t* start,
-              std::uint32_t inc, const float* table, float* out_re, float* out_im) {
-  switch (kernel) {
-#if defined(__x86_64__)
-    case CorrelatorKernel::avx512:
-      tap_sums_avx512_dispatch<T>(re, im, n, start, inc, table, out_re, out_im);
-      return;
-    case CorrelatorKernel::avx2:
-      tap_sums_avx2_dispatch<T>(re, im, n, start, inc, table, out_re, out_im);
-      return;
-#endif
-    default:
-      tap_sums_portable_call<T>(re, im, n, start, inc, table, out_re, out_im);
-  }
-}
-
-/// Code levels as floats over kTableChips chips (chip c holds code[c mod 1023]).
+/// Code levels (+-1) as int16 and int8 over chips -kPad .. 1022 + kPad.
 struct CodeTable {
-  alignas(64) float levels[kTableChips + 16];  // + 16: a permuting kernel loads 16 past its first chip
+  alignas(64) std::int16_t l16[1023 + 2 * kPad];
+  alignas(64) std::int8_t l8[1023 + 2 * kPad];
   explicit CodeTable(const CaCodeChips& code) {
-    for (int c = 0; c < kTableChips + 16; ++c) levels[c] = static_cast<float>(code[static_cast<std::size_t>(c % 1023)]);
+    for (int c = -kPad; c < 1023 + kPad; ++c) {
+      const std::int8_t v = code[static_cast<std::size_t>((c + 1023) % 1023)];
+      l16[c + kPad] = v;
+      l8[c + kPad] = v;
+    }
   }
 };
 
 /// The table of a code, rebuilt only when the caller switches codes (a channel keeps its own
 /// two codes, so per thread this is a cache hit except when channels interleave).
-const float* table_for(const CaCodeChips& code, int slot) {
+const CodeTable& table_for(const CaCodeChips& code, int slot) {
   thread_local const CaCodeChips* cached[2] = {nullptr, nullptr};
   thread_local std::unique_ptr<CodeTable> tables[2];
   if (cached[slot] != &code) {
     tables[slot] = std::make_unique<CodeTable>(code);
     cached[slot] = &code;
   }
-  return tables[slot]->levels;
+  return *tables[slot];
+}
+
+// ---------------------------------------------------------------------------------------
+// Portable kernel: the definition of the integers every kernel computes.
+
+inline std::int16_t mulhrs(std::int16_t a, std::int16_t b) {
+  return static_cast<std::int16_t>((static_cast<std::int32_t>(a) * b + 0x4000) >> 15);
+}
+
+/// Largest b with some |I| or |Q| needing it: every sample within [-2^b, 2^b).
+int sample_bits_portable(const Sample* x, int n) {
+  unsigned m = 0;
+  const auto* iq = reinterpret_cast<const std::int16_t*>(x);
+  for (int k = 0; k < 2 * n; ++k) m |= static_cast<std::uint16_t>(iq[k] ^ (iq[k] >> 15));
+  return std::bit_width(m);
+}
+
+inline std::int16_t level(const std::int16_t* table, std::int64_t chip) {
+  if (chip >= -kPad && chip < 1023 + kPad) return table[chip];
+  return table[((chip % 1023) + 1023) % 1023];
+}
+
+template <bool kSmall>
+void kernel_portable(const Sample* x, int m, const Run& run, const Setup& su, Acc& acc) {
+  std::int64_t pos = run.pos0;
+  std::uint32_t phi = run.phi0;
+  for (int k = 0; k < m; ++k, phi += run.dphi) {
+    const unsigned p = (phi >> 16) & 31u;
+    const std::int16_t c = su.cos_tab[p], s = su.sin_tab[p];
+    const std::int16_t i = x[k].real(), q = x[k].imag();
+    std::int32_t re, im;
+    if constexpr (kSmall) {
+      re = static_cast<std::int16_t>(i * c + q * s);
+      im = static_cast<std::int16_t>(q * c - i * s);
+    } else {
+      re = static_cast<std::int16_t>(mulhrs(i, c) + mulhrs(q, s));
+      im = static_cast<std::int16_t>(mulhrs(q, c) - mulhrs(i, s));
+    }
+    for (int t = 0; t < su.taps; ++t) {
+      const std::int64_t chip = (pos + (std::int64_t{su.d[t]} << (kCodeFracBits - kTapFracBits))) >> kCodeFracBits;
+      const std::int16_t l = level(su.code16, chip);
+      acc[t][0] += re * l;
+      acc[t][1] += im * l;
+    }
+    const std::int16_t l = level(su.noise16, pos >> kCodeFracBits);
+    acc[kNoise][0] += re * l;
+    acc[kNoise][1] += im * l;
+    pos += run.inc;
+    if (pos >= kCodeWrap) pos -= kCodeWrap;
+  }
+}
+
+#if defined(__x86_64__)
+// ---------------------------------------------------------------------------------------
+// AVX-512 (BW + VNNI): 32 samples per iteration, planar int16 re/im in natural order.
+#define DEEPNAV_AVX512 __attribute__((target("avx512f,avx512bw,avx512vnni")))
+
+DEEPNAV_AVX512 int sample_bits_avx512(const Sample* x, int n) {
+  const auto* p = reinterpret_cast<const std::int32_t*>(x);
+  __m512i acc = _mm512_setzero_si512();
+  for (int k = 0; k < n; k += 16) {
+    const int left = n - k;
+    const __mmask16 mask = left >= 16 ? static_cast<__mmask16>(0xFFFF) : static_cast<__mmask16>((1u << left) - 1u);
+    const __m512i v = _mm512_maskz_loadu_epi32(mask, p + k);
+    // acc |= v ^ (v >> 15): the magnitude bits of every int16
+    acc = _mm512_ternarylogic_epi32(acc, v, _mm512_srai_epi16(v, 15), 0xF6);
+  }
+  alignas(64) std::uint16_t w[32];
+  _mm512_store_si512(w, acc);
+  unsigned m = 0;
+  for (std::uint16_t v : w) m |= v;
+  return std::bit_width(m);
+}
+
+template <int kT, bool kSmall>
+DEEPNAV_AVX512 void kernel_avx512(const Sample* x, int m, const Run& run, const Setup& su, Acc& acc) {
+  const auto* src = reinterpret_cast<const std::int32_t*>(x);
+  const __m512i lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+  const __m512i sixteen = _mm512_set1_epi32(16);
+  // Word k of the result is word 2k (I) / 2k+1 (Q, and the high halves of the dwords) of
+  // the pair (a, b): deinterleaves 32 samples.
+  alignas(64) static constexpr std::array<std::uint16_t, 32> kEven = [] {
+    std::array<std::uint16_t, 32> e{};
+    for (std::size_t k = 0; k < 32; ++k) e[k] = static_cast<std::uint16_t>(2 * k);
+    return e;
+  }();
+  const __m512i even = _mm512_load_si512(kEven.data());
+  const __m512i odd = _mm512_add_epi16(even, _mm512_set1_epi16(1));
+  const __m512i cos_t = _mm512_loadu_si512(su.cos_tab), sin_t = _mm512_loadu_si512(su.sin_tab);
+
+  // Carrier phases of samples 0..15 and 16..31; the table index is bits 16..20.
+  const __m512i dphi = _mm512_set1_epi32(static_cast<int>(run.dphi));
+  __m512i phi_a = _mm512_add_epi32(_mm512_set1_epi32(static_cast<int>(run.phi0)), _mm512_mullo_epi32(lane, dphi));
+  __m512i phi_b = _mm512_add_epi32(phi_a, _mm512_mullo_epi32(sixteen, dphi));
+  const __m512i phi_step = _mm512_slli_epi32(dphi, 5);
+
+  // Code positions of samples 0..31 relative to the block's first chip minus h, 2^27 per
+  // chip: the high words hold the positions in 2^-11 chip (the tap offsets' unit).
+  const auto inc = static_cast<std::uint32_t>(run.inc);
+  const __m512i inc_v = _mm512_set1_epi32(static_cast<int>(inc));
+  const __m512i off_a =
+      _mm512_add_epi32(_mm512_set1_epi32(static_cast<int>(static_cast<std::uint32_t>(su.h) << kCodeFracBits)),
+                       _mm512_mullo_epi32(lane, inc_v));
+  const __m512i off_b = _mm512_add_epi32(off_a, _mm512_mullo_epi32(sixteen, inc_v));
+  __m512i d[5];
+  for (int t = 0; t < kT; ++t) d[t] = _mm512_set1_epi16(su.d[t]);
+
+  __m512i acc_re[kT + 1], acc_im[kT + 1];
+  for (int t = 0; t <= kT; ++t) acc_re[t] = acc_im[t] = _mm512_setzero_si512();
+
+  std::int64_t pos = run.pos0;
+  const std::int64_t block_inc = run.inc * 32;
+  for (int k = 0; k < m; k += 32) {
+    const int left = m - k;
+    __m512i x0, x1;
+    if (left >= 32) {
+      x0 = _mm512_loadu_si512(src + k);
+      x1 = _mm512_loadu_si512(src + k + 16);
+    } else {  // masked loads: the missing samples are zero and add nothing
+      const auto m0 = static_cast<__mmask16>(left >= 16 ? 0xFFFFu : (1u << left) - 1u);
+      const auto m1 = static_cast<__mmask16>(left >= 16 ? (1u << (left - 16)) - 1u : 0u);
+      x0 = _mm512_maskz_loadu_epi32(m0, src + k);
+      x1 = _mm512_maskz_loadu_epi32(m1, src + k + 16);
+    }
+    const __m512i i = _mm512_permutex2var_epi16(x0, even, x1);
+    const __m512i q = _mm512_permutex2var_epi16(x0, odd, x1);
+
+    const __m512i pidx = _mm512_permutex2var_epi16(phi_a, odd, phi_b);
+    phi_a = _mm512_add_epi32(phi_a, phi_step);
+    phi_b = _mm512_add_epi32(phi_b, phi_step);
+    const __m512i c = _mm512_permutexvar_epi16(pidx, cos_t), s = _mm512_permutexvar_epi16(pidx, sin_t);
+    __m512i re, im;
+    if constexpr (kSmall) {
+      re = _mm512_add_epi16(_mm512_mullo_epi16(i, c), _mm512_mullo_epi16(q, s));
+      im = _mm512_sub_epi16(_mm512_mullo_epi16(q, c), _mm512_mullo_epi16(i, s));
+    } else {
+      re = _mm512_add_epi16(_mm512_mulhrs_epi16(i, c), _mm512_mulhrs_epi16(q, s));
+      im = _mm512_sub_epi16(_mm512_mulhrs_epi16(q, c), _mm512_mulhrs_epi16(i, s));
+    }
+
+    const auto first = static_cast<int>(pos >> kCodeFracBits);
+    const __m512i frac = _mm512_set1_epi32(static_cast<int>(pos & ((std::int64_t{1} << kCodeFracBits) - 1)));
+    const __m512i w = _mm512_permutex2var_epi16(_mm512_add_epi32(frac, off_a), odd, _mm512_add_epi32(frac, off_b));
+    const __m512i win = _mm512_loadu_si512(su.code16 + first - su.h);
+    const __m512i nwin = _mm512_loadu_si512(su.noise16 + first - su.h);
+    for (int t = 0; t < kT; ++t) {
+      const __m512i idx = _mm512_srli_epi16(_mm512_add_epi16(w, d[t]), kTapFracBits);
+      const __m512i code = _mm512_permutexvar_epi16(idx, win);
+      acc_re[t] = _mm512_dpwssd_epi32(acc_re[t], re, code);
+      acc_im[t] = _mm512_dpwssd_epi32(acc_im[t], im, code);
+      if (t == 1) {  // the noise tap shares the prompt's timing
+        const __m512i ncode = _mm512_permutexvar_epi16(idx, nwin);
+        acc_re[kT] = _mm512_dpwssd_epi32(acc_re[kT], re, ncode);
+        acc_im[kT] = _mm512_dpwssd_epi32(acc_im[kT], im, ncode);
+      }
+    }
+    pos += block_inc;
+    if (pos >= kCodeWrap) pos -= kCodeWrap;
+  }
+  // A run adds at most 128 * 2 * 2^15 per lane: int32 lanes and their sum cannot overflow.
+  for (int t = 0; t < kT; ++t) {
+    acc[t][0] += _mm512_reduce_add_epi32(acc_re[t]);
+    acc[t][1] += _mm512_reduce_add_epi32(acc_im[t]);
+  }
+  acc[kNoise][0] += _mm512_reduce_add_epi32(acc_re[kT]);
+  acc[kNoise][1] += _mm512_reduce_add_epi32(acc_im[kT]);
+}
+
+// ---------------------------------------------------------------------------------------
+// AVX2: 16 samples per iteration. Word 2j of a register holds sample j, word 2j+1 sample
+// 8 + j, so that 16-bit halves of two dword registers interleave with one blend.
+#define DEEPNAV_AVX2 __attribute__((target("avx2")))
+
+DEEPNAV_AVX2 int sample_bits_avx2(const Sample* x, int n) {
+  const auto* p = reinterpret_cast<const std::int32_t*>(x);
+  __m256i acc = _mm256_setzero_si256();
+  const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  for (int k = 0; k < n; k += 8) {
+    const __m256i mask = _mm256_cmpgt_epi32(_mm256_set1_epi32(n - k), lane);
+    const __m256i v = _mm256_maskload_epi32(p + k, mask);
+    acc = _mm256_or_si256(acc, _mm256_xor_si256(v, _mm256_srai_epi16(v, 15)));
+  }
+  alignas(32) std::uint16_t w[16];
+  _mm256_store_si256(reinterpret_cast<__m256i*>(w), acc);
+  unsigned m = 0;
+  for (std::uint16_t v : w) m |= v;
+  return std::bit_width(m);
+}
+
+/// Adds the int32 lanes of v / 256 to out and clears v (the lanes hold multiples of 256).
+DEEPNAV_AVX2 inline void drain(__m256i& v, std::int64_t& out) {
+  alignas(32) std::int32_t lanes[8];
+  _mm256_store_si256(reinterpret_cast<__m256i*>(lanes), v);
+  std::int64_t sum = 0;
+  for (std::int32_t l : lanes) sum += l;
+  out += sum / 256;
+  v = _mm256_setzero_si256();
+}
+
+template <int kT, bool kSmall>
+DEEPNAV_AVX2 void kernel_avx2(const Sample* x, int m, const Run& run, const Setup& su, Acc& acc) {
+  const auto* src = reinterpret_cast<const std::int32_t*>(x);
+  const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  const __m256i eight = _mm256_set1_epi32(8);
+  // Quarter-wave table (entries 0..7 of the cos table, 8 words) for pshufb, and the map from
+  // the low 4 bits of the phase index to the byte offset of its entry (7 - r in odd quadrants).
+  const __m256i qtab = _mm256_broadcastsi128_si256(_mm_loadu_si128(reinterpret_cast<const __m128i*>(su.cos_tab)));
+  const __m256i map = _mm256_setr_epi8(0, 2, 4, 6, 8, 10, 12, 14, 14, 12, 10, 8, 6, 4, 2, 0, 0, 2, 4, 6, 8, 10, 12, 14,
+                                       14, 12, 10, 8, 6, 4, 2, 0);
+  const __m256i hi_byte = _mm256_set1_epi16(0x0100);
+  const __m256i mirror = _mm256_set1_epi16(0x0E0E);
+  const __m256i five_bits = _mm256_set1_epi16(31);
+  const __m256i one = _mm256_set1_epi16(1);
+  const __m256i dup = _mm256_set1_epi16(0x0101);
+
+  const __m256i dphi = _mm256_set1_epi32(static_cast<int>(run.dphi));
+  __m256i phi_a = _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(run.phi0)), _mm256_mullo_epi32(lane, dphi));
+  __m256i phi_b = _mm256_add_epi32(phi_a, _mm256_mullo_epi32(eight, dphi));
+  const __m256i phi_step = _mm256_slli_epi32(dphi, 4);
+
+  const auto inc = static_cast<std::uint32_t>(run.inc);
+  const __m256i inc_v = _mm256_set1_epi32(static_cast<int>(inc));
+  const __m256i off_a =
+      _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(static_cast<std::uint32_t>(su.h) << kCodeFracBits)),
+                       _mm256_mullo_epi32(lane, inc_v));
+  const __m256i off_b = _mm256_add_epi32(off_a, _mm256_mullo_epi32(eight, inc_v));
+  const __m256i zero_low = _mm256_set1_epi16(0x0080);  // pshufb index with bit 7 set gives 0
+  // The code words are +-256 (the level in the high byte), so each madd adds up to 2^24
+  // per lane: the lanes are moved to int64 every 64 iterations.
+  __m256i d[5];
+  for (int t = 0; t < kT; ++t) d[t] = _mm256_set1_epi16(su.d[t]);
+
+  // The code words are +-256 (the level in the high byte), so each madd adds up to 2^24
+  // per lane: the lanes are moved to int64 every 64 iterations.
+  __m256i acc_re[kT + 1], acc_im[kT + 1];
+  for (int t = 0; t <= kT; ++t) acc_re[t] = acc_im[t] = _mm256_setzero_si256();
+
+  std::int64_t pos = run.pos0;
+  const std::int64_t block_inc = run.inc * 16;
+  int iterations = 0;
+  for (int k = 0; k < m; k += 16) {
+    const int left = m - k;
+    __m256i x0, x1;
+    if (left >= 16) {
+      x0 = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(src + k));
+      x1 = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(src + k + 8));
+    } else {
+      x0 = _mm256_maskload_epi32(src + k, _mm256_cmpgt_epi32(_mm256_set1_epi32(left), lane));
+      x1 = _mm256_maskload_epi32(src + k + 8, _mm256_cmpgt_epi32(_mm256_set1_epi32(left - 8), lane));
+    }
+    const __m256i i = _mm256_blend_epi16(x0, _mm256_slli_epi32(x1, 16), 0xAA);
+    const __m256i q = _mm256_blend_epi16(_mm256_srli_epi32(x0, 16), x1, 0xAA);
+
+    // Phase index p (5 bits) per word; quadrant q = p >> 3, r = p & 7.
+    const __m256i p = _mm256_and_si256(_mm256_blend_epi16(_mm256_srli_epi32(phi_a, 16), phi_b, 0xAA), five_bits);
+    phi_a = _mm256_add_epi32(phi_a, phi_step);
+    phi_b = _mm256_add_epi32(phi_b, phi_step);
+    const __m256i cidx = _mm256_add_epi16(_mm256_shuffle_epi8(map, _mm256_mullo_epi16(p, dup)), hi_byte);
+    const __m256i mag_c = _mm256_shuffle_epi8(qtab, cidx);
+    const __m256i mag_s = _mm256_shuffle_epi8(qtab, _mm256_xor_si256(cidx, mirror));
+    // Signs: sin < 0 in quadrants 2, 3 (bit 4), cos < 0 in quadrants 1, 2 (bit 3 xor bit 4);
+    // bit 0 set keeps the sign words non-zero for psignw.
+    const __m256i sgn_s = _mm256_or_si256(_mm256_slli_epi16(p, 11), one);
+    const __m256i sgn_c = _mm256_xor_si256(sgn_s, _mm256_slli_epi16(p, 12));
+    const __m256i c = _mm256_sign_epi16(mag_c, sgn_c), s = _mm256_sign_epi16(mag_s, sgn_s);
+    __m256i re, im;
+    if constexpr (kSmall) {
+      re = _mm256_add_epi16(_mm256_mullo_epi16(i, c), _mm256_mullo_epi16(q, s));
+      im = _mm256_sub_epi16(_mm256_mullo_epi16(q, c), _mm256_mullo_epi16(i, s));
+    } else {
+      re = _mm256_add_epi16(_mm256_mulhrs_epi16(i, c), _mm256_mulhrs_epi16(q, s));
+      im = _mm256_sub_epi16(_mm256_mulhrs_epi16(q, c), _mm256_mulhrs_epi16(i, s));
+    }
+
+    const auto first = static_cast<int>(pos >> kCodeFracBits);
+    const __m256i frac = _mm256_set1_epi32(static_cast<int>(pos & ((std::int64_t{1} << kCodeFracBits) - 1)));
+    const __m256i w =
+        _mm256_blend_epi16(_mm256_srli_epi32(_mm256_add_epi32(frac, off_a), 16), _mm256_add_epi32(frac, off_b), 0xAA);
+    const __m256i win =
+        _mm256_broadcastsi128_si256(_mm_loadu_si128(reinterpret_cast<const __m128i*>(su.code8 + first - su.h)));
+    const __m256i nwin =
+        _mm256_broadcastsi128_si256(_mm_loadu_si128(reinterpret_cast<const __m128i*>(su.noise8 + first - su.h)));
+    for (int t = 0; t < kT; ++t) {
+      // High byte: the chip index (position >> 11); low byte: 0x80, so the code lands in
+      // the high byte of the word: +-256.
+      const __m256i idx = _mm256_or_si256(_mm256_srli_epi16(_mm256_add_epi16(w, d[t]), kTapFracBits - 8), zero_low);
+      const __m256i code = _mm256_shuffle_epi8(win, idx);
+      acc_re[t] = _mm256_add_epi32(acc_re[t], _mm256_madd_epi16(re, code));
+      acc_im[t] = _mm256_add_epi32(acc_im[t], _mm256_madd_epi16(im, code));
+      if (t == 1) {
+        const __m256i ncode = _mm256_shuffle_epi8(nwin, idx);
+        acc_re[kT] = _mm256_add_epi32(acc_re[kT], _mm256_madd_epi16(re, ncode));
+        acc_im[kT] = _mm256_add_epi32(acc_im[kT], _mm256_madd_epi16(im, ncode));
+      }
+    }
+    pos += block_inc;
+    if (pos >= kCodeWrap) pos -= kCodeWrap;
+    if (++iterations == 64) {
+      iterations = 0;
+      for (int t = 0; t < kT; ++t) {
+        drain(acc_re[t], acc[t][0]);
+        drain(acc_im[t], acc[t][1]);
+      }
+      drain(acc_re[kT], acc[kNoise][0]);
+      drain(acc_im[kT], acc[kNoise][1]);
+    }
+  }
+  for (int t = 0; t < kT; ++t) {
+    drain(acc_re[t], acc[t][0]);
+    drain(acc_im[t], acc[t][1]);
+  }
+  drain(acc_re[kT], acc[kNoise][0]);
+  drain(acc_im[kT], acc[kNoise][1]);
+}
+#endif
+
+using KernelFn = void (*)(const Sample*, int, const Run&, const Setup&, Acc&);
+
+KernelFn pick_kernel(CorrelatorKernel kernel, int taps, bool small) {
+  switch (kernel) {
+#if defined(__x86_64__)
+    case CorrelatorKernel::avx512:
+      if (taps == 3) return small ? kernel_avx512<3, true> : kernel_avx512<3, false>;
+      return small ? kernel_avx512<5, true> : kernel_avx512<5, false>;
+    case CorrelatorKernel::avx2:
+      if (taps == 3) return small ? kernel_avx2<3, true> : kernel_avx2<3, false>;
+      return small ? kernel_avx2<5, true> : kernel_avx2<5, false>;
+#endif
+    default:
+      return small ? kernel_portable<true> : kernel_portable<false>;
+  }
+}
+
+int sample_bits(CorrelatorKernel kernel, const Sample* x, int n) {
+  switch (kernel) {
+#if defined(__x86_64__)
+    case CorrelatorKernel::avx512:
+      return sample_bits_avx512(x, n);
+    case CorrelatorKernel::avx2:
+      return sample_bits_avx2(x, n);
+#endif
+    default:
+      return sample_bits_portable(x, n);
+  }
+}
+
+/// Window width (chips) of a SIMD kernel's code lookup and samples per block.
+struct Geometry {
+  int window, block;
+};
+Geometry geometry(CorrelatorKernel kernel) {
+  return kernel == CorrelatorKernel::avx512 ? Geometry{32, 32} : Geometry{16, 16};
 }
 
 double wrap_chips(double chips) {
@@ -258,15 +484,14 @@ double wrap_chips(double chips) {
   return c;
 }
 
-std::uint32_t fixed_index(double chips) { return static_cast<std::uint32_t>(wrap_chips(chips) * kFracOne); }
-
 }  // namespace
 
 std::vector<CorrelatorKernel> available_correlator_kernels() {
   std::vector<CorrelatorKernel> k{CorrelatorKernel::portable};
 #if defined(__x86_64__)
-  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) k.push_back(CorrelatorKernel::avx2);
-  if (__builtin_cpu_supports("avx512f")) k.push_back(CorrelatorKernel::avx512);
+  if (__builtin_cpu_supports("avx2")) k.push_back(CorrelatorKernel::avx2);
+  if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512vnni"))
+    k.push_back(CorrelatorKernel::avx512);
 #endif
   return k;
 }
@@ -288,49 +513,69 @@ CorrelatorSums correlate(CorrelatorKernel kernel, const Sample* samples, int n, 
   if (!(s.code_step_chips > 0.0 && s.code_step_chips <= 2.0))
     throw std::invalid_argument("correlate: code step per sample must be in (0, 2] chips, got " +
                                 std::to_string(s.code_step_chips));
-  const float* table = table_for(code, 0);
-  const float* noise_table = table_for(noise_code, 1);
+  const CodeTable& table = table_for(code, 0);
+  const CodeTable& noise_table = table_for(noise_code, 1);
   const bool very = s.very_spacing_chips > 0.0;
-  // A run must keep every index below kTableChips: start < 1023, plus run * step.
-  const int run_max = std::min(kRun, static_cast<int>((kTableChips - kPeriodChips - 2.0) / s.code_step_chips));
-  const auto inc = static_cast<std::uint32_t>(std::llround(s.code_step_chips * kFracOne));
-  constexpr double kTwoPi = 2.0 * M_PI;
-  const std::complex<double> lane_step = std::polar(1.0, kTwoPi * s.carrier_step_cycles);
-  const std::complex<double> w = std::polar(1.0, kTwoPi * kLanes * s.carrier_step_cycles);
-  const double half = 0.5 * s.spacing_chips, very_half = 0.5 * s.very_spacing_chips;
 
-  alignas(64) float re[kRun], im[kRun];
-  alignas(64) float cr[kLanes], ci[kLanes];
-  const auto* iq = reinterpret_cast<const std::int16_t*>(samples);
-  for (int k0 = 0; k0 < n; k0 += run_max) {
-    const int m = std::min(run_max, n - k0);
-    // Exact phases at the run start: the float recursions never run longer than one run.
-    const double carrier = s.carrier_phase_cycles + k0 * s.carrier_step_cycles;
-    std::complex<double> z = std::polar(1.0, kTwoPi * (carrier - std::floor(carrier)));
-    for (int l = 0; l < kLanes; ++l, z *= lane_step) {
-      cr[l] = static_cast<float>(z.real());
-      ci[l] = static_cast<float>(z.imag());
-    }
-    wipe_carrier(iq + 2 * static_cast<std::ptrdiff_t>(k0), m, re, im, cr, ci, static_cast<float>(w.real()),
-                 static_cast<float>(w.imag()));
+  Setup su{};
+  su.taps = very ? 5 : 3;
+  const auto tap = [](double chips) {
+    return static_cast<std::int16_t>(std::clamp<long long>(std::llround(chips * 2048.0), -32000, 32000));
+  };
+  su.d[0] = tap(0.5 * s.spacing_chips);
+  su.d[1] = 0;
+  su.d[2] = static_cast<std::int16_t>(-su.d[0]);
+  su.d[3] = very ? tap(0.5 * s.very_spacing_chips) : std::int16_t{0};
+  su.d[4] = static_cast<std::int16_t>(-su.d[3]);
+  int reach = 0;
+  for (int t = 0; t < su.taps; ++t) reach = std::max(reach, std::abs(static_cast<int>(su.d[t])));
+  su.h = std::max(1, (reach + 2047) / 2048);
+  su.code16 = table.l16 + kPad;
+  su.noise16 = noise_table.l16 + kPad;
+  su.code8 = table.l8 + kPad;
+  su.noise8 = noise_table.l8 + kPad;
+  const auto inc = static_cast<std::int64_t>(std::llround(s.code_step_chips * kCodeOne));
 
-    const double prompt = s.code_phase_chips + k0 * s.code_step_chips;
-    float sr[3], si[3];
-    const std::uint32_t epl[3] = {fixed_index(prompt + half), fixed_index(prompt), fixed_index(prompt - half)};
-    tap_sums<3>(kernel, re, im, m, epl, inc, table, sr, si);
-    out.early += std::complex<double>(sr[0], si[0]);
-    out.prompt += std::complex<double>(sr[1], si[1]);
-    out.late += std::complex<double>(sr[2], si[2]);
-    if (very) {
-      const std::uint32_t vel[2] = {fixed_index(prompt + very_half), fixed_index(prompt - very_half)};
-      tap_sums<2>(kernel, re, im, m, vel, inc, table, sr, si);
-      out.very_early += std::complex<double>(sr[0], si[0]);
-      out.very_late += std::complex<double>(sr[1], si[1]);
-    }
-    const std::uint32_t noise_start[1] = {epl[1]};
-    tap_sums<1>(kernel, re, im, m, noise_start, inc, noise_table, sr, si);
-    out.noise += std::complex<double>(sr[0], si[0]);
+  // A SIMD kernel needs every tap of a block inside its window: the block's first
+  // position (fraction < 1 chip) plus h chips either side plus (block - 1) steps.
+  if (kernel != CorrelatorKernel::portable) {
+    const Geometry g = geometry(kernel);
+    const std::int64_t need = (std::int64_t{1} + 2 * su.h) * (std::int64_t{1} << kCodeFracBits) + (g.block - 1) * inc;
+    if (need > (std::int64_t{g.window} << kCodeFracBits) || su.h > kPad / 2) kernel = CorrelatorKernel::portable;
   }
+
+  const int bits = sample_bits(kernel, samples, n);
+  const bool small = bits <= kSmallBits;
+  const CarrierTable& ct = carrier_table(bits);
+  su.cos_tab = ct.cos_tab.data();
+  su.sin_tab = ct.sin_tab.data();
+  const KernelFn fn = pick_kernel(kernel, su.taps, small);
+
+  const auto dphi = static_cast<std::uint32_t>(std::llround(s.carrier_step_cycles * kCarrierOne));
+  Acc acc{};
+  for (int k0 = 0; k0 < n; k0 += kRun) {
+    const int m = std::min(kRun, n - k0);
+    Run run{};
+    const double carrier = s.carrier_phase_cycles + k0 * s.carrier_step_cycles;
+    run.phi0 = static_cast<std::uint32_t>(std::llround((carrier - std::floor(carrier)) * kCarrierOne)) &
+               ((1u << kCarrierBits) - 1u);
+    run.dphi = dphi;
+    run.pos0 = std::llround(wrap_chips(s.code_phase_chips + k0 * s.code_step_chips) * kCodeOne);
+    if (run.pos0 >= kCodeWrap) run.pos0 -= kCodeWrap;
+    run.inc = inc;
+    fn(samples + k0, m, run, su, acc);
+  }
+  const auto sum = [&](int t) {
+    return std::complex<double>(static_cast<double>(acc[t][0]) * ct.scale, static_cast<double>(acc[t][1]) * ct.scale);
+  };
+  out.early = sum(0);
+  out.prompt = sum(1);
+  out.late = sum(2);
+  if (very) {
+    out.very_early = sum(3);
+    out.very_late = sum(4);
+  }
+  out.noise = sum(kNoise);
   return out;
 }
 

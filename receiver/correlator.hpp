@@ -3,12 +3,24 @@
 // early, prompt, late (optionally very-early/very-late) and noise replicas, with
 // constant code rate and carrier frequency over the span.
 //
-// Numerics: the span is cut into runs of at most 1024 samples. Each run restarts the
-// carrier phasor and the code index from the exact double-precision phases, so nothing
-// drifts however long the span is. Inside a run the carrier is a float phasor advanced
-// in 16 parallel lanes and the code index a 11.21 fixed-point accumulator (index error
-// below 3e-4 chip at the end of a run); the loops have no data-dependent branches and
-// vectorise (AVX-512 / AVX2 clones).
+// Numerics (fixed point, identical integers in every kernel, so the SIMD kernels are
+// bit-exact with the portable one; correlate_reference() is the double-precision truth):
+// - The span is cut into runs of 4096 samples; each run restarts the carrier and code
+//   accumulators from the exact double-precision phases, so nothing drifts.
+// - Carrier: a 21-bit phase accumulator per sample (step error below 2^-22 cycle per
+//   sample, at most 0.35 degree at the end of a run) whose top 5 bits index an int16
+//   cos/sin table with bins centred on (p + 1/2) * 2 pi / 32: phase error within
+//   +-5.6 degrees, a mean amplitude loss of 0.16 % (0.014 dB), no systematic phase bias.
+// - Wipe-off in int16. The span's largest magnitude 2^b (|I|, |Q| <= 2^b) picks the
+//   scaling: for b <= 7 the table amplitude is 23170 / 2^b and the products are exact;
+//   for larger (up to full-scale int16) inputs the products are rounded to 15 fraction
+//   bits (pmulhrsw) at table amplitude 23000. No int16 value can overflow for any input.
+// - Code: the prompt position is a 27-fraction-bit chip count (error below 1.6e-5 chip
+//   at the end of a run); the other taps sit at offsets rounded to 2^-11 chip (error at
+//   most 2.4e-4 chip, equal and opposite for early and late, so the early-late
+//   discriminator has no bias). Chips come from a table window permuted in registers.
+// - Sums: int16 x +-1 multiply-accumulate into int32 lanes, moved to int64 at least
+//   every 2048 samples, so no sum can overflow.
 #include <complex>
 #include <cstdint>
 #include <vector>
@@ -33,9 +45,11 @@ struct CorrelatorSpan {
   double very_spacing_chips = 0.0;     ///< very-early/very-late spacing; 0 disables them
 };
 
-/// Instruction-set variants of the code wipe-off kernel; correlate() picks the best one the
-/// CPU supports. The AVX variants replace the code-table gather by a lane permutation of
-/// one table load when the code step allows it.
+/// Instruction-set variants of the kernel; correlate() picks the best one the CPU supports.
+/// avx512 needs AVX-512BW and VNNI. The SIMD kernels take their chips from a 16 or 32 chip
+/// window per block of samples: with every tap within 1 chip of the prompt that holds for
+/// code steps up to 13/15 chip per sample (sample rates above 1.18 Msps); other spans go to
+/// the portable kernel, which gives the same integers.
 enum class CorrelatorKernel { portable, avx2, avx512 };
 CorrelatorKernel best_correlator_kernel();
 /// The kernels this CPU can run (portable always), for tests and benchmarks.
