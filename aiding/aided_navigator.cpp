@@ -69,10 +69,11 @@ StateRow AidedNavigator::position_row(const Eigen::Vector3d& u_ned) const {
 UpdateResult AidedNavigator::update_position_velocity(const Eigen::Vector3d& r_antenna_ecef_m,
                                                       const Eigen::Vector3d& v_antenna_ecef_mps,
                                                       const Eigen::Vector3d& position_sigma_ned_m,
-                                                      const Eigen::Vector3d& velocity_sigma_ned_mps) {
+                                                      const Eigen::Vector3d& velocity_sigma_ned_mps,
+                                                      double time_offset_s) {
   const wgs84::Llh& at = ins_.state().llh;
   Eigen::Matrix<double, 6, 1> z, r;
-  z.head<3>() = ecef_to_ned_vector(at, antenna_ecef_m() - r_antenna_ecef_m);
+  z.head<3>() = ecef_to_ned_vector(at, antenna_ecef_at(time_s() + time_offset_s) - r_antenna_ecef_m);
   z.tail<3>() = ecef_to_ned_vector(at, antenna_velocity_ecef_mps() - v_antenna_ecef_mps);
   r << position_sigma_ned_m.cwiseAbs2(), velocity_sigma_ned_mps.cwiseAbs2();
   Eigen::Matrix<double, 6, kStates> H = Eigen::Matrix<double, 6, kStates>::Zero();
@@ -97,7 +98,7 @@ UpdateResult AidedNavigator::update_ranges(const std::vector<RangeMeasurement>& 
       StateRow h = -position_row(u_ned);
       h(kClockBias) = 1.0;
       rows.push_back(h);
-      z.push_back(m.geometry.pseudorange_m(clock_bias_m()) - *m.pseudorange_m);
+      z.push_back(m.geometry.pseudorange_m(clock_bias_m() + clock_drift_mps() * m.time_offset_s) - *m.pseudorange_m);
       r.push_back(m.pseudorange_sigma_m * m.pseudorange_sigma_m);
     }
     if (m.rate_mps) {

@@ -44,6 +44,9 @@ struct RangeMeasurement {
   double pseudorange_sigma_m = 5.0;
   std::optional<double> rate_mps;        ///< pseudorange rate (= -lambda * Doppler)
   double rate_sigma_mps = 0.1;
+  /// Measurement time minus the navigator's time (the geometry must already be for the
+  /// measurement time); the clock model is moved by it.
+  double time_offset_s = 0.0;
 };
 
 class AidedNavigator {
@@ -56,7 +59,7 @@ class AidedNavigator {
 
   UpdateResult update_position_velocity(const Eigen::Vector3d& r_antenna_ecef_m, const Eigen::Vector3d& v_antenna_ecef_mps,
                                         const Eigen::Vector3d& position_sigma_ned_m,
-                                        const Eigen::Vector3d& velocity_sigma_ned_mps);
+                                        const Eigen::Vector3d& velocity_sigma_ned_mps, double time_offset_s = 0.0);
   UpdateResult update_ranges(const std::vector<RangeMeasurement>& measurements);
 
   /// Adds a known step to the receiver clock bias (the receiver re-set its clock).

@@ -45,7 +45,9 @@ struct ScalarReceiver::Impl {
   // Receiver time: t_rx(s) = time_ref + (s - sample_ref) / fs.
   std::optional<GpsTime> time_ref;
   std::int64_t sample_ref = 0;
+  bool gap_since_epoch = false;  ///< samples lost since the last observation epoch
   double last_reacquire_s = 0.0;
+  ChannelSteering* steering = nullptr;
 
   Impl(ReceiverConfig c, SampleSource& s) : cfg(std::move(c)), src(s), fs(s.sample_rate_hz()), pvt(cfg.pvt) {
     cfg.acquisition.sample_rate_hz = fs;
@@ -93,11 +95,18 @@ struct ScalarReceiver::Impl {
     for (auto& ch : channels) {
       // Each epoch's command acts from the very next sample (not after the block).
       ch.trk->process(block, [&](const CorrelatorEpoch& e) {
+        const bool steered = steering && steering->on_epoch(e, *ch.trk, *ch.nav);
         const bool pulling_in = ch.trk->state() == ChannelState::pull_in;
         ch.loop->set_bandwidths(ch.trk->state() == ChannelState::tracking ? cfg.tracking_loops : cfg.pull_in);
-        const NcoCommand cmd = ch.loop->update(e, pulling_in);
-        ch.trk->apply(cmd);
-        ch.last_doppler_hz = cmd.carrier_doppler_hz;
+        if (!steered) {
+          const NcoCommand cmd = ch.loop->update(e, pulling_in);
+          ch.trk->apply(cmd);
+          ch.last_doppler_hz = cmd.carrier_doppler_hz;
+        } else {
+          // Keep the loop ready to take the channel back where the steering leaves it.
+          ch.loop->reset(e.carrier_doppler_hz);
+          ch.last_doppler_hz = e.carrier_doppler_hz;
+        }
         if (ch.trk->bit_edge_period() && ch.nav->add(e, *ch.trk->bit_edge_period())) {
           ephs[ch.trk->prn()] = *ch.nav->ephemeris();
           if (ch.nav->iono().valid) iono = ch.nav->iono();
@@ -157,6 +166,7 @@ struct ScalarReceiver::Impl {
       o.carrier_phase_cycles = x.ch->trk->carrier_phase_cycles();
       o.cn0_dbhz = x.ch->trk->cn0_dbhz();
       o.lock_time_s = x.ch->trk->seconds_tracked();
+      o.after_gap = gap_since_epoch;
       ep.observations.push_back(o);
       if (ephs.count(o.prn)) obs.push_back({o.prn, o.pseudorange_m, o.doppler_hz, o.cn0_dbhz});
     }
@@ -186,14 +196,23 @@ void ScalarReceiver::run(const std::function<void(const ReceiverEpoch&)>& on_epo
   SampleBlock block;
   std::int64_t next_obs = -1;
   std::int64_t recent_first = 0;
+  std::int64_t expected_first = -1;
   bool first = true;
   while (m.src.read_block(block, first ? static_cast<std::size_t>(acq_samples) : block_samples)) {
+    if (expected_first >= 0 && block.first_sample_index != expected_first) {
+      // Samples were lost (a stream gap): the channels carry their NCOs across it, the
+      // re-acquisition window restarts after it and the next observables are flagged.
+      recent.clear();
+      m.gap_since_epoch = true;
+    }
+    expected_first = block.first_sample_index + static_cast<std::int64_t>(block.samples.size());
     if (first) {
       m.acquire(block.samples, block.first_sample_index);
       next_obs = block.first_sample_index + obs_step;
       first = false;
     }
     m.track(block, on_correlation);
+    if (m.steering) m.steering->after_block(block.first_sample_index + static_cast<std::int64_t>(block.samples.size()));
     const std::int64_t end = block.first_sample_index + static_cast<std::int64_t>(block.samples.size());
     // Keep the last acquisition window of samples for re-acquisition.
     recent.insert(recent.end(), block.samples.begin(), block.samples.end());
@@ -204,6 +223,7 @@ void ScalarReceiver::run(const std::function<void(const ReceiverEpoch&)>& on_epo
     recent_first = end - static_cast<std::int64_t>(recent.size());
     while (next_obs <= end) {
       on_epoch(m.observe(next_obs));
+      m.gap_since_epoch = false;
       next_obs += obs_step;
     }
     const double t = static_cast<double>(end) / m.fs;
@@ -225,6 +245,19 @@ void ScalarReceiver::run(const std::function<void(const ReceiverEpoch&)>& on_epo
 void ScalarReceiver::set_assisted_iono(const IonoParameters& iono) {
   if (!impl_->iono.valid) impl_->iono = iono;
 }
+
+void ScalarReceiver::set_steering(ChannelSteering* steering) { impl_->steering = steering; }
+
+void ScalarReceiver::for_each_channel(const std::function<void(TrackingChannel&, const NavDecoder&)>& visit) {
+  for (auto& ch : impl_->channels) visit(*ch.trk, *ch.nav);
+}
+
+std::optional<GpsTime> ScalarReceiver::receiver_time(std::int64_t sample_index) const {
+  if (!impl_->time_ref) return std::nullopt;
+  return impl_->time_ref->plus_seconds(static_cast<double>(sample_index - impl_->sample_ref) / impl_->fs);
+}
+
+double ScalarReceiver::sample_rate_hz() const { return impl_->fs; }
 
 std::map<int, Ephemeris> ScalarReceiver::ephemerides() const { return impl_->ephs; }
 IonoParameters ScalarReceiver::iono() const { return impl_->iono; }

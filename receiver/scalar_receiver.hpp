@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "receiver/acquisition.hpp"
+#include "receiver/nav_decoder.hpp"
 #include "receiver/pvt_solver.hpp"
 #include "receiver/sample_source.hpp"
 #include "receiver/tracking_channel.hpp"
@@ -41,6 +42,9 @@ struct ChannelObservation {
   double carrier_phase_cycles = 0.0;
   double cn0_dbhz = 0.0;
   double lock_time_s = 0.0;
+  /// Samples were lost since the previous epoch: the channel coasted across the gap on its
+  /// NCOs, so the carrier phase may have slipped (RINEX loss-of-lock indicator).
+  bool after_gap = false;
 };
 
 /// Everything the receiver knows at one observation epoch.
@@ -60,6 +64,19 @@ struct ChannelSnapshot {
   bool has_ephemeris;
 };
 
+/// An outside navigation filter that takes over channels' NCOs (ultra-tight mode). The
+/// receiver calls it from inside run(); it steers a channel through TrackingChannel::apply.
+class ChannelSteering {
+ public:
+  virtual ~ChannelSteering() = default;
+  /// Every completed integration of every channel, as it completes (the channel's NCOs
+  /// are at the epoch's end). Returns true when the steering owns this channel now: the
+  /// channel's scalar loop is then skipped for the epoch.
+  virtual bool on_epoch(const CorrelatorEpoch& epoch, TrackingChannel& channel, const NavDecoder& nav) = 0;
+  /// After each block has been tracked, with the absolute index one past its last sample.
+  virtual void after_block(std::int64_t end_sample) = 0;
+};
+
 class ScalarReceiver {
  public:
   ScalarReceiver(ReceiverConfig config, SampleSource& source);
@@ -72,6 +89,13 @@ class ScalarReceiver {
   /// Ionosphere parameters to use until the broadcast ones (subframe 4 page 18, sent once
   /// every 12.5 min) are decoded, e.g. from a navigation file given as assistance.
   void set_assisted_iono(const IonoParameters& iono);
+  /// Hands the channels' epochs to `steering` (nullptr: scalar loops only). Not owned.
+  void set_steering(ChannelSteering* steering);
+  /// Visits every channel (for a steering filter, from after_block()).
+  void for_each_channel(const std::function<void(TrackingChannel&, const NavDecoder&)>& visit);
+  /// Receiver clock time at an absolute sample index, once the clock is set.
+  std::optional<GpsTime> receiver_time(std::int64_t sample_index) const;
+  double sample_rate_hz() const;
   /// Ephemerides, ionosphere and UTC decoded so far.
   std::map<int, Ephemeris> ephemerides() const;
   IonoParameters iono() const;

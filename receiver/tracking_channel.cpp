@@ -221,7 +221,7 @@ void TrackingChannel::monitor(const CorrelatorEpoch& e) {
     // now and then (a Costas loop turns noise into I), together they rarely are.
     if (lock_.cn0_dbhz() < cfg_.lost_cn0_dbhz || lock_.phase_lock_indicator() < 1.2) {
       if (low_cn0_since_s_ < 0.0) low_cn0_since_s_ = tracked_s_;
-      if (tracked_s_ - low_cn0_since_s_ > cfg_.lost_after_s) state_ = ChannelState::lost;
+      if (loss_detection_ && tracked_s_ - low_cn0_since_s_ > cfg_.lost_after_s) state_ = ChannelState::lost;
     } else {
       low_cn0_since_s_ = -1.0;
     }

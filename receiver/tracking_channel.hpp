@@ -69,6 +69,9 @@ class TrackingChannel {
   /// Lock monitoring and bit synchronisation of an epoch. process() does this itself;
   /// calling it again with an epoch already seen has no effect.
   void monitor(const CorrelatorEpoch& epoch);
+  /// Whether the channel declares itself lost on weak or incoherent signal (on by default).
+  /// A steering filter that keeps the replica aligned through fades turns it off.
+  void set_loss_detection(bool enabled) { loss_detection_ = enabled; }
   /// Data bits completed since the last call (empty before bit synchronisation).
   std::vector<PromptBit> take_bits();
 
@@ -121,6 +124,7 @@ class TrackingChannel {
   BitSynchronizer bit_sync_;
   std::optional<std::int64_t> bit_edge_;
   double low_cn0_since_s_ = -1.0;
+  bool loss_detection_ = true;
   double tracked_s_ = 0.0;
   std::deque<std::pair<std::int64_t, double>> phase_history_;  ///< (sample, carrier cycles) at integration ends
   std::int64_t last_monitored_period_ = -1;

@@ -70,6 +70,11 @@ void ScalarLoopController::set_bandwidths(const LoopBandwidths& b) {
   bw_ = b;
 }
 
+void ScalarLoopController::reset(double doppler_hz) {
+  carrier_ = CarrierLoopFilter(bw_.pll_order, bw_.pll_hz, bw_.fll_hz, doppler_hz);
+  previous_prompt_.reset();
+}
+
 NcoCommand ScalarLoopController::update(const CorrelatorEpoch& epoch, bool use_fll) {
   const double t = epoch.integration_s;
   const double e_phase_rad = 2.0 * M_PI * costas_phase_error_cycles(epoch.prompt);

@@ -73,6 +73,8 @@ class ScalarLoopController {
   /// The command for the next integration; `use_fll` adds frequency assistance (pull-in).
   NcoCommand update(const CorrelatorEpoch& epoch, bool use_fll);
   void set_bandwidths(const LoopBandwidths& b);
+  /// Restarts the loop at a frequency (another steering had the channel until now).
+  void reset(double doppler_hz);
   double doppler_hz() const { return carrier_.frequency_hz(); }
 
  private:

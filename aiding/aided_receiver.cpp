@@ -1,0 +1,255 @@
+#include "aiding/aided_receiver.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "aiding/ins_initializer.hpp"
+#include "ins/frames.hpp"
+#include "ins/rotations.hpp"
+#include "signals/gps_constants.hpp"
+
+namespace deepnav::aiding {
+namespace {
+
+constexpr double kRecentPvt_s = 3.0;
+
+/// Pseudorange sigma of a scalar channel: DLL noise (0.5 Hz, 0.5 chip spacing) at its
+/// C/N0 plus a 1 m floor for atmosphere-model residuals, inflated at low elevation.
+double scalar_pseudorange_sigma_m(double cn0_dbhz, double elevation_rad) {
+  const double cn0 = std::pow(10.0, cn0_dbhz / 10.0);
+  const double dll_m = std::sqrt(0.5 * 0.5 / (2.0 * cn0)) * gps::kSpeedOfLight_mps / gps::kCodeRate_cps;
+  return std::hypot(1.0, dll_m) / std::sqrt(std::max(0.1, std::sin(elevation_rad)));
+}
+
+}  // namespace
+
+struct AidedReceiver::Impl : ChannelSteering {
+  AidedReceiverConfig cfg;
+  ScalarReceiver rx;
+  ImuLog imu;
+  std::size_t next_imu = 0;
+  InsInitializer init;
+  std::optional<AidedNavigator> nav;
+  UltraTightTracker ultra;
+  ModeManager modes;
+  std::string start_method;
+  int restarts = 0;
+  double fs;
+  double last_pvt_t_s = -1e9;
+  int ranging = 0;
+  bool imu_end_reported = false;
+  // Receiver clock at the end of the previous block, to follow its re-settings.
+  std::optional<GpsTime> previous_clock;
+  std::int64_t previous_clock_sample = 0;
+
+  Impl(AidedReceiverConfig c, SampleSource& source, ImuLog log)
+      : cfg(std::move(c)),
+        rx(cfg.receiver, source),
+        imu(std::move(log)),
+        init(cfg.imu, cfg.lever_arm_imu_to_antenna_b_m),
+        ultra(rx, cfg.ultra),
+        modes(cfg.mode, cfg.limits),
+        fs(source.sample_rate_hz()) {
+    rx.set_steering(this);
+  }
+
+  bool on_epoch(const CorrelatorEpoch& e, TrackingChannel& ch, const NavDecoder& decoder) override {
+    return ultra.on_epoch(e, ch, decoder, nav.has_value() && modes.mode() == NavMode::ultra);
+  }
+
+  void after_block(std::int64_t end) override {
+    const double t = static_cast<double>(end) / fs;
+    propagate_to(t);
+    follow_receiver_clock(end);
+    if (nav && modes.mode() == NavMode::ultra) {
+      const UpdateResult r = ultra.update_and_steer(*nav, end);
+      if (end % static_cast<std::int64_t>(fs) < static_cast<std::int64_t>(fs / 100))
+        spdlog::debug("t = {:.2f} s: ultra update {} measurements, {} rejected, max |nu|/sigma {:.2f}, {} steered",
+                      t, ultra.measuring_channels(), r.rejected, r.max_normalized_innovation, ultra.steered_channels());
+      check_health();
+    }
+    evaluate_modes(t);
+  }
+
+  void propagate_to(double t) {
+    while (next_imu < imu.samples.size() && imu.samples[next_imu].t_s <= t + 1e-9) {
+      const ImuSample& s = imu.samples[next_imu++];
+      if (!nav) {
+        init.add_imu(s);
+      } else if (s.t_s > nav->time_s()) {
+        nav->propagate(s);
+      }
+    }
+    if (next_imu == imu.samples.size() && t > imu.samples.back().t_s + 0.05 && !imu_end_reported) {
+      imu_end_reported = true;
+      spdlog::error("IMU data end at t = {:.2f} s but the IF data go on: INS stopped, scalar receiver from here",
+                    imu.samples.back().t_s);
+      nav.reset();
+    }
+  }
+
+  /// The scalar receiver re-sets its clock after fixes (steps of its bias); the filter's
+  /// clock bias follows each step.
+  void follow_receiver_clock(std::int64_t end) {
+    const std::optional<GpsTime> now = rx.receiver_time(end);
+    if (now && previous_clock && nav) {
+      const GpsTime expected = previous_clock->plus_seconds(static_cast<double>(end - previous_clock_sample) / fs);
+      const double step_s = seconds_of_week_difference(now->sow, expected.sow);
+      if (std::abs(step_s) > 1e-12) nav->shift_clock_bias(gps::kSpeedOfLight_mps * step_s);
+    }
+    previous_clock = now;
+    previous_clock_sample = end;
+  }
+
+  int count_steerable() {
+    int n = 0;
+    rx.for_each_channel([&](TrackingChannel& ch, const NavDecoder& d) {
+      if (d.synchronised() && d.ephemeris() && ch.bit_edge_period() && ch.state() != ChannelState::lost) ++n;
+    });
+    return n;
+  }
+
+  void evaluate_modes(double t) {
+    ModeInputs in;
+    in.ins_ready = nav.has_value();
+    in.filter_healthy = nav && nav->healthy();
+    in.recent_pvt = t - last_pvt_t_s < kRecentPvt_s;
+    in.ranging_satellites = modes.mode() == NavMode::ultra ? std::max(ranging, ultra.measuring_channels()) : ranging;
+    in.steerable_channels = count_steerable();
+    if (nav) {
+      const Eigen::Vector3d s = nav->position_sigma_ned_m();
+      in.horizontal_sigma_m = std::hypot(s(0), s(1));
+      in.velocity_sigma_mps = std::sqrt(nav->covariance().diagonal().segment<3>(kVel).maxCoeff());
+    }
+    const NavMode before = modes.mode();
+    const NavMode now = modes.update(t, in);
+    if (now != before) {
+      spdlog::info("t = {:.2f} s: mode {} -> {} ({})", t, to_string(before), to_string(now), modes.changes().back().reason);
+      if (before == NavMode::ultra) ultra.release_all();
+    }
+  }
+
+  void check_health() {
+    if (!nav || nav->healthy()) return;
+    spdlog::error("navigation filter failed ({}); INS restarted from the next fix", nav->health_reason());
+    nav.reset();
+    ultra.release_all();
+    init = InsInitializer(cfg.imu, cfg.lever_arm_imu_to_antenna_b_m);
+    ++restarts;
+  }
+
+  void start_ins(const ReceiverEpoch& ep) {
+    GnssFix fix;
+    fix.t_s = ep.t_s;
+    fix.r_antenna_ecef_m = ep.pvt.r_ecef_m;
+    fix.v_antenna_ecef_mps = ep.pvt.v_ecef_mps;
+    fix.clock_bias_m = ep.pvt.clock_bias_m;
+    fix.clock_drift_mps = ep.pvt.clock_drift_mps;
+    fix.horizontal_sigma_m = std::max(1.0, ep.pvt.dops.hdop * cfg.pvt_position_sigma_scale_m);
+    fix.vertical_sigma_m = std::max(1.5, ep.pvt.dops.vdop * cfg.pvt_position_sigma_scale_m);
+    const std::optional<InsStart> start = init.add_fix(fix);
+    if (!start) return;
+    NavigatorConfig nc;
+    nc.noise = process_noise_from(cfg.imu, cfg.oscillator);
+    nc.lever_arm_imu_to_antenna_b_m = cfg.lever_arm_imu_to_antenna_b_m;
+    const double dt = start->state.t_s - ep.t_s;
+    nav.emplace(start->state, fix.clock_bias_m + fix.clock_drift_mps * dt, fix.clock_drift_mps, nc, start->uncertainty);
+    start_method = start->method;
+    const EulerAngles e = euler_from_quaternion(start->state.q_b_n);
+    spdlog::info("t = {:.2f} s: INS started ({}): roll {:.2f} pitch {:.2f} yaw {:.2f} deg", ep.t_s, start_method,
+                 e.roll_rad * 180.0 / M_PI, e.pitch_rad * 180.0 / M_PI, e.yaw_rad * 180.0 / M_PI);
+  }
+
+  void loose_update(const ReceiverEpoch& ep) {
+    if (!ep.pvt.valid) return;
+    const double h = std::max(1.0, ep.pvt.dops.hdop * cfg.pvt_position_sigma_scale_m / std::sqrt(2.0));
+    const double v = std::max(1.5, ep.pvt.dops.vdop * cfg.pvt_position_sigma_scale_m);
+    nav->update_position_velocity(ep.pvt.r_ecef_m, ep.pvt.v_ecef_mps, Eigen::Vector3d(h, h, v),
+                                  Eigen::Vector3d::Constant(cfg.pvt_velocity_sigma_mps), ep.t_s - nav->time_s());
+  }
+
+  void tight_update(const ReceiverEpoch& ep) {
+    if (!ep.t_rx) return;
+    const std::map<int, Ephemeris> ephs = rx.ephemerides();
+    const IonoParameters iono = rx.iono();
+    const double dt = ep.t_s - nav->time_s();
+    const double bias = nav->clock_bias_m() + nav->clock_drift_mps() * dt;
+    std::vector<RangeMeasurement> ms;
+    for (const ChannelObservation& o : ep.observations) {
+      const auto it = ephs.find(o.prn);
+      if (it == ephs.end() || o.after_gap) continue;
+      RangeMeasurement m;
+      m.time_offset_s = dt;
+      m.geometry = predict_range(it->second, *ep.t_rx, bias, nav->antenna_ecef_at(ep.t_s), iono);
+      if (m.geometry.elevation_rad < cfg.receiver.pvt.elevation_mask_rad) continue;
+      m.pseudorange_m = o.pseudorange_m;
+      m.pseudorange_sigma_m = scalar_pseudorange_sigma_m(o.cn0_dbhz, m.geometry.elevation_rad);
+      m.rate_mps = -gps::kL1Wavelength_m * o.doppler_hz;
+      m.rate_sigma_mps = 0.1;
+      ms.push_back(m);
+    }
+    if (!ms.empty()) nav->update_ranges(ms);
+  }
+
+  AidedEpoch on_observation(const ReceiverEpoch& ep) {
+    if (ep.pvt.valid) last_pvt_t_s = ep.t_s;
+    const std::map<int, Ephemeris> ephs = rx.ephemerides();
+    ranging = 0;
+    for (const auto& o : ep.observations)
+      if (ephs.count(o.prn)) ++ranging;
+    if (!nav && ep.pvt.valid) start_ins(ep);
+    if (nav) {
+      if (modes.mode() == NavMode::loose) loose_update(ep);
+      if (modes.mode() == NavMode::tight) tight_update(ep);
+      check_health();
+    }
+    AidedEpoch out;
+    out.receiver = ep;
+    out.mode = modes.mode();
+    if (!nav || out.mode == NavMode::scalar) return out;
+    out.r_ecef_m = nav->antenna_ecef_at(ep.t_s);
+    out.v_ecef_mps = nav->antenna_velocity_ecef_mps();
+    out.valid = out.r_ecef_m.allFinite() && out.v_ecef_mps.allFinite();
+    if (!out.valid) return out;
+    out.llh = wgs84::ecef_to_llh(out.r_ecef_m);
+    out.v_ned_mps = ecef_to_ned_vector(out.llh, out.v_ecef_mps);
+    const EulerAngles e = euler_from_quaternion(nav->ins().q_b_n);
+    out.rpy_rad = Eigen::Vector3d(e.roll_rad, e.pitch_rad, e.yaw_rad);
+    out.position_sigma_ned_m = nav->position_sigma_ned_m();
+    out.clock_bias_m = nav->clock_bias_m();
+    out.clock_drift_mps = nav->clock_drift_mps();
+    out.steered_channels = ultra.steered_channels();
+    out.measuring_channels = ultra.measuring_channels();
+    return out;
+  }
+};
+
+AidedReceiver::AidedReceiver(AidedReceiverConfig config, SampleSource& source, ImuLog imu,
+                             std::optional<double> if_duration_s) {
+  if (imu.samples.empty()) throw std::invalid_argument("the IMU log holds no samples");
+  const double first = imu.samples.front().t_s, last = imu.samples.back().t_s;
+  if (first > 1.0)
+    throw std::invalid_argument("the IMU log starts at t = " + std::to_string(first) +
+                                " s; it must cover the IF data from t = 0 (the first sample)");
+  if (if_duration_s && last + 0.05 < *if_duration_s)
+    throw std::invalid_argument("the IMU log ends at t = " + std::to_string(last) + " s but the IF data last " +
+                                std::to_string(*if_duration_s) + " s");
+  impl_ = std::make_unique<Impl>(std::move(config), source, std::move(imu));
+}
+
+AidedReceiver::~AidedReceiver() = default;
+
+void AidedReceiver::run(const std::function<void(const AidedEpoch&)>& on_epoch,
+                        const std::function<void(const CorrelatorEpoch&, const ChannelSnapshot&)>& on_correlation,
+                        const std::function<void(double)>& progress) {
+  impl_->rx.run([&](const ReceiverEpoch& ep) { on_epoch(impl_->on_observation(ep)); }, on_correlation, progress);
+}
+
+ScalarReceiver& AidedReceiver::receiver() { return impl_->rx; }
+const std::vector<ModeChange>& AidedReceiver::mode_changes() const { return impl_->modes.changes(); }
+const std::string& AidedReceiver::ins_start_method() const { return impl_->start_method; }
+int AidedReceiver::filter_restarts() const { return impl_->restarts; }
+
+}  // namespace deepnav::aiding

@@ -1,0 +1,77 @@
+#pragma once
+// The receiver with INS aiding: the scalar receiver's channels, navigation data and PVT,
+// a strapdown INS fed by an IMU log, the 17-state filter coupled in the mode the user
+// asks for (loose, tight or ultra-tight), and the mode manager that falls back when a
+// mode cannot run. The INS starts from its own alignment once the receiver has a fix.
+//
+// Time: the IMU log's t_s and the IF samples share one axis, t = sample index / fs (both
+// count from the start of the recording, as the synthesizer writes them).
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "aiding/aided_navigator.hpp"
+#include "aiding/mode_manager.hpp"
+#include "aiding/ultra_tight_tracker.hpp"
+#include "ins/imu_file.hpp"
+#include "receiver/scalar_receiver.hpp"
+
+namespace deepnav::aiding {
+
+struct AidedReceiverConfig {
+  NavMode mode = NavMode::ultra;
+  ReceiverConfig receiver;
+  ImuErrorModel imu;                     ///< the IMU's grade: process noise and alignment limits
+  OscillatorNoise oscillator;
+  Eigen::Vector3d lever_arm_imu_to_antenna_b_m = Eigen::Vector3d::Zero();
+  UltraTightConfig ultra;
+  ModeLimits limits;
+  /// Filter update rate in ultra-tight mode is the block rate (100 Hz); loose and tight
+  /// update at the receiver's observation epochs.
+  double pvt_position_sigma_scale_m = 2.0;  ///< loose: position sigma = DOP x this
+  double pvt_velocity_sigma_mps = 0.1;
+};
+
+/// The aided solution at one observation epoch, next to the receiver's own.
+struct AidedEpoch {
+  ReceiverEpoch receiver;                ///< observables and the receiver's standalone PVT
+  NavMode mode = NavMode::scalar;
+  bool valid = false;                    ///< an aided (or coasting) INS solution exists
+  Eigen::Vector3d r_ecef_m = Eigen::Vector3d::Zero();   ///< antenna
+  Eigen::Vector3d v_ecef_mps = Eigen::Vector3d::Zero();
+  wgs84::Llh llh{};
+  Eigen::Vector3d v_ned_mps = Eigen::Vector3d::Zero();
+  Eigen::Vector3d rpy_rad = Eigen::Vector3d::Zero();   ///< roll, pitch, yaw of the body
+  Eigen::Vector3d position_sigma_ned_m = Eigen::Vector3d::Zero();
+  double clock_bias_m = 0.0, clock_drift_mps = 0.0;
+  int steered_channels = 0;
+  int measuring_channels = 0;
+};
+
+class AidedReceiver {
+ public:
+  /// Throws std::invalid_argument when the IMU log is empty or starts more than 1 s after
+  /// the first sample (it cannot cover the IF data); `if_duration_s` (when known) is also
+  /// checked against the log's end.
+  AidedReceiver(AidedReceiverConfig config, SampleSource& source, ImuLog imu, std::optional<double> if_duration_s);
+  ~AidedReceiver();
+
+  void run(const std::function<void(const AidedEpoch&)>& on_epoch,
+           const std::function<void(const CorrelatorEpoch&, const ChannelSnapshot&)>& on_correlation = {},
+           const std::function<void(double)>& progress = {});
+
+  ScalarReceiver& receiver();
+  const std::vector<ModeChange>& mode_changes() const;
+  /// How the INS was started ("" until it was).
+  const std::string& ins_start_method() const;
+  /// Set when the filter failed (NaN, lost positive definiteness) and was restarted.
+  int filter_restarts() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace deepnav::aiding

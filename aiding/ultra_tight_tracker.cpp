@@ -1,0 +1,167 @@
+#include "aiding/ultra_tight_tracker.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+
+#include "ins/gps_time.hpp"
+#include "receiver/tracking_loops.hpp"
+#include "signals/gps_constants.hpp"
+
+namespace deepnav::aiding {
+namespace {
+
+constexpr double kChip_m = gps::kSpeedOfLight_mps / gps::kCodeRate_cps;
+
+/// 1-sigma of the normalised early-minus-late envelope discriminator (chips) for spacing d
+/// and coherent time T (Kaplan & Hegarty, noncoherent E-L power with normalisation).
+double code_sigma_chips(double cn0_dbhz, double t_s, double spacing_chips) {
+  const double snr = std::pow(10.0, cn0_dbhz / 10.0) * t_s;
+  return std::sqrt(spacing_chips / (4.0 * snr) * (1.0 + 2.0 / ((2.0 - spacing_chips) * snr)));
+}
+
+/// 1-sigma (Hz) of the cross/dot frequency discriminator between two integrations of T.
+double frequency_sigma_hz(double cn0_dbhz, double t_s) {
+  const double snr = std::pow(10.0, cn0_dbhz / 10.0) * t_s;
+  const double phase_var = 1.0 / (2.0 * snr) * (1.0 + 1.0 / (2.0 * snr));
+  return std::sqrt(2.0 * phase_var) / (2.0 * M_PI * t_s);
+}
+
+bool steerable(const CorrelatorEpoch& e, const TrackingChannel& ch, const NavDecoder& nav) {
+  return e.bit_synced && ch.state() != ChannelState::lost && nav.synchronised() && nav.ephemeris().has_value();
+}
+
+}  // namespace
+
+UltraTightTracker::UltraTightTracker(ScalarReceiver& receiver, UltraTightConfig config)
+    : rx_(receiver), cfg_(config) {}
+
+bool UltraTightTracker::on_epoch(const CorrelatorEpoch& e, TrackingChannel& ch, const NavDecoder& nav, bool engaged) {
+  ChannelMemory& mem = memory_[e.prn];
+  const std::int64_t end = e.first_sample + e.samples;
+  std::optional<double> doppler;
+  if (mem.end_sample == e.first_sample) {
+    // Consecutive integrations: the phase advance between their prompts is the mean
+    // residual frequency over the interval between their centres.
+    // A phase correction applied between them turned the replica: add its share back.
+    doppler = 0.5 * (mem.doppler_hz + e.carrier_doppler_hz) + fll_frequency_error_hz(mem.prompt, e.prompt, e.integration_s) +
+              mem.applied_correction_cycles / e.integration_s;
+  }
+  mem.applied_correction_cycles = 0.0;
+  mem.prompt = e.prompt;
+  mem.end_sample = end;
+  mem.doppler_hz = e.carrier_doppler_hz;
+  mem.last_cn0_dbhz = e.cn0_dbhz;
+  const bool was_steered = steered_.count(e.prn) > 0;
+  if (!engaged || !steerable(e, ch, nav) || !rx_.receiver_time(end)) {
+    if (was_steered) {
+      steered_.erase(e.prn);
+      ch.set_loss_detection(true);
+    }
+    return false;
+  }
+  if (!was_steered) {
+    steered_[e.prn] = true;
+    ch.set_loss_detection(false);
+    spdlog::debug("PRN {:2d}: steered by the navigation filter", e.prn);
+  }
+  if (cfg_.carrier_phase_tracking) mem.phase_correction_cycles = cfg_.carrier_phase_gain * costas_phase_error_cycles(e.prompt);
+  const std::int64_t mid = e.first_sample + e.samples / 2;
+  const std::optional<double> tt = transmit_time_sow(nav, ch, mid);
+  if (!tt) return true;
+  DiscriminatorSample d;
+  d.prn = e.prn;
+  d.mid_sample = mid;
+  d.replica_transmit_sow = *tt;
+  d.code_error_chips = dll_code_error_chips(e.early, e.late, cfg_.spacing_chips);
+  d.doppler_hz = doppler;
+  d.cn0_dbhz = e.cn0_dbhz;
+  d.integration_s = e.integration_s;
+  d.ephemeris = *nav.ephemeris();
+  queued_.push_back(d);
+  return true;
+}
+
+std::optional<RangeMeasurement> UltraTightTracker::to_measurement(const DiscriminatorSample& d,
+                                                                  const AidedNavigator& nav) const {
+  const std::optional<GpsTime> t_rx = rx_.receiver_time(d.mid_sample);
+  if (!t_rx) return std::nullopt;
+  const double t_s = static_cast<double>(d.mid_sample) / rx_.sample_rate_hz();
+  RangeMeasurement m;
+  m.time_offset_s = t_s - nav.time_s();
+  const double bias = nav.clock_bias_m() + nav.clock_drift_mps() * m.time_offset_s;
+  m.geometry = predict_range(d.ephemeris, *t_rx, bias, nav.antenna_ecef_at(t_s), rx_.iono());
+  const double t_tx = d.replica_transmit_sow + d.code_error_chips / gps::kCodeRate_cps;
+  m.pseudorange_m = gps::kSpeedOfLight_mps * seconds_of_week_difference(t_rx->sow, t_tx);
+  // Discriminator noise plus a floor for multipath-free residual modelling errors.
+  const double code_sigma = code_sigma_chips(d.cn0_dbhz, d.integration_s, cfg_.spacing_chips) * kChip_m;
+  m.pseudorange_sigma_m = std::hypot(code_sigma, 0.5);
+  if (d.doppler_hz) {
+    m.rate_mps = -gps::kL1Wavelength_m * *d.doppler_hz;
+    m.rate_sigma_mps = std::hypot(frequency_sigma_hz(d.cn0_dbhz, d.integration_s) * gps::kL1Wavelength_m, 0.02);
+  }
+  return m;
+}
+
+UpdateResult UltraTightTracker::update_and_steer(AidedNavigator& nav, std::int64_t end_sample) {
+  std::vector<RangeMeasurement> ms;
+  for (const DiscriminatorSample& d : queued_) {
+    if (d.cn0_dbhz < cfg_.min_cn0_dbhz) continue;
+    if (auto m = to_measurement(d, nav)) ms.push_back(*m);
+  }
+  queued_.clear();
+  measuring_ = static_cast<int>(ms.size());
+  UpdateResult result;
+  if (!ms.empty()) result = nav.update_ranges(ms);
+  steerable_ = 0;
+  rx_.for_each_channel([&](TrackingChannel& ch, const NavDecoder& decoder) {
+    if (decoder.synchronised() && decoder.ephemeris() && ch.bit_edge_period() && ch.state() != ChannelState::lost)
+      ++steerable_;
+    if (steered_.count(ch.prn())) steer(ch, decoder, nav, end_sample);
+  });
+  return result;
+}
+
+void UltraTightTracker::steer(TrackingChannel& ch, const NavDecoder& decoder, const AidedNavigator& nav,
+                              std::int64_t sample) {
+  const std::optional<GpsTime> t_rx = rx_.receiver_time(sample);
+  const std::optional<double> tt_replica = transmit_time_sow(decoder, ch, sample);
+  if (!t_rx || !tt_replica || !decoder.ephemeris()) return;
+  const double t_s = static_cast<double>(sample) / rx_.sample_rate_hz();
+  const double dt = t_s - nav.time_s();
+  const double bias = nav.clock_bias_m() + nav.clock_drift_mps() * dt;
+  const RangePrediction p = predict_range(*decoder.ephemeris(), *t_rx, bias, nav.antenna_ecef_at(t_s), rx_.iono());
+  const double tt_predicted = t_rx->sow - p.pseudorange_m(bias) / gps::kSpeedOfLight_mps;
+  const double correction_chips = seconds_of_week_difference(tt_predicted, *tt_replica) * gps::kCodeRate_cps;
+  if (std::abs(correction_chips) > cfg_.max_code_correction_chips) {
+    // The replica and the filter disagree by more than a plausible tracking error: the
+    // channel or the filter is wrong. Give the channel back to its own loops.
+    spdlog::warn("PRN {:2d}: filter and replica differ by {:.1f} chips; channel back to scalar tracking", ch.prn(),
+                 correction_chips);
+    steered_.erase(ch.prn());
+    ch.set_loss_detection(true);
+    return;
+  }
+  ChannelMemory& mem = memory_[ch.prn()];
+  NcoCommand cmd;
+  cmd.carrier_doppler_hz = -p.pseudorange_rate_mps(nav.antenna_velocity_ecef_mps(), nav.clock_drift_mps()) /
+                           gps::kL1Wavelength_m;
+  cmd.code_rate_cps = gps::kCodeRate_cps * (1.0 + cmd.carrier_doppler_hz / gps::kL1_Hz);
+  cmd.code_phase_correction_chips = correction_chips;
+  if (cfg_.carrier_phase_tracking && mem.phase_correction_cycles != 0.0) {
+    cmd.carrier_phase_correction_cycles = mem.phase_correction_cycles;
+    mem.applied_correction_cycles += mem.phase_correction_cycles;
+    mem.phase_correction_cycles = 0.0;
+  }
+  ch.apply(cmd);
+}
+
+void UltraTightTracker::release_all() {
+  rx_.for_each_channel([&](TrackingChannel& ch, const NavDecoder&) {
+    if (steered_.count(ch.prn())) ch.set_loss_detection(true);
+  });
+  steered_.clear();
+  queued_.clear();
+}
+
+}  // namespace deepnav::aiding

@@ -1,0 +1,91 @@
+#pragma once
+// Ultra-tight (deep) tracking: the navigation filter closes every channel's code and
+// carrier loops.
+//
+// Measurements: each channel's integrations become discriminator values, not raw I/Q.
+// The normalised early-minus-late envelope gives the code tracking error (chips) and the
+// cross/dot frequency discriminator of consecutive prompts the residual Doppler; added to
+// the replica's transmit time and to the NCO Doppler they are a pseudorange and a
+// pseudorange rate, with variances from the channel's C/N0. Why discriminators rather
+// than paper 003's E[I], E[Q] model: the I/Q model needs the signal amplitude and the
+// carrier phase as extra states per channel and is linear only within a small fraction of
+// a cycle, while the discriminators are amplitude-free, insensitive to data bits, linear
+// over +-0.5 chip and +-25 Hz (10 ms), and enter the filter through the same pseudorange
+// and rate rows as tight coupling.
+//
+// Steering: after each filter update every steered channel gets an NcoCommand from the
+// filter: carrier Doppler from the predicted pseudorange rate (INS velocity, satellite
+// motion, clock drift), code rate from it, and a code phase correction that puts the
+// replica at the predicted transmit time. Optionally a first-order phase loop on the
+// Costas error runs on top (carrier-phase tracking), which keeps the data bits readable.
+// Channels are never dropped for weak signal while steered: they coast on the filter.
+#include <map>
+#include <optional>
+#include <vector>
+
+#include "aiding/aided_navigator.hpp"
+#include "receiver/scalar_receiver.hpp"
+
+namespace deepnav::aiding {
+
+struct UltraTightConfig {
+  double min_cn0_dbhz = 18.0;               ///< weaker integrations steer but are not measurements
+  double spacing_chips = 0.5;               ///< the channels' early-late spacing
+  double max_code_correction_chips = 5.0;   ///< a larger jump means the channel is not where the filter thinks
+  bool carrier_phase_tracking = true;
+  double carrier_phase_gain = 0.25;         ///< fraction of the Costas error removed per integration
+};
+
+/// One channel's discriminator outputs from one integration.
+struct DiscriminatorSample {
+  int prn = 0;
+  std::int64_t mid_sample = 0;
+  double replica_transmit_sow = 0.0;   ///< replica transmit time at mid_sample
+  double code_error_chips = 0.0;       ///< signal minus replica (positive: replica lags)
+  std::optional<double> doppler_hz;    ///< NCO Doppler plus the residual, when the previous integration adjoins
+  double cn0_dbhz = 0.0;
+  double integration_s = 0.0;
+  Ephemeris ephemeris;
+};
+
+class UltraTightTracker {
+ public:
+  UltraTightTracker(ScalarReceiver& receiver, UltraTightConfig config);
+
+  /// From ChannelSteering::on_epoch while ultra-tight mode runs: true when the channel is
+  /// steered (it then has a discriminator sample queued).
+  bool on_epoch(const CorrelatorEpoch& epoch, TrackingChannel& channel, const NavDecoder& nav, bool engaged);
+  /// The filter update with the queued samples, then new NCO commands for the steered
+  /// channels, from the sample `end_sample` on. The navigator must already be propagated to
+  /// the block end (t_nav_s).
+  UpdateResult update_and_steer(AidedNavigator& nav, std::int64_t end_sample);
+  /// Gives every channel back to its scalar loop.
+  void release_all();
+
+  int steered_channels() const { return static_cast<int>(steered_.size()); }
+  /// Channels an ultra-tight filter could take over now (ephemeris, transmit time, bit sync).
+  int steerable_channels() const { return steerable_; }
+  /// Channels whose last integration was strong enough to be a measurement.
+  int measuring_channels() const { return measuring_; }
+
+ private:
+  std::optional<RangeMeasurement> to_measurement(const DiscriminatorSample& d, const AidedNavigator& nav) const;
+  void steer(TrackingChannel& channel, const NavDecoder& nav_decoder, const AidedNavigator& nav, std::int64_t sample);
+  ScalarReceiver& rx_;
+  UltraTightConfig cfg_;
+  std::vector<DiscriminatorSample> queued_;
+  struct ChannelMemory {
+    std::complex<double> prompt;
+    std::int64_t end_sample = 0;
+    double doppler_hz = 0.0;
+    double phase_correction_cycles = 0.0;  ///< pending Costas correction for the next command
+    double applied_correction_cycles = 0.0;  ///< correction applied since the last integration ended
+    double last_cn0_dbhz = 0.0;
+  };
+  std::map<int, ChannelMemory> memory_;
+  std::map<int, bool> steered_;
+  int steerable_ = 0;
+  int measuring_ = 0;
+};
+
+}  // namespace deepnav::aiding
