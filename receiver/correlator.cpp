@@ -33,7 +33,7 @@ constexpr double kPeriodChips = 1023.0;
 constexpr int kPad = 64;   // code table chips before 0 and after 1022 (window loads, tap offsets)
 constexpr int kTaps = 6;   // early, prompt, late, very early, very late, noise
 constexpr int kNoise = 5;
-constexpr int kSmallBits = 7;  // inputs within +-2^7: exact products (see the header)
+constexpr int kSmallBits = 7;  // |I|, |Q| <= 127: exact products (see the header)
 
 /// Everything a kernel needs that does not change within a call.
 struct Setup {
@@ -85,8 +85,8 @@ CarrierTable make_carrier_table(double amplitude, double scale) {
   return t;
 }
 
-/// Index b <= 7: inputs within +-2^b, amplitude 23170 / 2^b (|I c + Q s| <= sqrt(2) 2^b A
-/// < 2^15). Index 8: larger inputs, products rounded by 2^15, amplitude 23000 (the two
+/// Index b <= 7: inputs within +-(2^b - 1), amplitude 23170 / 2^b (|I c + Q s| <=
+/// sqrt(2) 2^b A < 2^15). Index 8: larger inputs, products rounded by 2^15, amplitude 23000 (the two
 /// rounded products add to at most sqrt(2) 23000 + 1 < 2^15).
 const CarrierTable& carrier_table(int bits) {
   static const std::array<CarrierTable, kSmallBits + 2> tables = [] {
@@ -114,16 +114,33 @@ struct CodeTable {
   }
 };
 
-/// The table of a code, rebuilt only when the caller switches codes (a channel keeps its own
-/// two codes, so per thread this is a cache hit except when channels interleave).
-const CodeTable& table_for(const CaCodeChips& code, int slot) {
-  thread_local const CaCodeChips* cached[2] = {nullptr, nullptr};
-  thread_local std::unique_ptr<CodeTable> tables[2];
-  if (cached[slot] != &code) {
-    tables[slot] = std::make_unique<CodeTable>(code);
-    cached[slot] = &code;
+/// The table of a code. A receiver interleaves its channels over the same block, so each
+/// thread keeps the tables of the last 64 codes it saw, keyed by address and checked
+/// against a copy of the chips (a caller may reuse an address for another code).
+const CodeTable& table_for(const CaCodeChips& code) {
+  struct Entry {
+    const CaCodeChips* key = nullptr;
+    CaCodeChips chips{};
+    std::unique_ptr<CodeTable> table;
+  };
+  constexpr int kEntries = 64;
+  thread_local std::array<Entry, kEntries> cache;
+  thread_local int next = 0;
+  for (Entry& e : cache) {
+    if (e.key == &code) {
+      if (e.chips != code) {
+        e.chips = code;
+        e.table = std::make_unique<CodeTable>(code);
+      }
+      return *e.table;
+    }
   }
-  return *tables[slot];
+  Entry& e = cache[static_cast<std::size_t>(next)];
+  next = (next + 1) % kEntries;
+  e.key = &code;
+  e.chips = code;
+  e.table = std::make_unique<CodeTable>(code);
+  return *e.table;
 }
 
 // ---------------------------------------------------------------------------------------
@@ -133,11 +150,11 @@ inline std::int16_t mulhrs(std::int16_t a, std::int16_t b) {
   return static_cast<std::int16_t>((static_cast<std::int32_t>(a) * b + 0x4000) >> 15);
 }
 
-/// Largest b with some |I| or |Q| needing it: every sample within [-2^b, 2^b).
+/// Bits of the largest |I| or |Q|: every sample within +-(2^b - 1) (|-32768| gives 16).
 int sample_bits_portable(const Sample* x, int n) {
   unsigned m = 0;
   const auto* iq = reinterpret_cast<const std::int16_t*>(x);
-  for (int k = 0; k < 2 * n; ++k) m |= static_cast<std::uint16_t>(iq[k] ^ (iq[k] >> 15));
+  for (int k = 0; k < 2 * n; ++k) m |= static_cast<unsigned>(std::abs(static_cast<int>(iq[k])));
   return std::bit_width(m);
 }
 
@@ -182,17 +199,25 @@ void kernel_portable(const Sample* x, int m, const Run& run, const Setup& su, Ac
 #define DEEPNAV_AVX512 __attribute__((target("avx512f,avx512bw,avx512vnni")))
 
 DEEPNAV_AVX512 int sample_bits_avx512(const Sample* x, int n) {
+  // OR of |I|, |Q| (pabsw gives 0x8000 for -32768: 16 bits), in two independent chains.
   const auto* p = reinterpret_cast<const std::int32_t*>(x);
-  __m512i acc = _mm512_setzero_si512();
-  for (int k = 0; k < n; k += 16) {
-    const int left = n - k;
-    const __mmask16 mask = left >= 16 ? static_cast<__mmask16>(0xFFFF) : static_cast<__mmask16>((1u << left) - 1u);
-    const __m512i v = _mm512_maskz_loadu_epi32(mask, p + k);
-    // acc |= v ^ (v >> 15): the magnitude bits of every int16
-    acc = _mm512_ternarylogic_epi32(acc, v, _mm512_srai_epi16(v, 15), 0xF6);
+  __m512i acc0 = _mm512_setzero_si512(), acc1 = acc0;
+  int k = 0;
+  for (; k + 64 <= n; k += 64) {
+    const __m512i a0 = _mm512_abs_epi16(_mm512_loadu_si512(p + k));
+    const __m512i a1 = _mm512_abs_epi16(_mm512_loadu_si512(p + k + 16));
+    const __m512i a2 = _mm512_abs_epi16(_mm512_loadu_si512(p + k + 32));
+    const __m512i a3 = _mm512_abs_epi16(_mm512_loadu_si512(p + k + 48));
+    acc0 = _mm512_ternarylogic_epi32(acc0, a0, a1, 0xFE);  // a | b | c
+    acc1 = _mm512_ternarylogic_epi32(acc1, a2, a3, 0xFE);
+  }
+  for (; k < n; k += 16) {  // masked loads: the missing samples read as 0, which changes nothing
+    const __m512i v =
+        _mm512_maskz_loadu_epi32(static_cast<__mmask16>(0xFFFFu >> (16 - std::min(n - k, 16))), p + k);
+    acc0 = _mm512_or_si512(acc0, _mm512_abs_epi16(v));
   }
   alignas(64) std::uint16_t w[32];
-  _mm512_store_si512(w, acc);
+  _mm512_store_si512(w, _mm512_or_si512(acc0, acc1));
   unsigned m = 0;
   for (std::uint16_t v : w) m |= v;
   return std::bit_width(m);
@@ -228,25 +253,23 @@ DEEPNAV_AVX512 void kernel_avx512(const Sample* x, int m, const Run& run, const 
       _mm512_add_epi32(_mm512_set1_epi32(static_cast<int>(static_cast<std::uint32_t>(su.h) << kCodeFracBits)),
                        _mm512_mullo_epi32(lane, inc_v));
   const __m512i off_b = _mm512_add_epi32(off_a, _mm512_mullo_epi32(sixteen, inc_v));
-  __m512i d[5];
-  for (int t = 0; t < kT; ++t) d[t] = _mm512_set1_epi16(su.d[t]);
+  const __m512i d_e = _mm512_set1_epi16(su.d[0]), d_l = _mm512_set1_epi16(su.d[2]);
+  const __m512i d_ve = _mm512_set1_epi16(su.d[3]), d_vl = _mm512_set1_epi16(su.d[4]);
 
-  __m512i acc_re[kT + 1], acc_im[kT + 1];
-  for (int t = 0; t <= kT; ++t) acc_re[t] = acc_im[t] = _mm512_setzero_si512();
+  // Named accumulators (not arrays): GCC keeps arrays of vectors in memory as well.
+  __m512i e_re = _mm512_setzero_si512(), e_im = e_re, p_re = e_re, p_im = e_re, l_re = e_re, l_im = e_re;
+  __m512i ve_re = e_re, ve_im = e_re, vl_re = e_re, vl_im = e_re, n_re = e_re, n_im = e_re;
 
   std::int64_t pos = run.pos0;
   const std::int64_t block_inc = run.inc * 32;
   for (int k = 0; k < m; k += 32) {
-    const int left = m - k;
     __m512i x0, x1;
-    if (left >= 32) {
+    if (const int left = m - k; left >= 32) [[likely]] {
       x0 = _mm512_loadu_si512(src + k);
       x1 = _mm512_loadu_si512(src + k + 16);
     } else {  // masked loads: the missing samples are zero and add nothing
-      const auto m0 = static_cast<__mmask16>(left >= 16 ? 0xFFFFu : (1u << left) - 1u);
-      const auto m1 = static_cast<__mmask16>(left >= 16 ? (1u << (left - 16)) - 1u : 0u);
-      x0 = _mm512_maskz_loadu_epi32(m0, src + k);
-      x1 = _mm512_maskz_loadu_epi32(m1, src + k + 16);
+      x0 = _mm512_maskz_loadu_epi32(static_cast<__mmask16>(0xFFFFu >> (16 - std::min(left, 16))), src + k);
+      x1 = _mm512_maskz_loadu_epi32(static_cast<__mmask16>(0xFFFFu >> (16 - std::max(left - 16, 0))), src + k + 16);
     }
     const __m512i i = _mm512_permutex2var_epi16(x0, even, x1);
     const __m512i q = _mm512_permutex2var_epi16(x0, odd, x1);
@@ -269,27 +292,38 @@ DEEPNAV_AVX512 void kernel_avx512(const Sample* x, int m, const Run& run, const 
     const __m512i w = _mm512_permutex2var_epi16(_mm512_add_epi32(frac, off_a), odd, _mm512_add_epi32(frac, off_b));
     const __m512i win = _mm512_loadu_si512(su.code16 + first - su.h);
     const __m512i nwin = _mm512_loadu_si512(su.noise16 + first - su.h);
-    for (int t = 0; t < kT; ++t) {
-      const __m512i idx = _mm512_srli_epi16(_mm512_add_epi16(w, d[t]), kTapFracBits);
-      const __m512i code = _mm512_permutexvar_epi16(idx, win);
-      acc_re[t] = _mm512_dpwssd_epi32(acc_re[t], re, code);
-      acc_im[t] = _mm512_dpwssd_epi32(acc_im[t], im, code);
-      if (t == 1) {  // the noise tap shares the prompt's timing
-        const __m512i ncode = _mm512_permutexvar_epi16(idx, nwin);
-        acc_re[kT] = _mm512_dpwssd_epi32(acc_re[kT], re, ncode);
-        acc_im[kT] = _mm512_dpwssd_epi32(acc_im[kT], im, ncode);
-      }
+#define DEEPNAV_TAP(IDX, WIN, RE, IM)                  \
+  {                                                    \
+    const __m512i code = _mm512_permutexvar_epi16(IDX, WIN); \
+    RE = _mm512_dpwssd_epi32(RE, re, code);            \
+    IM = _mm512_dpwssd_epi32(IM, im, code);            \
+  }
+    const __m512i idx_p = _mm512_srli_epi16(w, kTapFracBits);
+    DEEPNAV_TAP(idx_p, win, p_re, p_im)
+    DEEPNAV_TAP(idx_p, nwin, n_re, n_im)  // the noise tap shares the prompt's timing
+    DEEPNAV_TAP(_mm512_srli_epi16(_mm512_add_epi16(w, d_e), kTapFracBits), win, e_re, e_im)
+    DEEPNAV_TAP(_mm512_srli_epi16(_mm512_add_epi16(w, d_l), kTapFracBits), win, l_re, l_im)
+    if constexpr (kT == 5) {
+      DEEPNAV_TAP(_mm512_srli_epi16(_mm512_add_epi16(w, d_ve), kTapFracBits), win, ve_re, ve_im)
+      DEEPNAV_TAP(_mm512_srli_epi16(_mm512_add_epi16(w, d_vl), kTapFracBits), win, vl_re, vl_im)
     }
+#undef DEEPNAV_TAP
     pos += block_inc;
     if (pos >= kCodeWrap) pos -= kCodeWrap;
   }
   // A run adds at most 128 * 2 * 2^15 per lane: int32 lanes and their sum cannot overflow.
-  for (int t = 0; t < kT; ++t) {
-    acc[t][0] += _mm512_reduce_add_epi32(acc_re[t]);
-    acc[t][1] += _mm512_reduce_add_epi32(acc_im[t]);
+#define DEEPNAV_ADD(T, RE, IM)                \
+  acc[T][0] += _mm512_reduce_add_epi32(RE); \
+  acc[T][1] += _mm512_reduce_add_epi32(IM);
+  DEEPNAV_ADD(0, e_re, e_im)
+  DEEPNAV_ADD(1, p_re, p_im)
+  DEEPNAV_ADD(2, l_re, l_im)
+  if constexpr (kT == 5) {
+    DEEPNAV_ADD(3, ve_re, ve_im)
+    DEEPNAV_ADD(4, vl_re, vl_im)
   }
-  acc[kNoise][0] += _mm512_reduce_add_epi32(acc_re[kT]);
-  acc[kNoise][1] += _mm512_reduce_add_epi32(acc_im[kT]);
+  DEEPNAV_ADD(kNoise, n_re, n_im)
+#undef DEEPNAV_ADD
 }
 
 // ---------------------------------------------------------------------------------------
@@ -299,15 +333,22 @@ DEEPNAV_AVX512 void kernel_avx512(const Sample* x, int m, const Run& run, const 
 
 DEEPNAV_AVX2 int sample_bits_avx2(const Sample* x, int n) {
   const auto* p = reinterpret_cast<const std::int32_t*>(x);
-  __m256i acc = _mm256_setzero_si256();
+  __m256i acc0 = _mm256_setzero_si256(), acc1 = acc0;
+  int k = 0;
+  for (; k + 32 <= n; k += 32) {
+    const auto* v = reinterpret_cast<const __m256i*>(p + k);
+    acc0 = _mm256_or_si256(acc0, _mm256_or_si256(_mm256_abs_epi16(_mm256_loadu_si256(v)),
+                                                 _mm256_abs_epi16(_mm256_loadu_si256(v + 1))));
+    acc1 = _mm256_or_si256(acc1, _mm256_or_si256(_mm256_abs_epi16(_mm256_loadu_si256(v + 2)),
+                                                 _mm256_abs_epi16(_mm256_loadu_si256(v + 3))));
+  }
   const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
-  for (int k = 0; k < n; k += 8) {
-    const __m256i mask = _mm256_cmpgt_epi32(_mm256_set1_epi32(n - k), lane);
-    const __m256i v = _mm256_maskload_epi32(p + k, mask);
-    acc = _mm256_or_si256(acc, _mm256_xor_si256(v, _mm256_srai_epi16(v, 15)));
+  for (; k < n; k += 8) {  // masked loads: the missing samples read as 0, which changes nothing
+    const __m256i v = _mm256_maskload_epi32(p + k, _mm256_cmpgt_epi32(_mm256_set1_epi32(n - k), lane));
+    acc0 = _mm256_or_si256(acc0, _mm256_abs_epi16(v));
   }
   alignas(32) std::uint16_t w[16];
-  _mm256_store_si256(reinterpret_cast<__m256i*>(w), acc);
+  _mm256_store_si256(reinterpret_cast<__m256i*>(w), _mm256_or_si256(acc0, acc1));
   unsigned m = 0;
   for (std::uint16_t v : w) m |= v;
   return std::bit_width(m);
@@ -513,8 +554,8 @@ CorrelatorSums correlate(CorrelatorKernel kernel, const Sample* samples, int n, 
   if (!(s.code_step_chips > 0.0 && s.code_step_chips <= 2.0))
     throw std::invalid_argument("correlate: code step per sample must be in (0, 2] chips, got " +
                                 std::to_string(s.code_step_chips));
-  const CodeTable& table = table_for(code, 0);
-  const CodeTable& noise_table = table_for(noise_code, 1);
+  const CodeTable& table = table_for(code);
+  const CodeTable& noise_table = table_for(noise_code);
   const bool very = s.very_spacing_chips > 0.0;
 
   Setup su{};

@@ -11,10 +11,11 @@
 //   sample, at most 0.35 degree at the end of a run) whose top 5 bits index an int16
 //   cos/sin table with bins centred on (p + 1/2) * 2 pi / 32: phase error within
 //   +-5.6 degrees, a mean amplitude loss of 0.16 % (0.014 dB), no systematic phase bias.
-// - Wipe-off in int16. The span's largest magnitude 2^b (|I|, |Q| <= 2^b) picks the
-//   scaling: for b <= 7 the table amplitude is 23170 / 2^b and the products are exact;
-//   for larger (up to full-scale int16) inputs the products are rounded to 15 fraction
-//   bits (pmulhrsw) at table amplitude 23000. No int16 value can overflow for any input.
+// - Wipe-off in int16. The span's largest |I| or |Q|, below 2^b, picks the scaling: for
+//   b <= 7 (|I|, |Q| <= 127: 1- to 8-bit converters) the table amplitude is 23170 / 2^b
+//   and the products are exact; larger inputs, up to full-scale int16, have their products
+//   rounded to 15 fraction bits (pmulhrsw) at table amplitude 23000. No int16 value can
+//   overflow for any input.
 // - Code: the prompt position is a 27-fraction-bit chip count (error below 1.6e-5 chip
 //   at the end of a run); the other taps sit at offsets rounded to 2^-11 chip (error at
 //   most 2.4e-4 chip, equal and opposite for early and late, so the early-late
