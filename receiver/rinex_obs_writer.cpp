@@ -16,6 +16,12 @@ std::string obs_field(double value, bool present) {
   return fmt::format("{:14.3f}  ", value);
 }
 
+/// Sets the loss-of-lock indicator (bit 0: lock lost since the previous epoch) of a field.
+std::string lli_marked(std::string field, bool lost_lock) {
+  if (lost_lock && field[13] != ' ') field[14] = '1';
+  return field;
+}
+
 }  // namespace
 
 std::string rinex3_observation_file(const RinexObsHeader& h, const std::vector<ReceiverEpoch>& epochs) {
@@ -48,7 +54,7 @@ std::string rinex3_observation_file(const RinexObsHeader& h, const std::vector<R
     for (const auto& o : e.observations) {
       // RINEX phase grows with range: the negative of the accumulated Doppler.
       out += fmt::format("G{:02d}{}{}{}{}\n", o.prn, obs_field(o.pseudorange_m, true),
-                         obs_field(-o.carrier_phase_cycles, true), obs_field(o.doppler_hz, true),
+                         lli_marked(obs_field(-o.carrier_phase_cycles, true), o.after_gap), obs_field(o.doppler_hz, true),
                          obs_field(o.cn0_dbhz, true));
     }
   }

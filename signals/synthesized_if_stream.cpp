@@ -24,13 +24,18 @@ bool SynthesizedIfStream::refill() {
 }
 
 std::size_t SynthesizedIfStream::read(std::vector<std::byte>& out, std::size_t max_samples) {
+  // Fills across chunk boundaries, so readers get the sizes they ask for.
   out.clear();
-  if (chunk_offset_ >= chunk_.size() && !refill()) return 0;
-  const std::size_t available = (chunk_.size() - chunk_offset_) / bytes_per_sample_;
-  const std::size_t count = std::min(available, max_samples);
-  const auto first = chunk_.begin() + static_cast<std::ptrdiff_t>(chunk_offset_);
-  out.assign(first, first + static_cast<std::ptrdiff_t>(count * bytes_per_sample_));
-  chunk_offset_ += count * bytes_per_sample_;
+  std::size_t count = 0;
+  while (count < max_samples) {
+    if (chunk_offset_ >= chunk_.size() && !refill()) break;
+    const std::size_t available = (chunk_.size() - chunk_offset_) / bytes_per_sample_;
+    const std::size_t n = std::min(available, max_samples - count);
+    const auto first = chunk_.begin() + static_cast<std::ptrdiff_t>(chunk_offset_);
+    out.insert(out.end(), first, first + static_cast<std::ptrdiff_t>(n * bytes_per_sample_));
+    chunk_offset_ += n * bytes_per_sample_;
+    count += n;
+  }
   next_index_ += static_cast<std::int64_t>(count);
   return count;
 }

@@ -19,6 +19,7 @@
 #include "signals/text_output_file.hpp"
 #include "tools/command_registry.hpp"
 #include "tools/progress.hpp"
+#include "tools/sample_source_factory.hpp"
 
 namespace deepnav::cli {
 namespace {
@@ -28,7 +29,8 @@ constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 struct RunOptions {
   std::string input, format = "ibyte", out_dir, truth_path, assist_nav;
   double fs_hz = 0.0, if_hz = 0.0, skip_s = 0.0;
-  bool inverted = false;
+  bool inverted = false, raw = false;
+  double reconnect_timeout_s = 30.0;
   std::string mitigation = "none";
   ReceiverConfig receiver;
 };
@@ -50,31 +52,17 @@ struct Stats {
 };
 
 void run_receiver(RunOptions o) {
-  SampleFormat format;
-  try {
-    format = parse_sample_format(o.format);
-  } catch (const std::invalid_argument& e) {
-    throw UserError(std::string("--format: ") + e.what());
-  }
   std::optional<TruthFile> truth;
   try {
     if (!o.truth_path.empty()) truth.emplace(o.truth_path);
   } catch (const std::runtime_error& e) {
     throw UserError(e.what());
   }
-  FileSampleSourceOptions so;
-  so.path = o.input;
-  so.format = format;
-  so.sample_rate_hz = o.fs_hz;
-  so.intermediate_frequency_hz = o.if_hz;
-  so.skip_s = o.skip_s;
-  so.inverted_spectrum = o.inverted;
-  std::unique_ptr<FileSampleSource> source;
-  try {
-    source = std::make_unique<FileSampleSource>(so);
-  } catch (const std::exception& e) {
-    throw UserError(e.what());
-  }
+  // A file or a tcp:// / udp:// stream; Ctrl-C ends the source, so the products below are still written.
+  StopOnSignals stop_signals;
+  OpenedSource opened = open_sample_source({o.input, o.format, o.fs_hz, o.if_hz, o.skip_s, o.inverted, o.raw,
+                                            o.reconnect_timeout_s, &stop_signals.flag()});
+  const std::unique_ptr<SampleSource>& source = opened.source;
   std::error_code ec;
   std::filesystem::create_directories(o.out_dir, ec);
   if (ec) throw UserError("cannot create output folder '" + o.out_dir + "': " + ec.message());
@@ -98,7 +86,7 @@ void run_receiver(RunOptions o) {
       throw UserError(e.what());
     }
   }
-  const double total_s = static_cast<double>(source->total_samples()) / o.fs_hz;
+  const double total_s = opened.duration_s.value_or(0.0);
   ProgressLine progress("run", total_s);
   std::optional<double> first_fix_s;
   int fixes = 0, epochs = 0;
@@ -145,7 +133,9 @@ void run_receiver(RunOptions o) {
                                        e.prompt.real(), e.prompt.imag(), e.early.real(), e.early.imag(),
                                        e.late.real(), e.late.imag(), e.carrier_doppler_hz, e.code_rate_cps, ch.cn0_dbhz));
       },
-      [&](double t) { progress.update(t / std::max(total_s, 1e-9)); });
+      [&](double t) {
+        if (total_s > 0.0) progress.update(t / total_s);  // a stream's length is not known
+      });
   progress.finish();
 
   NavData nav;
@@ -158,7 +148,7 @@ void run_receiver(RunOptions o) {
   nav_file.write(rinex.str());
 
   nlohmann::json summary = {{"input", o.input},
-                            {"duration_s", total_s},
+                            {"duration_s", opened.duration_s ? total_s : static_cast<double>(source->next_sample_index()) / source->sample_rate_hz()},
                             {"epochs", epochs},
                             {"fixes", fixes},
                             {"time_to_first_fix_s", first_fix_s ? nlohmann::json(*first_fix_s) : nlohmann::json(nullptr)},
@@ -172,6 +162,8 @@ void run_receiver(RunOptions o) {
     summary["vertical_error_m"] = vertical.json();
     summary["velocity_error_mps"] = speed_error.json();
   }
+  summary["interrupted"] = opened.interrupted();
+  if (opened.is_stream) summary["stream"] = opened.report();
   RinexObsHeader obs_header;
   obs_header.interval_s = 1.0 / o.receiver.observation_rate_hz;
   if (!fix_list.empty()) obs_header.approx_position_ecef_m = fix_list.front().r_ecef_m;
@@ -200,14 +192,18 @@ void run_receiver(RunOptions o) {
     fmt::print("error vs truth: horizontal RMS {:.2f} m, vertical RMS {:.2f} m, velocity RMS {:.3f} m/s\n",
                h["rms"].get<double>(), v["rms"].get<double>(), s["rms"].get<double>());
   }
+  if (opened.interrupted()) spdlog::warn("interrupted: products written up to sample {}", source->next_sample_index());
+  if (const auto failure = opened.failure()) throw UserError(*failure + " (products written up to there)");
 }
 
 const bool registered = register_command([](CommandParents& parents) {
   auto o = std::make_shared<RunOptions>();
   CLI::App* cmd = parents.root.add_subcommand("run", "Run the receiver on an IF file: PVT and products in --out");
-  cmd->add_option("--input", o->input, "IF sample file")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--input", o->input, "IF sample file, tcp://HOST:PORT, udp://HOST:PORT (subscribe) or udp://@HOST:PORT (listen)")->required();
   cmd->add_option("--format", o->format, "ibyte|cs8, ishort|cs16, gr_complex|cf32, byte|s8")->capture_default_str();
-  cmd->add_option("--fs", o->fs_hz, "Sample rate (Hz)")->required();
+  cmd->add_option("--fs", o->fs_hz, "Sample rate (Hz); a framed stream's header carries it");
+  cmd->add_flag("--raw", o->raw, "The stream is bare samples (no deepnav framing): needs --format and --fs");
+  cmd->add_option("--reconnect-timeout", o->reconnect_timeout_s, "Seconds a dropped stream is retried (with backoff)")->capture_default_str();
   cmd->add_option("--if", o->if_hz, "Intermediate frequency (Hz)")->capture_default_str();
   cmd->add_option("--skip", o->skip_s, "Seconds skipped at the start")->capture_default_str();
   cmd->add_flag("--inverted-spectrum", o->inverted, "The front end delivers I - jQ");

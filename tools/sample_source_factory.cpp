@@ -1,0 +1,231 @@
+#include "tools/sample_source_factory.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/sinks/stdout_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include <csignal>
+#include <cstdlib>
+#include <filesystem>
+#include <unistd.h>
+
+#include "receiver/file_sample_source.hpp"
+#include "receiver/tcp_sample_source.hpp"
+#include "receiver/udp_sample_source.hpp"
+#include "tools/command_registry.hpp"
+
+namespace deepnav::cli {
+namespace {
+
+std::atomic<bool> g_stop{false};
+using Handler = void (*)(int);
+Handler g_previous_int = SIG_DFL, g_previous_term = SIG_DFL;
+
+extern "C" void on_stop_signal(int) {
+  if (g_stop.load()) std::_Exit(130);  // a second Ctrl-C: the user does not want to wait
+  g_stop.store(true);
+}
+
+/// A file source that ends early once the stop flag is set.
+class StoppableFileSource final : public SampleSource {
+ public:
+  StoppableFileSource(std::unique_ptr<FileSampleSource> file, const std::atomic<bool>* stop)
+      : file_(std::move(file)), stop_(stop) {}
+  double sample_rate_hz() const override { return file_->sample_rate_hz(); }
+  double intermediate_frequency_hz() const override { return file_->intermediate_frequency_hz(); }
+  bool is_real() const override { return file_->is_real(); }
+  std::size_t read(std::span<Sample> out) override {
+    if (stop_ != nullptr && stop_->load()) {
+      interrupted_ = true;
+      return 0;
+    }
+    return file_->read(out);
+  }
+  std::int64_t next_sample_index() const override { return file_->next_sample_index(); }
+  bool at_end() const override { return interrupted_ || file_->at_end(); }
+  bool interrupted() const { return interrupted_; }
+
+ private:
+  std::unique_ptr<FileSampleSource> file_;
+  const std::atomic<bool>* stop_;
+  bool interrupted_ = false;
+};
+
+struct ParsedUrl {
+  std::string scheme, host;
+  std::uint16_t port = 0;
+  bool listen = false;
+};
+
+std::optional<ParsedUrl> parse_url(const std::string& input) {
+  ParsedUrl u;
+  const auto sep = input.find("://");
+  if (sep == std::string::npos) return std::nullopt;
+  u.scheme = input.substr(0, sep);
+  if (u.scheme != "tcp" && u.scheme != "udp") return std::nullopt;
+  std::string rest = input.substr(sep + 3);
+  if (!rest.empty() && rest.front() == '@') {
+    if (u.scheme != "udp") throw UserError(fmt::format("--input '{}': '@' (listen) is for udp:// only", input));
+    u.listen = true;
+    rest.erase(0, 1);
+  }
+  const auto colon = rest.rfind(':');
+  if (colon == std::string::npos)
+    throw UserError(fmt::format("--input '{}': expected {}://HOST:PORT", input, u.scheme));
+  u.host = rest.substr(0, colon);
+  if (u.host.empty()) {
+    if (!u.listen) throw UserError(fmt::format("--input '{}': the host is missing", input));
+    u.host = "0.0.0.0";
+  }
+  const std::string port = rest.substr(colon + 1);
+  char* end = nullptr;
+  const long p = std::strtol(port.c_str(), &end, 10);
+  if (port.empty() || *end != '\0' || p < 0 || p > 65535 || (p == 0 && !u.listen))
+    throw UserError(fmt::format("--input '{}': port '{}' is not a number in 1..65535", input, port));
+  u.port = static_cast<std::uint16_t>(p);
+  return u;
+}
+
+nlohmann::json stats_json(const StreamSampleSource& s) {
+  const StreamStats st = s.stats();
+  nlohmann::json lost = nlohmann::json::array(), gaps = nlohmann::json::array();
+  for (const auto& [a, b] : st.lost_frame_ranges) lost.push_back({a, b});
+  for (const auto& g : st.gaps) gaps.push_back({{"first_missing_sample", g.first_missing_index}, {"missing_samples", g.missing_count}});
+  return {{"url", s.url()},
+          {"format", std::string(to_string(s.header().format))},
+          {"start_sample", s.header().start_sample_index},
+          {"bytes_received", st.bytes_received},
+          {"frames_received", st.frames_received},
+          {"frames_lost", st.frames_lost},
+          {"lost_frame_ranges", lost},
+          {"frames_duplicated", st.frames_duplicated},
+          {"frames_reordered", st.frames_reordered},
+          {"frames_late", st.frames_late},
+          {"frames_overrun", st.frames_overrun},
+          {"reconnects", st.reconnects},
+          {"partial_frame_bytes_discarded", st.partial_frame_bytes_discarded},
+          {"samples_duplicated", st.samples_duplicated},
+          {"lost_samples", s.lost_sample_count()},
+          {"gaps", gaps},
+          {"end", st.end_reason},
+          {"failed", st.failed}};
+}
+
+OpenedSource open_stream(const SourceRequest& r, const ParsedUrl& url) {
+  use_thread_safe_logger();
+  StreamSourceSettings st;
+  st.host = url.host;
+  st.port = url.port;
+  st.listen = url.listen;
+  st.raw = r.raw;
+  st.inverted_spectrum = r.inverted;
+  st.reconnect_timeout_s = r.reconnect_timeout_s;
+  st.stop = r.stop;
+  if (r.raw) {
+    try {
+      st.raw_format = parse_sample_format(r.format);
+    } catch (const std::invalid_argument& e) {
+      throw UserError(std::string("--format: ") + e.what());
+    }
+    if (!(r.fs_hz > 0.0)) throw UserError(fmt::format("--input '{}': a raw stream needs --fs", r.input));
+    st.raw_sample_rate_hz = r.fs_hz;
+    st.raw_if_hz = r.if_hz;
+  }
+  if (r.skip_s != 0.0) throw UserError("--skip applies to files only, not to streams");
+  std::unique_ptr<StreamSampleSource> source;
+  try {
+    if (url.scheme == "tcp") {
+      source = std::make_unique<TcpSampleSource>(st);
+    } else {
+      auto udp = std::make_unique<UdpSampleSource>(st);
+      if (url.listen) spdlog::info("listening on udp://{}:{}", url.host, udp->local_port());
+      source = std::move(udp);
+    }
+  } catch (const std::exception& e) {
+    throw UserError(e.what());
+  }
+  if (!r.raw && r.fs_hz > 0.0 && r.fs_hz != source->sample_rate_hz())
+    throw UserError(fmt::format("--fs {} Hz disagrees with the sample rate {} Hz of the stream {}", r.fs_hz,
+                                source->sample_rate_hz(), source->url()));
+  const std::string url_text = source->url();
+  source->set_gap_handler([url_text, fs = source->sample_rate_hz()](const SampleGap& g) {
+    spdlog::warn("{}: {} samples lost at sample {} (t = {:.6f} s): channels coast across the gap", url_text,
+                 g.missing_count, g.first_missing_index, static_cast<double>(g.first_missing_index) / fs);
+  });
+  spdlog::info("{}: {} at {} Hz, IF {} Hz, from sample {}", url_text, to_string(source->header().format),
+               source->sample_rate_hz(), source->intermediate_frequency_hz(), source->header().start_sample_index);
+  OpenedSource o;
+  o.is_stream = true;
+  StreamSampleSource* s = source.get();
+  o.report = [s] { return stats_json(*s); };
+  o.failure = [s]() -> std::optional<std::string> {
+    const StreamStats st = s->stats();
+    if (!st.failed) return std::nullopt;
+    return fmt::format("{}: {}", s->url(), st.end_reason);
+  };
+  o.interrupted = [s] { return s->interrupted(); };
+  o.source = std::move(source);
+  return o;
+}
+
+}  // namespace
+
+void use_thread_safe_logger() {
+  static bool done = false;
+  if (done) return;
+  done = true;
+  const auto level = spdlog::get_level();
+  auto logger = spdlog::stderr_logger_mt("deepnav-mt");
+  spdlog::set_default_logger(logger);
+  spdlog::set_pattern("%^%l%$: %v");
+  spdlog::set_level(level);
+}
+
+OpenedSource open_sample_source(const SourceRequest& r) {
+  if (const auto url = parse_url(r.input)) return open_stream(r, *url);
+  if (r.raw) throw UserError("--raw applies to tcp:// and udp:// inputs only");
+  if (!std::filesystem::exists(r.input)) throw UserError(fmt::format("--input: file '{}' does not exist", r.input));
+  if (!(r.fs_hz > 0.0)) throw UserError(fmt::format("--input '{}': a file needs its sample rate (--fs)", r.input));
+  FileSampleSourceOptions so;
+  so.path = r.input;
+  try {
+    so.format = parse_sample_format(r.format);
+  } catch (const std::invalid_argument& e) {
+    throw UserError(std::string("--format: ") + e.what());
+  }
+  so.sample_rate_hz = r.fs_hz;
+  so.intermediate_frequency_hz = r.if_hz;
+  so.skip_s = r.skip_s;
+  so.inverted_spectrum = r.inverted;
+  std::unique_ptr<FileSampleSource> file;
+  try {
+    file = std::make_unique<FileSampleSource>(so);
+  } catch (const std::exception& e) {
+    throw UserError(e.what());
+  }
+  for (const auto& w : file->warnings()) spdlog::warn("{}", w);
+  OpenedSource o;
+  o.duration_s = static_cast<double>(file->total_samples()) / r.fs_hz;
+  auto stoppable = std::make_unique<StoppableFileSource>(std::move(file), r.stop);
+  StoppableFileSource* s = stoppable.get();
+  o.interrupted = [s] { return s->interrupted(); };
+  o.failure = [] { return std::optional<std::string>(); };
+  o.report = [] { return nlohmann::json(nullptr); };
+  o.source = std::move(stoppable);
+  return o;
+}
+
+StopOnSignals::StopOnSignals() {
+  g_stop = false;
+  g_previous_int = std::signal(SIGINT, on_stop_signal);
+  g_previous_term = std::signal(SIGTERM, on_stop_signal);
+}
+
+StopOnSignals::~StopOnSignals() {
+  std::signal(SIGINT, g_previous_int);
+  std::signal(SIGTERM, g_previous_term);
+}
+
+const std::atomic<bool>& StopOnSignals::flag() const { return g_stop; }
+
+}  // namespace deepnav::cli

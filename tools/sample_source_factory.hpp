@@ -1,0 +1,58 @@
+#pragma once
+// Where `deepnav run` gets its samples: an IF file path, tcp://HOST:PORT, udp://HOST:PORT
+// (subscribe to a `deepnav serve`) or udp://@HOST:PORT (listen for datagrams sent
+// there), framed (deepnav protocol) or raw (bare samples).
+#include <atomic>
+#include <functional>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "receiver/sample_source.hpp"
+
+namespace deepnav::cli {
+
+struct SourceRequest {
+  std::string input;        ///< file path or URL
+  std::string format = "ibyte";
+  double fs_hz = 0.0;       ///< required for files and raw streams; checked against a framed stream's header
+  double if_hz = 0.0;
+  double skip_s = 0.0;      ///< files only
+  bool inverted = false;
+  bool raw = false;         ///< streams only: bare samples without the deepnav framing
+  double reconnect_timeout_s = 30.0;
+  const std::atomic<bool>* stop = nullptr;  ///< once set, the source ends (Ctrl-C)
+};
+
+struct OpenedSource {
+  std::unique_ptr<SampleSource> source;
+  std::optional<double> duration_s;  ///< the signal length, when known in advance (files)
+  bool is_stream = false;
+  /// For the run summary: transport statistics of a stream (null for files).
+  std::function<nlohmann::json()> report;
+  /// Why a stream failed (protocol error, connection lost for good), once it has.
+  std::function<std::optional<std::string>()> failure;
+  /// True once the run was stopped by `stop`.
+  std::function<bool()> interrupted;
+};
+
+/// Opens the source; throws UserError naming the input and the problem.
+OpenedSource open_sample_source(const SourceRequest& request);
+
+/// Network sources and the server log from their I/O threads: the default logger is
+/// replaced by a thread-safe one with the same sink, pattern and level.
+void use_thread_safe_logger();
+
+/// SIGINT/SIGTERM set the returned flag while the guard lives (the previous handlers
+/// are restored after); a second signal while stopping exits at once.
+class StopOnSignals {
+ public:
+  StopOnSignals();
+  ~StopOnSignals();
+  StopOnSignals(const StopOnSignals&) = delete;
+  StopOnSignals& operator=(const StopOnSignals&) = delete;
+  const std::atomic<bool>& flag() const;
+};
+
+}  // namespace deepnav::cli
