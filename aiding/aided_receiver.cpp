@@ -56,15 +56,21 @@ struct AidedReceiver::Impl : ChannelSteering {
   }
 
   bool on_epoch(const CorrelatorEpoch& e, TrackingChannel& ch, const NavDecoder& decoder) override {
-    return ultra.on_epoch(e, ch, decoder, nav.has_value() && modes.mode() == NavMode::ultra);
+    // Ultra-tight: the filter steers every channel it can. Loose/tight/coast: it steers only
+    // channels whose signal has faded, so they are still aligned when it comes back.
+    Engagement engage = Engagement::none;
+    if (nav && modes.mode() == NavMode::ultra) engage = Engagement::all;
+    else if (nav && modes.mode() != NavMode::scalar) engage = Engagement::faded_only;
+    return ultra.on_epoch(e, ch, decoder, engage);
   }
 
   void after_block(std::int64_t end) override {
     const double t = static_cast<double>(end) / fs;
     propagate_to(t);
     follow_receiver_clock(end);
+    if (nav && modes.mode() != NavMode::ultra && modes.mode() != NavMode::scalar) ultra.update_and_steer(*nav, end, false);
     if (nav && modes.mode() == NavMode::ultra) {
-      const UpdateResult r = ultra.update_and_steer(*nav, end);
+      const UpdateResult r = ultra.update_and_steer(*nav, end, true);
       if (end % static_cast<std::int64_t>(fs) < static_cast<std::int64_t>(fs / 100))
         spdlog::debug("t = {:.2f} s: ultra update {} measurements, {} rejected, max |nu|/sigma {:.2f}, {} steered",
                       t, ultra.measuring_channels(), r.rejected, r.max_normalized_innovation, ultra.steered_channels());

@@ -36,7 +36,8 @@ bool steerable(const CorrelatorEpoch& e, const TrackingChannel& ch, const NavDec
 UltraTightTracker::UltraTightTracker(ScalarReceiver& receiver, UltraTightConfig config)
     : rx_(receiver), cfg_(config) {}
 
-bool UltraTightTracker::on_epoch(const CorrelatorEpoch& e, TrackingChannel& ch, const NavDecoder& nav, bool engaged) {
+bool UltraTightTracker::on_epoch(const CorrelatorEpoch& e, TrackingChannel& ch, const NavDecoder& nav,
+                                 Engagement engagement) {
   ChannelMemory& mem = memory_[e.prn];
   const std::int64_t end = e.first_sample + e.samples;
   std::optional<double> doppler;
@@ -53,6 +54,12 @@ bool UltraTightTracker::on_epoch(const CorrelatorEpoch& e, TrackingChannel& ch, 
   mem.doppler_hz = e.carrier_doppler_hz;
   mem.last_cn0_dbhz = e.cn0_dbhz;
   const bool was_steered = steered_.count(e.prn) > 0;
+  bool engaged = engagement == Engagement::all;
+  if (engagement == Engagement::faded_only) {
+    // C/N0 reads 0 until the channel's estimator window is full: not a fade.
+    const bool faded = e.cn0_dbhz > 0.0 && e.cn0_dbhz < cfg_.faded_below_dbhz;
+    engaged = faded || (was_steered && e.cn0_dbhz < cfg_.recovered_above_dbhz);
+  }
   if (!engaged || !steerable(e, ch, nav) || !rx_.receiver_time(end)) {
     if (was_steered) {
       steered_.erase(e.prn);
@@ -103,10 +110,10 @@ std::optional<RangeMeasurement> UltraTightTracker::to_measurement(const Discrimi
   return m;
 }
 
-UpdateResult UltraTightTracker::update_and_steer(AidedNavigator& nav, std::int64_t end_sample) {
+UpdateResult UltraTightTracker::update_and_steer(AidedNavigator& nav, std::int64_t end_sample, bool measure) {
   std::vector<RangeMeasurement> ms;
   for (const DiscriminatorSample& d : queued_) {
-    if (d.cn0_dbhz < cfg_.min_cn0_dbhz) continue;
+    if (!measure || d.cn0_dbhz < cfg_.min_cn0_dbhz) continue;
     if (auto m = to_measurement(d, nav)) ms.push_back(*m);
   }
   queued_.clear();

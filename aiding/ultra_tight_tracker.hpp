@@ -28,12 +28,21 @@
 
 namespace deepnav::aiding {
 
+/// Which channels the filter takes over.
+enum class Engagement {
+  none,        ///< scalar loops everywhere
+  faded_only,  ///< only channels whose signal has faded (INS coasting through outages)
+  all,         ///< ultra-tight: every channel that can be steered
+};
+
 struct UltraTightConfig {
   double min_cn0_dbhz = 18.0;               ///< weaker integrations steer but are not measurements
   double spacing_chips = 0.5;               ///< the channels' early-late spacing
   double max_code_correction_chips = 5.0;   ///< a larger jump means the channel is not where the filter thinks
   bool carrier_phase_tracking = true;
   double carrier_phase_gain = 0.25;         ///< fraction of the Costas error removed per integration
+  double faded_below_dbhz = 26.0;           ///< faded_only: take a channel over below this C/N0
+  double recovered_above_dbhz = 32.0;       ///< faded_only: give it back above this
 };
 
 /// One channel's discriminator outputs from one integration.
@@ -54,11 +63,11 @@ class UltraTightTracker {
 
   /// From ChannelSteering::on_epoch while ultra-tight mode runs: true when the channel is
   /// steered (it then has a discriminator sample queued).
-  bool on_epoch(const CorrelatorEpoch& epoch, TrackingChannel& channel, const NavDecoder& nav, bool engaged);
-  /// The filter update with the queued samples, then new NCO commands for the steered
-  /// channels, from the sample `end_sample` on. The navigator must already be propagated to
-  /// the block end (t_nav_s).
-  UpdateResult update_and_steer(AidedNavigator& nav, std::int64_t end_sample);
+  bool on_epoch(const CorrelatorEpoch& epoch, TrackingChannel& channel, const NavDecoder& nav, Engagement engagement);
+  /// The filter update with the queued samples (when `measure`), then new NCO commands for
+  /// the steered channels, from the sample `end_sample` on. The navigator must already be
+  /// propagated to the block end.
+  UpdateResult update_and_steer(AidedNavigator& nav, std::int64_t end_sample, bool measure);
   /// Gives every channel back to its scalar loop.
   void release_all();
 

@@ -137,6 +137,9 @@ struct ScalarReceiver::Impl {
     for (const auto& ch : channels) {
       if (ch.trk->state() == ChannelState::tracking) ++ep.channels_tracking;
       if (!ch.nav->synchronised()) continue;
+      // A channel held open through a fade (by a steering filter) has a replica but no
+      // signal: no observable until the signal is back.
+      if (ch.trk->lock_detector().ready() && ch.trk->cn0_dbhz() < cfg.tracking.lost_cn0_dbhz) continue;
       const double chips = ch.trk->code_chips_at(s);
       const auto period = static_cast<std::int64_t>(std::floor(chips / gps::kCodeLength_chips));
       const auto t = ch.nav->transmit_time_sow(period, chips - static_cast<double>(period) * gps::kCodeLength_chips);

@@ -71,7 +71,11 @@ class TrackingChannel {
   void monitor(const CorrelatorEpoch& epoch);
   /// Whether the channel declares itself lost on weak or incoherent signal (on by default).
   /// A steering filter that keeps the replica aligned through fades turns it off.
-  void set_loss_detection(bool enabled) { loss_detection_ = enabled; }
+  /// Turning it back on starts the weak-signal timer afresh.
+  void set_loss_detection(bool enabled) {
+    if (enabled && !loss_detection_) low_cn0_since_s_ = -1.0;
+    loss_detection_ = enabled;
+  }
   /// Data bits completed since the last call (empty before bit synchronisation).
   std::vector<PromptBit> take_bits();
 

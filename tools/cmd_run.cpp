@@ -20,6 +20,9 @@
 #include "tools/command_registry.hpp"
 #include "tools/progress.hpp"
 #include "tools/sample_source_factory.hpp"
+#include "aiding/aided_receiver.hpp"
+#include "ins/imu_file.hpp"
+#include "ins/imu_model.hpp"
 
 namespace deepnav::cli {
 namespace {
@@ -33,6 +36,9 @@ struct RunOptions {
   double reconnect_timeout_s = 30.0;
   std::string mitigation = "none";
   ReceiverConfig receiver;
+  // INS aiding (--mode loose|tight|ultra).
+  std::string mode = "scalar", imu_path, imu_grade = "tactical", imu_grades_file = "data/imu_grades.yaml";
+  std::vector<double> imu_lever_arm_m{0.0, 0.0, 0.0};
 };
 
 /// Error statistics of one quantity.
@@ -50,6 +56,48 @@ struct Stats {
             {"count", s.size()}};
   }
 };
+
+aiding::NavMode parse_mode(const RunOptions& o) {
+  const aiding::NavMode mode = aiding::parse_nav_mode(o.mode);
+  if (mode != aiding::NavMode::scalar && o.imu_path.empty())
+    throw UserError("--mode " + o.mode + " needs an IMU file (--imu FILE)");
+  return mode;
+}
+
+ImuLog read_imu(const RunOptions& o) {
+  try {
+    return read_imu_csv(o.imu_path);
+  } catch (const std::runtime_error& e) {
+    throw UserError(e.what());
+  }
+}
+
+aiding::AidedReceiverConfig aided_config(const RunOptions& o, aiding::NavMode mode) {
+  aiding::AidedReceiverConfig c;
+  c.mode = mode;
+  c.receiver = o.receiver;
+  try {
+    c.imu = load_imu_grade(o.imu_grades_file, o.imu_grade).model;
+  } catch (const std::runtime_error& e) {
+    throw UserError(e.what());
+  }
+  c.lever_arm_imu_to_antenna_b_m = -Eigen::Vector3d(o.imu_lever_arm_m[0], o.imu_lever_arm_m[1], o.imu_lever_arm_m[2]);
+  c.ultra.spacing_chips = o.receiver.tracking.spacing_chips;
+  return c;
+}
+
+/// The aided solution in the receiver's PVT form (DOPs and satellites from the receiver's own).
+PvtSolution aided_solution(const aiding::AidedEpoch& a) {
+  PvtSolution p = a.receiver.pvt;
+  p.valid = true;
+  if (a.receiver.t_rx) p.t = *a.receiver.t_rx;
+  p.r_ecef_m = a.r_ecef_m;
+  p.v_ecef_mps = a.v_ecef_mps;
+  p.llh = a.llh;
+  p.clock_bias_m = a.clock_bias_m;
+  p.clock_drift_mps = a.clock_drift_mps;
+  return p;
+}
 
 void run_receiver(RunOptions o) {
   std::optional<TruthFile> truth;
@@ -71,14 +119,22 @@ void run_receiver(RunOptions o) {
   TextOutputFile pvt_csv(path("pvt.csv"));
   pvt_csv.write(
       "t_s,gps_week,gps_sow,valid,x_ecef_m,y_ecef_m,z_ecef_m,lat_deg,lon_deg,height_m,vn_mps,ve_mps,vd_mps,"
-      "clock_bias_m,clock_drift_mps,satellites,gdop,pdop,hdop,vdop,excluded\n");
+      "clock_bias_m,clock_drift_mps,satellites,gdop,pdop,hdop,vdop,excluded,mode\n");
   TextOutputFile tracking_csv(path("tracking.csv"));
   tracking_csv.write("first_sample,prn,state,integration_s,i_prompt,q_prompt,i_early,q_early,i_late,q_late,doppler_hz,code_rate_cps,cn0_dbhz\n");
 
   MitigationConfig mitigation;
   mitigation.mode = parse_mitigation_mode(o.mitigation);
   MitigationSampleSource mitigated(*source, mitigation);  // --mitigation none: samples pass untouched
-  ScalarReceiver receiver(o.receiver, mitigated);
+  const aiding::NavMode mode = parse_mode(o);
+  std::unique_ptr<aiding::AidedReceiver> aided;
+  std::unique_ptr<ScalarReceiver> scalar;
+  if (mode != aiding::NavMode::scalar) {
+    aided = std::make_unique<aiding::AidedReceiver>(aided_config(o, mode), mitigated, read_imu(o), opened.duration_s);
+  } else {
+    scalar = std::make_unique<ScalarReceiver>(o.receiver, mitigated);
+  }
+  ScalarReceiver& receiver = aided ? aided->receiver() : *scalar;
   if (!o.assist_nav.empty()) {
     try {
       receiver.set_assisted_iono(read_rinex_nav(o.assist_nav).iono);
@@ -96,11 +152,13 @@ void run_receiver(RunOptions o) {
   std::vector<PvtSolution> fix_list;
   std::string nmea;
   const auto leap_seconds = [&] { return receiver.utc().valid ? receiver.utc().delta_t_ls : 18; };
-  receiver.run(
-      [&](const ReceiverEpoch& ep) {
+  std::map<std::string, double> mode_seconds;
+  const double epoch_s = 1.0 / o.receiver.observation_rate_hz;
+  const auto on_epoch = [&](const ReceiverEpoch& ep, const aiding::AidedEpoch* a) {
         ++epochs;
         all_epochs.push_back(ep);
-        const PvtSolution& p = ep.pvt;
+        if (a) mode_seconds[aiding::to_string(a->mode)] += epoch_s;
+        const PvtSolution p = a && a->valid ? aided_solution(*a) : ep.pvt;
         if (!p.valid) return;
         fix_list.push_back(p);
         std::map<int, double> cn0;
@@ -111,11 +169,12 @@ void run_receiver(RunOptions o) {
         const Eigen::Vector3d v_ned = C_e_n(p.llh.lat_rad, p.llh.lon_rad) * p.v_ecef_mps;
         std::string excluded;
         for (int prn : p.excluded_prns) excluded += (excluded.empty() ? "" : " ") + std::to_string(prn);
-        pvt_csv.write(fmt::format("{:.3f},{},{:.6f},1,{:.4f},{:.4f},{:.4f},{:.9f},{:.9f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{},{:.2f},{:.2f},{:.2f},{:.2f},{}\n",
+        pvt_csv.write(fmt::format("{:.3f},{},{:.6f},1,{:.4f},{:.4f},{:.4f},{:.9f},{:.9f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{},{:.2f},{:.2f},{:.2f},{:.2f},{},{}\n",
                                   ep.t_s, p.t.week, p.t.sow, p.r_ecef_m.x(), p.r_ecef_m.y(), p.r_ecef_m.z(),
                                   p.llh.lat_rad * kRadToDeg, p.llh.lon_rad * kRadToDeg, p.llh.height_m, v_ned.x(),
                                   v_ned.y(), v_ned.z(), p.clock_bias_m, p.clock_drift_mps, p.used_prns.size(),
-                                  p.dops.gdop, p.dops.pdop, p.dops.hdop, p.dops.vdop, excluded));
+                                  p.dops.gdop, p.dops.pdop, p.dops.hdop, p.dops.vdop, excluded,
+                                  a ? aiding::to_string(a->mode) : "scalar"));
         pdop.v.push_back(p.dops.pdop);
         sats.v.push_back(static_cast<double>(p.used_prns.size()));
         if (truth) {
@@ -126,16 +185,21 @@ void run_receiver(RunOptions o) {
             speed_error.v.push_back((p.v_ecef_mps - t->v_ecef_mps).norm());
           }
         }
-      },
-      [&](const CorrelatorEpoch& e, const ChannelSnapshot& ch) {
+  };
+  const auto on_correlation = [&](const CorrelatorEpoch& e, const ChannelSnapshot& ch) {
         tracking_csv.write(fmt::format("{},{},{},{:.3f},{:.1f},{:.1f},{:.1f},{:.1f},{:.1f},{:.1f},{:.3f},{:.4f},{:.1f}\n",
                                        e.first_sample, e.prn, static_cast<int>(ch.state), e.integration_s,
                                        e.prompt.real(), e.prompt.imag(), e.early.real(), e.early.imag(),
                                        e.late.real(), e.late.imag(), e.carrier_doppler_hz, e.code_rate_cps, ch.cn0_dbhz));
-      },
-      [&](double t) {
-        if (total_s > 0.0) progress.update(t / total_s);  // a stream's length is not known
-      });
+  };
+  const auto on_progress = [&](double t) {
+    if (total_s > 0.0) progress.update(t / total_s);  // a stream's length is not known
+  };
+  if (aided) {
+    aided->run([&](const aiding::AidedEpoch& a) { on_epoch(a.receiver, &a); }, on_correlation, on_progress);
+  } else {
+    receiver.run([&](const ReceiverEpoch& ep) { on_epoch(ep, nullptr); }, on_correlation, on_progress);
+  }
   progress.finish();
 
   NavData nav;
@@ -161,6 +225,16 @@ void run_receiver(RunOptions o) {
     summary["horizontal_error_m"] = horizontal.json();
     summary["vertical_error_m"] = vertical.json();
     summary["velocity_error_mps"] = speed_error.json();
+  }
+  summary["mode"] = o.mode;
+  if (aided) {
+    nlohmann::json changes = nlohmann::json::array();
+    for (const auto& c : aided->mode_changes())
+      changes.push_back({{"t_s", c.t_s}, {"from", aiding::to_string(c.from)}, {"to", aiding::to_string(c.to)}, {"reason", c.reason}});
+    summary["mode_changes"] = changes;
+    summary["seconds_in_mode"] = mode_seconds;
+    summary["ins_start"] = aided->ins_start_method();
+    summary["filter_restarts"] = aided->filter_restarts();
   }
   summary["interrupted"] = opened.interrupted();
   if (opened.is_stream) summary["stream"] = opened.report();
@@ -218,6 +292,14 @@ const bool registered = register_command([](CommandParents& parents) {
   cmd->add_option("--iono-from", o->assist_nav,
                   "RINEX navigation file whose ionosphere parameters are used until the broadcast ones are decoded")
       ->check(CLI::ExistingFile);
+  cmd->add_option("--mode", o->mode, "scalar, or INS-aided: loose (PVT), tight (pseudorange/rate), ultra (filter steers the channels)")
+      ->check(CLI::IsMember({"scalar", "loose", "tight", "ultra"}))
+      ->capture_default_str();
+  cmd->add_option("--imu", o->imu_path, "IMU CSV file (increments or rates, see README) for the aided modes")->check(CLI::ExistingFile);
+  cmd->add_option("--imu-grade", o->imu_grade, "The IMU's grade in --imu-grades-file (its noise and bias figures)")->capture_default_str();
+  cmd->add_option("--imu-grades-file", o->imu_grades_file, "IMU grades YAML file")->capture_default_str();
+  cmd->add_option("--imu-lever-arm", o->imu_lever_arm_m, "IMU position from the antenna, body axes x y z (m), as a scenario's imu.lever_arm_m")
+      ->expected(3);
   cmd->add_option("--week", o->receiver.reference_week, "GPS week near the data (resolves the 10-bit week; default: today)");
   cmd->callback([o] { run_receiver(*o); });
 });
