@@ -89,8 +89,8 @@ class StreamParser {
   const std::optional<StreamHeader>& header() const { return header_; }
   /// True between frames (no partial header or frame buffered).
   bool at_boundary() const { return pending_.empty() && !frame_; }
-  /// Bytes of a header or frame received only in part.
-  std::size_t partial_bytes() const { return pending_.size() + (frame_ ? frame_->payload.size() : 0); }
+  /// Bytes of a header or frame received only in part (a frame's header included).
+  std::size_t partial_bytes() const { return pending_.size() + (frame_ ? kFrameHeaderBytes + payload_filled_ : 0); }
 
  private:
   std::optional<StreamHeader> header_;
