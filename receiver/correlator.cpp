@@ -163,8 +163,15 @@ inline std::int16_t level(const std::int16_t* table, std::int64_t chip) {
   return table[((chip % 1023) + 1023) % 1023];
 }
 
-template <bool kSmall>
-void kernel_portable(const Sample* x, int m, const Run& run, const Setup& su, Acc& acc) {
+template <bool kSmall, int kT, bool kNear>
+void kernel_portable_impl(const Sample* x, int m, const Run& run, const Setup& su, Acc& acc) {
+  // kNear: every tap within kPad chips, so a chip index never leaves the padded table.
+  const auto chip_level = [](const std::int16_t* table, std::int64_t chip) {
+    return kNear ? table[chip] : level(table, chip);
+  };
+  std::int64_t offset[kT];
+  for (int t = 0; t < kT; ++t) offset[t] = std::int64_t{su.d[t]} << (kCodeFracBits - kTapFracBits);
+  std::int64_t sums[kTaps][2] = {};
   std::int64_t pos = run.pos0;
   std::uint32_t phi = run.phi0;
   for (int k = 0; k < m; ++k, phi += run.dphi) {
@@ -179,18 +186,30 @@ void kernel_portable(const Sample* x, int m, const Run& run, const Setup& su, Ac
       re = static_cast<std::int16_t>(mulhrs(i, c) + mulhrs(q, s));
       im = static_cast<std::int16_t>(mulhrs(q, c) - mulhrs(i, s));
     }
-    for (int t = 0; t < su.taps; ++t) {
-      const std::int64_t chip = (pos + (std::int64_t{su.d[t]} << (kCodeFracBits - kTapFracBits))) >> kCodeFracBits;
-      const std::int16_t l = level(su.code16, chip);
-      acc[t][0] += re * l;
-      acc[t][1] += im * l;
+    for (int t = 0; t < kT; ++t) {
+      const std::int16_t l = chip_level(su.code16, (pos + offset[t]) >> kCodeFracBits);
+      sums[t][0] += re * l;
+      sums[t][1] += im * l;
     }
-    const std::int16_t l = level(su.noise16, pos >> kCodeFracBits);
-    acc[kNoise][0] += re * l;
-    acc[kNoise][1] += im * l;
+    const std::int16_t l = chip_level(su.noise16, pos >> kCodeFracBits);
+    sums[kNoise][0] += re * l;
+    sums[kNoise][1] += im * l;
     pos += run.inc;
     if (pos >= kCodeWrap) pos -= kCodeWrap;
   }
+  for (int t = 0; t < kTaps; ++t) {
+    acc[t][0] += sums[t][0];
+    acc[t][1] += sums[t][1];
+  }
+}
+
+template <bool kSmall>
+void kernel_portable(const Sample* x, int m, const Run& run, const Setup& su, Acc& acc) {
+  const bool near = su.h <= kPad;
+  if (su.taps == 3)
+    (near ? kernel_portable_impl<kSmall, 3, true> : kernel_portable_impl<kSmall, 3, false>)(x, m, run, su, acc);
+  else
+    (near ? kernel_portable_impl<kSmall, 5, true> : kernel_portable_impl<kSmall, 5, false>)(x, m, run, su, acc);
 }
 
 #if defined(__x86_64__)
@@ -392,92 +411,105 @@ DEEPNAV_AVX2 void kernel_avx2(const Sample* x, int m, const Run& run, const Setu
                        _mm256_mullo_epi32(lane, inc_v));
   const __m256i off_b = _mm256_add_epi32(off_a, _mm256_mullo_epi32(eight, inc_v));
   const __m256i zero_low = _mm256_set1_epi16(0x0080);  // pshufb index with bit 7 set gives 0
-  // The code words are +-256 (the level in the high byte), so each madd adds up to 2^24
-  // per lane: the lanes are moved to int64 every 64 iterations.
-  __m256i d[5];
-  for (int t = 0; t < kT; ++t) d[t] = _mm256_set1_epi16(su.d[t]);
+  const __m256i d_e = _mm256_set1_epi16(su.d[0]), d_l = _mm256_set1_epi16(su.d[2]);
+  const __m256i d_ve = _mm256_set1_epi16(su.d[3]), d_vl = _mm256_set1_epi16(su.d[4]);
 
-  // The code words are +-256 (the level in the high byte), so each madd adds up to 2^24
-  // per lane: the lanes are moved to int64 every 64 iterations.
-  __m256i acc_re[kT + 1], acc_im[kT + 1];
-  for (int t = 0; t <= kT; ++t) acc_re[t] = acc_im[t] = _mm256_setzero_si256();
+  // Named accumulators (not arrays): GCC keeps arrays of vectors in memory as well.
+  __m256i e_re = _mm256_setzero_si256(), e_im = e_re, p_re = e_re, p_im = e_re, l_re = e_re, l_im = e_re;
+  __m256i ve_re = e_re, ve_im = e_re, vl_re = e_re, vl_im = e_re, n_re = e_re, n_im = e_re;
 
   std::int64_t pos = run.pos0;
   const std::int64_t block_inc = run.inc * 16;
-  int iterations = 0;
-  for (int k = 0; k < m; k += 16) {
-    const int left = m - k;
-    __m256i x0, x1;
-    if (left >= 16) {
-      x0 = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(src + k));
-      x1 = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(src + k + 8));
-    } else {
-      x0 = _mm256_maskload_epi32(src + k, _mm256_cmpgt_epi32(_mm256_set1_epi32(left), lane));
-      x1 = _mm256_maskload_epi32(src + k + 8, _mm256_cmpgt_epi32(_mm256_set1_epi32(left - 8), lane));
-    }
-    const __m256i i = _mm256_blend_epi16(x0, _mm256_slli_epi32(x1, 16), 0xAA);
-    const __m256i q = _mm256_blend_epi16(_mm256_srli_epi32(x0, 16), x1, 0xAA);
-
-    // Phase index p (5 bits) per word; quadrant q = p >> 3, r = p & 7.
-    const __m256i p = _mm256_and_si256(_mm256_blend_epi16(_mm256_srli_epi32(phi_a, 16), phi_b, 0xAA), five_bits);
-    phi_a = _mm256_add_epi32(phi_a, phi_step);
-    phi_b = _mm256_add_epi32(phi_b, phi_step);
-    const __m256i cidx = _mm256_add_epi16(_mm256_shuffle_epi8(map, _mm256_mullo_epi16(p, dup)), hi_byte);
-    const __m256i mag_c = _mm256_shuffle_epi8(qtab, cidx);
-    const __m256i mag_s = _mm256_shuffle_epi8(qtab, _mm256_xor_si256(cidx, mirror));
-    // Signs: sin < 0 in quadrants 2, 3 (bit 4), cos < 0 in quadrants 1, 2 (bit 3 xor bit 4);
-    // bit 0 set keeps the sign words non-zero for psignw.
-    const __m256i sgn_s = _mm256_or_si256(_mm256_slli_epi16(p, 11), one);
-    const __m256i sgn_c = _mm256_xor_si256(sgn_s, _mm256_slli_epi16(p, 12));
-    const __m256i c = _mm256_sign_epi16(mag_c, sgn_c), s = _mm256_sign_epi16(mag_s, sgn_s);
-    __m256i re, im;
-    if constexpr (kSmall) {
-      re = _mm256_add_epi16(_mm256_mullo_epi16(i, c), _mm256_mullo_epi16(q, s));
-      im = _mm256_sub_epi16(_mm256_mullo_epi16(q, c), _mm256_mullo_epi16(i, s));
-    } else {
-      re = _mm256_add_epi16(_mm256_mulhrs_epi16(i, c), _mm256_mulhrs_epi16(q, s));
-      im = _mm256_sub_epi16(_mm256_mulhrs_epi16(q, c), _mm256_mulhrs_epi16(i, s));
-    }
-
-    const auto first = static_cast<int>(pos >> kCodeFracBits);
-    const __m256i frac = _mm256_set1_epi32(static_cast<int>(pos & ((std::int64_t{1} << kCodeFracBits) - 1)));
-    const __m256i w =
-        _mm256_blend_epi16(_mm256_srli_epi32(_mm256_add_epi32(frac, off_a), 16), _mm256_add_epi32(frac, off_b), 0xAA);
-    const __m256i win =
-        _mm256_broadcastsi128_si256(_mm_loadu_si128(reinterpret_cast<const __m128i*>(su.code8 + first - su.h)));
-    const __m256i nwin =
-        _mm256_broadcastsi128_si256(_mm_loadu_si128(reinterpret_cast<const __m128i*>(su.noise8 + first - su.h)));
-    for (int t = 0; t < kT; ++t) {
-      // High byte: the chip index (position >> 11); low byte: 0x80, so the code lands in
-      // the high byte of the word: +-256.
-      const __m256i idx = _mm256_or_si256(_mm256_srli_epi16(_mm256_add_epi16(w, d[t]), kTapFracBits - 8), zero_low);
-      const __m256i code = _mm256_shuffle_epi8(win, idx);
-      acc_re[t] = _mm256_add_epi32(acc_re[t], _mm256_madd_epi16(re, code));
-      acc_im[t] = _mm256_add_epi32(acc_im[t], _mm256_madd_epi16(im, code));
-      if (t == 1) {
-        const __m256i ncode = _mm256_shuffle_epi8(nwin, idx);
-        acc_re[kT] = _mm256_add_epi32(acc_re[kT], _mm256_madd_epi16(re, ncode));
-        acc_im[kT] = _mm256_add_epi32(acc_im[kT], _mm256_madd_epi16(im, ncode));
+  // Two passes per chunk of 64 blocks, so that neither needs more than the 16 registers:
+  // carrier wipe-off into re/im buffers, then the taps.
+  alignas(32) std::int16_t re_buf[64 * 16], im_buf[64 * 16];
+  for (int k0 = 0; k0 < m; k0 += 64 * 16) {
+    const int k_end = std::min(m, k0 + 64 * 16);
+    for (int k = k0; k < k_end; k += 16) {
+      __m256i x0, x1;
+      if (const int left = m - k; left >= 16) [[likely]] {
+        x0 = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(src + k));
+        x1 = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(src + k + 8));
+      } else {  // masked loads: the missing samples are zero and add nothing
+        x0 = _mm256_maskload_epi32(src + k, _mm256_cmpgt_epi32(_mm256_set1_epi32(left), lane));
+        x1 = _mm256_maskload_epi32(src + k + 8, _mm256_cmpgt_epi32(_mm256_set1_epi32(left - 8), lane));
       }
-    }
-    pos += block_inc;
-    if (pos >= kCodeWrap) pos -= kCodeWrap;
-    if (++iterations == 64) {
-      iterations = 0;
-      for (int t = 0; t < kT; ++t) {
-        drain(acc_re[t], acc[t][0]);
-        drain(acc_im[t], acc[t][1]);
+      const __m256i i = _mm256_blend_epi16(x0, _mm256_slli_epi32(x1, 16), 0xAA);
+      const __m256i q = _mm256_blend_epi16(_mm256_srli_epi32(x0, 16), x1, 0xAA);
+
+      // Phase index p (5 bits) per word; quadrant = p >> 3, r = p & 7.
+      const __m256i p = _mm256_and_si256(_mm256_blend_epi16(_mm256_srli_epi32(phi_a, 16), phi_b, 0xAA), five_bits);
+      phi_a = _mm256_add_epi32(phi_a, phi_step);
+      phi_b = _mm256_add_epi32(phi_b, phi_step);
+      const __m256i cidx = _mm256_add_epi16(_mm256_shuffle_epi8(map, _mm256_mullo_epi16(p, dup)), hi_byte);
+      const __m256i mag_c = _mm256_shuffle_epi8(qtab, cidx);
+      const __m256i mag_s = _mm256_shuffle_epi8(qtab, _mm256_xor_si256(cidx, mirror));
+      // Signs: sin < 0 in quadrants 2, 3 (bit 4), cos < 0 in quadrants 1, 2 (bit 3 xor bit 4);
+      // bit 0 set keeps the sign words non-zero for psignw.
+      const __m256i sgn_s = _mm256_or_si256(_mm256_slli_epi16(p, 11), one);
+      const __m256i sgn_c = _mm256_xor_si256(sgn_s, _mm256_slli_epi16(p, 12));
+      const __m256i c = _mm256_sign_epi16(mag_c, sgn_c), s = _mm256_sign_epi16(mag_s, sgn_s);
+      __m256i re, im;
+      if constexpr (kSmall) {
+        re = _mm256_add_epi16(_mm256_mullo_epi16(i, c), _mm256_mullo_epi16(q, s));
+        im = _mm256_sub_epi16(_mm256_mullo_epi16(q, c), _mm256_mullo_epi16(i, s));
+      } else {
+        re = _mm256_add_epi16(_mm256_mulhrs_epi16(i, c), _mm256_mulhrs_epi16(q, s));
+        im = _mm256_sub_epi16(_mm256_mulhrs_epi16(q, c), _mm256_mulhrs_epi16(i, s));
       }
-      drain(acc_re[kT], acc[kNoise][0]);
-      drain(acc_im[kT], acc[kNoise][1]);
+      _mm256_store_si256(reinterpret_cast<__m256i*>(re_buf + (k - k0)), re);
+      _mm256_store_si256(reinterpret_cast<__m256i*>(im_buf + (k - k0)), im);
     }
+    for (int k = k0; k < k_end; k += 16) {
+      const __m256i re = _mm256_load_si256(reinterpret_cast<const __m256i*>(re_buf + (k - k0)));
+      const __m256i im = _mm256_load_si256(reinterpret_cast<const __m256i*>(im_buf + (k - k0)));
+      const auto first = static_cast<int>(pos >> kCodeFracBits);
+      const __m256i frac = _mm256_set1_epi32(static_cast<int>(pos & ((std::int64_t{1} << kCodeFracBits) - 1)));
+      const __m256i w =
+          _mm256_blend_epi16(_mm256_srli_epi32(_mm256_add_epi32(frac, off_a), 16), _mm256_add_epi32(frac, off_b), 0xAA);
+      const __m256i win =
+          _mm256_broadcastsi128_si256(_mm_loadu_si128(reinterpret_cast<const __m128i*>(su.code8 + first - su.h)));
+      const __m256i nwin =
+          _mm256_broadcastsi128_si256(_mm_loadu_si128(reinterpret_cast<const __m128i*>(su.noise8 + first - su.h)));
+      // Index words: high byte the chip (position >> 11), low byte 0x80 so that pshufb puts
+      // the level (+-1) in the high byte: code words of +-256.
+#define DEEPNAV_IDX(D) _mm256_or_si256(_mm256_srli_epi16(D, kTapFracBits - 8), zero_low)
+#define DEEPNAV_TAP(IDX, WIN, RE, IM)                                   \
+  {                                                                     \
+    const __m256i code = _mm256_shuffle_epi8(WIN, IDX);                 \
+    RE = _mm256_add_epi32(RE, _mm256_madd_epi16(re, code));             \
+    IM = _mm256_add_epi32(IM, _mm256_madd_epi16(im, code));             \
   }
-  for (int t = 0; t < kT; ++t) {
-    drain(acc_re[t], acc[t][0]);
-    drain(acc_im[t], acc[t][1]);
+      const __m256i idx_p = DEEPNAV_IDX(w);
+      DEEPNAV_TAP(idx_p, win, p_re, p_im)
+      DEEPNAV_TAP(idx_p, nwin, n_re, n_im)  // the noise tap shares the prompt's timing
+      DEEPNAV_TAP(DEEPNAV_IDX(_mm256_add_epi16(w, d_e)), win, e_re, e_im)
+      DEEPNAV_TAP(DEEPNAV_IDX(_mm256_add_epi16(w, d_l)), win, l_re, l_im)
+      if constexpr (kT == 5) {
+        DEEPNAV_TAP(DEEPNAV_IDX(_mm256_add_epi16(w, d_ve)), win, ve_re, ve_im)
+        DEEPNAV_TAP(DEEPNAV_IDX(_mm256_add_epi16(w, d_vl)), win, vl_re, vl_im)
+      }
+#undef DEEPNAV_TAP
+#undef DEEPNAV_IDX
+      pos += block_inc;
+      if (pos >= kCodeWrap) pos -= kCodeWrap;
+    }
+    // Each madd adds up to 2^24 per lane: 64 iterations stay within int32.
+    drain(e_re, acc[0][0]);
+    drain(e_im, acc[0][1]);
+    drain(p_re, acc[1][0]);
+    drain(p_im, acc[1][1]);
+    drain(l_re, acc[2][0]);
+    drain(l_im, acc[2][1]);
+    if constexpr (kT == 5) {
+      drain(ve_re, acc[3][0]);
+      drain(ve_im, acc[3][1]);
+      drain(vl_re, acc[4][0]);
+      drain(vl_im, acc[4][1]);
+    }
+    drain(n_re, acc[kNoise][0]);
+    drain(n_im, acc[kNoise][1]);
   }
-  drain(acc_re[kT], acc[kNoise][0]);
-  drain(acc_im[kT], acc[kNoise][1]);
 }
 #endif
 

@@ -114,6 +114,38 @@ TEST(Correlator, SimdKernelsAreBitExactWithThePortableKernel) {
   }
 }
 
+TEST(Correlator, SpansOutsideTheSimdWindowsGiveTheSameIntegers) {
+  // Code steps up to 2 chips per sample and taps several chips out do not fit the SIMD
+  // kernels' chip windows (or only some of them): every kernel must still agree exactly.
+  std::mt19937_64 rng(5);
+  const double steps[] = {1.023e6 / 1.1e6, 1.023e6 / 0.9e6, 1.5, 2.0, 0.25};
+  const double very[] = {0.0, 1.0, 3.0, 0.0, 9.0};
+  for (int j = 0; j < 5; ++j) {
+    RandomCase c = random_case(rng, 3001);
+    c.span.code_step_chips = steps[j];
+    c.span.very_spacing_chips = very[j];
+    const auto& code = ca_code_chips(c.prn);
+    const auto& noise = ca_code_chips(c.prn % 32 + 1);
+    const CorrelatorSums p = correlate(CorrelatorKernel::portable, c.x.data(), 3001, c.span, code, noise);
+    const CorrelatorSums ref = correlate_reference(c.x.data(), 3001, c.span, code, noise);
+    double l1 = 0.0;
+    for (const Sample& v : c.x) l1 += std::abs(std::complex<double>(v.real(), v.imag()));
+    // Loose here (the bound of the reference test is below); it catches a wrong chip.
+    EXPECT_LT(std::abs(p.prompt - ref.prompt), 0.12 * l1) << "step " << steps[j];
+    EXPECT_LT(std::abs(p.very_early - ref.very_early), 0.12 * l1) << "step " << steps[j];
+    for (CorrelatorKernel k : available_correlator_kernels()) {
+      SCOPED_TRACE(testing::Message() << "kernel " << static_cast<int>(k) << " step " << steps[j]);
+      const CorrelatorSums s = correlate(k, c.x.data(), 3001, c.span, code, noise);
+      EXPECT_EQ(s.early, p.early);
+      EXPECT_EQ(s.prompt, p.prompt);
+      EXPECT_EQ(s.late, p.late);
+      EXPECT_EQ(s.very_early, p.very_early);
+      EXPECT_EQ(s.very_late, p.very_late);
+      EXPECT_EQ(s.noise, p.noise);
+    }
+  }
+}
+
 TEST(Correlator, EveryKernelMatchesTheSampleBySampleReference) {
   // Stated tolerance: the carrier replica is off by at most pi/32 in phase (|e^{j eps} - 1|
   // <= 0.099) and 0.5 % in amplitude, and a tap offset by at most 2.4e-4 chip moves at most
