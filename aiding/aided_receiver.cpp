@@ -112,7 +112,7 @@ struct AidedReceiver::Impl : ChannelSteering {
   int count_steerable() {
     int n = 0;
     rx.for_each_channel([&](TrackingChannel& ch, const NavDecoder& d) {
-      if (d.synchronised() && d.ephemeris() && ch.bit_edge_period() && ch.state() != ChannelState::lost) ++n;
+      if (d.synchronised() && rx.ephemeris(ch.prn()) && ch.bit_edge_period() && ch.state() != ChannelState::lost) ++n;
     });
     return n;
   }

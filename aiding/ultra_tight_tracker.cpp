@@ -27,8 +27,8 @@ double frequency_sigma_hz(double cn0_dbhz, double t_s) {
   return std::sqrt(2.0 * phase_var) / (2.0 * M_PI * t_s);
 }
 
-bool steerable(const CorrelatorEpoch& e, const TrackingChannel& ch, const NavDecoder& nav) {
-  return e.bit_synced && ch.state() != ChannelState::lost && nav.synchronised() && nav.ephemeris().has_value();
+bool steerable(const CorrelatorEpoch& e, const TrackingChannel& ch, const NavDecoder& nav, const ScalarReceiver& rx) {
+  return e.bit_synced && ch.state() != ChannelState::lost && nav.synchronised() && rx.ephemeris(e.prn) != nullptr;
 }
 
 }  // namespace
@@ -60,7 +60,7 @@ bool UltraTightTracker::on_epoch(const CorrelatorEpoch& e, TrackingChannel& ch, 
     const bool faded = e.cn0_dbhz > 0.0 && e.cn0_dbhz < cfg_.faded_below_dbhz;
     engaged = faded || (was_steered && e.cn0_dbhz < cfg_.recovered_above_dbhz);
   }
-  if (!engaged || !steerable(e, ch, nav) || !rx_.receiver_time(end)) {
+  if (!engaged || !steerable(e, ch, nav, rx_) || !rx_.receiver_time(end)) {
     if (was_steered) {
       steered_.erase(e.prn);
       ch.set_loss_detection(true);
@@ -84,7 +84,7 @@ bool UltraTightTracker::on_epoch(const CorrelatorEpoch& e, TrackingChannel& ch, 
   d.doppler_hz = doppler;
   d.cn0_dbhz = e.cn0_dbhz;
   d.integration_s = e.integration_s;
-  d.ephemeris = *nav.ephemeris();
+  d.ephemeris = *rx_.ephemeris(e.prn);
   queued_.push_back(d);
   return true;
 }
@@ -122,7 +122,7 @@ UpdateResult UltraTightTracker::update_and_steer(AidedNavigator& nav, std::int64
   if (!ms.empty()) result = nav.update_ranges(ms);
   steerable_ = 0;
   rx_.for_each_channel([&](TrackingChannel& ch, const NavDecoder& decoder) {
-    if (decoder.synchronised() && decoder.ephemeris() && ch.bit_edge_period() && ch.state() != ChannelState::lost)
+    if (decoder.synchronised() && rx_.ephemeris(ch.prn()) && ch.bit_edge_period() && ch.state() != ChannelState::lost)
       ++steerable_;
     if (steered_.count(ch.prn())) steer(ch, decoder, nav, end_sample);
   });
@@ -133,11 +133,12 @@ void UltraTightTracker::steer(TrackingChannel& ch, const NavDecoder& decoder, co
                               std::int64_t sample) {
   const std::optional<GpsTime> t_rx = rx_.receiver_time(sample);
   const std::optional<double> tt_replica = transmit_time_sow(decoder, ch, sample);
-  if (!t_rx || !tt_replica || !decoder.ephemeris()) return;
+  const Ephemeris* eph = rx_.ephemeris(ch.prn());
+  if (!t_rx || !tt_replica || !eph) return;
   const double t_s = static_cast<double>(sample) / rx_.sample_rate_hz();
   const double dt = t_s - nav.time_s();
   const double bias = nav.clock_bias_m() + nav.clock_drift_mps() * dt;
-  const RangePrediction p = predict_range(*decoder.ephemeris(), *t_rx, bias, nav.antenna_ecef_at(t_s), rx_.iono());
+  const RangePrediction p = predict_range(*eph, *t_rx, bias, nav.antenna_ecef_at(t_s), rx_.iono());
   const double tt_predicted = t_rx->sow - p.pseudorange_m(bias) / gps::kSpeedOfLight_mps;
   const double correction_chips = seconds_of_week_difference(tt_predicted, *tt_replica) * gps::kCodeRate_cps;
   if (std::abs(correction_chips) > cfg_.max_code_correction_chips) {

@@ -48,6 +48,7 @@ struct ScalarReceiver::Impl {
   bool gap_since_epoch = false;  ///< samples lost since the last observation epoch
   double last_reacquire_s = 0.0;
   ChannelSteering* steering = nullptr;
+  std::optional<NavData> assisted;
 
   Impl(ReceiverConfig c, SampleSource& s) : cfg(std::move(c)), src(s), fs(s.sample_rate_hz()), pvt(cfg.pvt) {
     cfg.acquisition.sample_rate_hz = fs;
@@ -155,6 +156,13 @@ struct ScalarReceiver::Impl {
     if (!time_ref) return ep;
     const GpsTime t_rx = time_ref->plus_seconds(static_cast<double>(s - sample_ref) / fs);
     ep.t_rx = t_rx;
+    if (assisted) {
+      for (const auto& x : tx) {
+        const int prn = x.ch->trk->prn();
+        if (ephs.count(prn)) continue;
+        if (const Ephemeris* e = assisted->select(prn, t_rx)) ephs[prn] = *e;
+      }
+    }
     std::vector<PseudorangeObservation> obs;
     for (const auto& x : tx) {
       double dt = t_rx.sow - x.t_tx_sow;
@@ -247,6 +255,13 @@ void ScalarReceiver::run(const std::function<void(const ReceiverEpoch&)>& on_epo
 
 void ScalarReceiver::set_assisted_iono(const IonoParameters& iono) {
   if (!impl_->iono.valid) impl_->iono = iono;
+}
+
+void ScalarReceiver::set_assisted_ephemerides(const NavData& nav) { impl_->assisted = nav; }
+
+const Ephemeris* ScalarReceiver::ephemeris(int prn) const {
+  const auto it = impl_->ephs.find(prn);
+  return it == impl_->ephs.end() ? nullptr : &it->second;
 }
 
 void ScalarReceiver::set_steering(ChannelSteering* steering) { impl_->steering = steering; }

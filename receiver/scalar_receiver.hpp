@@ -20,6 +20,7 @@
 #include "receiver/sample_source.hpp"
 #include "receiver/tracking_channel.hpp"
 #include "receiver/tracking_loops.hpp"
+#include "signals/rinex_nav.hpp"
 
 namespace deepnav {
 
@@ -89,6 +90,11 @@ class ScalarReceiver {
   /// Ionosphere parameters to use until the broadcast ones (subframe 4 page 18, sent once
   /// every 12.5 min) are decoded, e.g. from a navigation file given as assistance.
   void set_assisted_iono(const IonoParameters& iono);
+  /// Broadcast ephemerides to use until the satellites' own are decoded (assisted start:
+  /// the first fix then needs only a transmit time, i.e. one subframe, not a whole frame).
+  void set_assisted_ephemerides(const NavData& nav);
+  /// The ephemeris in use for a PRN (decoded, else assisted), nullptr when there is none.
+  const Ephemeris* ephemeris(int prn) const;
   /// Hands the channels' epochs to `steering` (nullptr: scalar loops only). Not owned.
   void set_steering(ChannelSteering* steering);
   /// Visits every channel (for a steering filter, from after_block()).

@@ -37,6 +37,7 @@ struct RunOptions {
   std::string mitigation = "none";
   ReceiverConfig receiver;
   // INS aiding (--mode loose|tight|ultra).
+  std::string assist_ephemeris;
   std::string mode = "scalar", imu_path, imu_grade = "tactical", imu_grades_file = "data/imu_grades.yaml";
   std::vector<double> imu_lever_arm_m{0.0, 0.0, 0.0};
 };
@@ -135,12 +136,11 @@ void run_receiver(RunOptions o) {
     scalar = std::make_unique<ScalarReceiver>(o.receiver, mitigated);
   }
   ScalarReceiver& receiver = aided ? aided->receiver() : *scalar;
-  if (!o.assist_nav.empty()) {
-    try {
-      receiver.set_assisted_iono(read_rinex_nav(o.assist_nav).iono);
-    } catch (const std::runtime_error& e) {
-      throw UserError(e.what());
-    }
+  try {
+    if (!o.assist_nav.empty()) receiver.set_assisted_iono(read_rinex_nav(o.assist_nav).iono);
+    if (!o.assist_ephemeris.empty()) receiver.set_assisted_ephemerides(read_rinex_nav(o.assist_ephemeris));
+  } catch (const std::runtime_error& e) {
+    throw UserError(e.what());
   }
   const double total_s = opened.duration_s.value_or(0.0);
   ProgressLine progress("run", total_s);
@@ -291,6 +291,9 @@ const bool registered = register_command([](CommandParents& parents) {
   cmd->add_option("--doppler-max", o->receiver.acquisition.doppler_max_hz, "Acquisition Doppler half-width (Hz)")->capture_default_str();
   cmd->add_option("--iono-from", o->assist_nav,
                   "RINEX navigation file whose ionosphere parameters are used until the broadcast ones are decoded")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--ephemeris-from", o->assist_ephemeris,
+                  "RINEX navigation file whose ephemerides are used until the broadcast ones are decoded (assisted start)")
       ->check(CLI::ExistingFile);
   cmd->add_option("--mode", o->mode, "scalar, or INS-aided: loose (PVT), tight (pseudorange/rate), ultra (filter steers the channels)")
       ->check(CLI::IsMember({"scalar", "loose", "tight", "ultra"}))
