@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <functional>
 #include <cmath>
 #include <memory>
 #include <stdexcept>
@@ -115,9 +116,13 @@ struct CodeTable {
 };
 
 /// The table of a code. A receiver interleaves its channels over the same block, so each
-/// thread keeps the tables of the last 64 codes it saw, keyed by address and checked
-/// against a copy of the chips (a caller may reuse an address for another code).
+/// thread keeps the tables of the last 64 codes it saw, keyed by address. A code outside
+/// ca_code_chips()'s constant table is checked against a copy of its chips (a caller may
+/// reuse an address for another code).
 const CodeTable& table_for(const CaCodeChips& code) {
+  static const CaCodeChips* const kFirst = &ca_code_chips(1);
+  static const CaCodeChips* const kLast = &ca_code_chips(32);
+  const bool constant = std::less_equal<>()(kFirst, &code) && std::less_equal<>()(&code, kLast);
   struct Entry {
     const CaCodeChips* key = nullptr;
     CaCodeChips chips{};
@@ -128,7 +133,7 @@ const CodeTable& table_for(const CaCodeChips& code) {
   thread_local int next = 0;
   for (Entry& e : cache) {
     if (e.key == &code) {
-      if (e.chips != code) {
+      if (!constant && e.chips != code) {
         e.chips = code;
         e.table = std::make_unique<CodeTable>(code);
       }

@@ -213,6 +213,24 @@ TEST(Correlator, CarrierPhaseAndAmplitudeErrorsAreWithinTheTableResolution) {
   }
 }
 
+TEST(Correlator, ACodeChangedAtTheSameAddressIsNotServedFromACache) {
+  const auto x = make_signal(9, 4092, 100.0, 0.25, 0.0, 40.0f, 3);
+  CorrelatorSpan span;
+  span.code_phase_chips = 100.0;
+  span.code_step_chips = 0.25;
+  CaCodeChips code = ca_code_chips(3);
+  CaCodeChips noise = ca_code_chips(4);
+  for (CorrelatorKernel k : available_correlator_kernels()) {
+    (void)correlate(k, x.data(), 4092, span, code, noise);
+    code = ca_code_chips(9);
+    const CorrelatorSums changed = correlate(k, x.data(), 4092, span, code, noise);
+    const CorrelatorSums fresh = correlate(k, x.data(), 4092, span, ca_code_chips(9), ca_code_chips(4));
+    EXPECT_EQ(changed.prompt, fresh.prompt) << static_cast<int>(k);
+    EXPECT_GT(std::abs(changed.prompt), 0.9 * 40.0 * 4092);
+    code = ca_code_chips(3);
+  }
+}
+
 TEST(Correlator, VeryEarlyLateAreZeroWhenDisabled) {
   const auto x = make_signal(3, 2000, 5.0, 0.25, 0.0, 50.0f, 2);
   CorrelatorSpan span;
