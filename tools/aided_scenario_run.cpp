@@ -1,0 +1,57 @@
+#include "tools/aided_scenario_run.hpp"
+
+#include <chrono>
+
+#include "ins/frames.hpp"
+#include "ins/imu_file.hpp"
+#include "receiver/file_sample_source.hpp"
+#include "receiver/truth_file.hpp"
+#include "signals/rinex_nav.hpp"
+
+namespace deepnav::cli {
+
+AidedRunResult run_aided_scenario(const Scenario& sc, const SynthesisSummary& s, aiding::NavMode mode) {
+  const auto start = std::chrono::steady_clock::now();
+  FileSampleSourceOptions src;
+  src.path = s.if_path;
+  src.format = sc.format;
+  src.sample_rate_hz = sc.sample_rate_hz;
+  src.intermediate_frequency_hz = sc.if_hz;
+  FileSampleSource source(src);
+  aiding::AidedReceiverConfig cfg;
+  cfg.mode = mode;
+  cfg.receiver.reference_week = sc.start_time.week;
+  cfg.imu = load_imu_grade(sc.imu.grades_file, sc.imu.grade).model;
+  cfg.lever_arm_imu_to_antenna_b_m = -Eigen::Vector3d(sc.imu.lever_arm_m[0], sc.imu.lever_arm_m[1], sc.imu.lever_arm_m[2]);
+  aiding::AidedReceiver rx(cfg, source, read_imu_csv(s.imu_path), sc.duration_s);
+  const NavData nav = read_rinex_nav(sc.nav_file);
+  rx.receiver().set_assisted_iono(nav.iono);
+  rx.receiver().set_assisted_ephemerides(nav);
+  const TruthFile truth(s.truth_path);
+  AidedRunResult result;
+  const double lost_dbhz = cfg.receiver.tracking.lost_cn0_dbhz;
+  rx.run(
+      [&](const aiding::AidedEpoch& a) {
+        EpochError e;
+        e.t_s = a.receiver.t_s;
+        e.mode = a.mode;
+        const bool aided = a.valid && a.mode != aiding::NavMode::scalar;
+        const Eigen::Vector3d r = aided ? a.r_ecef_m : a.receiver.pvt.r_ecef_m;
+        const Eigen::Vector3d v = aided ? a.v_ecef_mps : a.receiver.pvt.v_ecef_mps;
+        e.valid = aided || a.receiver.pvt.valid;
+        if (aided && result.first_aided_s < 0.0) result.first_aided_s = e.t_s;
+        if (const auto t = truth.at(e.t_s); t && e.valid) {
+          e.error_ned_m = ned_offset_m(t->r_ecef_m, r);
+          e.velocity_error_mps = (v - t->v_ecef_mps).norm();
+        }
+        result.epochs.push_back(e);
+      },
+      [&](const CorrelatorEpoch& e, const ChannelSnapshot& ch) {
+        if (ch.cn0_dbhz >= lost_dbhz) result.tracked_s[e.prn] += e.integration_s;
+      });
+  result.mode_changes = rx.mode_changes();
+  result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace deepnav::cli

@@ -1,0 +1,35 @@
+#pragma once
+// One synthesized scenario through the receiver in one mode, scored against the
+// synthesizer's truth: what the aiding benchmarks (coupling, weak-signal threshold) repeat
+// over trajectories, modes, C/N0 levels and seeds.
+#include <map>
+#include <string>
+#include <vector>
+
+#include "aiding/aided_receiver.hpp"
+#include "signals/if_synthesizer.hpp"
+#include "signals/scenario.hpp"
+
+namespace deepnav::cli {
+
+struct EpochError {
+  double t_s = 0.0;
+  aiding::NavMode mode = aiding::NavMode::scalar;
+  bool valid = false;
+  Eigen::Vector3d error_ned_m = Eigen::Vector3d::Zero();  ///< solution minus truth (antenna)
+  double velocity_error_mps = 0.0;
+};
+
+struct AidedRunResult {
+  std::vector<EpochError> epochs;       ///< one per observation epoch
+  std::map<int, double> tracked_s;      ///< per PRN: seconds of integrations with C/N0 above the loss threshold
+  double first_aided_s = -1.0;          ///< first epoch in a coupled mode (-1: never)
+  std::vector<aiding::ModeChange> mode_changes;
+  double wall_s = 0.0;
+};
+
+/// Runs `mode` (scalar included) on a synthesized scenario with assisted ephemerides and
+/// ionosphere from the scenario's navigation file.
+AidedRunResult run_aided_scenario(const Scenario& scenario, const SynthesisSummary& synthesis, aiding::NavMode mode);
+
+}  // namespace deepnav::cli
