@@ -176,7 +176,7 @@ void kernel_portable_impl(const Sample* x, int m, const Run& run, const Setup& s
   };
   std::int64_t offset[kT];
   for (int t = 0; t < kT; ++t) offset[t] = std::int64_t{su.d[t]} << (kCodeFracBits - kTapFracBits);
-  std::int64_t sums[kTaps][2] = {};
+  std::int32_t sums[kTaps][2] = {};  // a run adds at most 4096 * 2^15 < 2^31
   std::int64_t pos = run.pos0;
   std::uint32_t phi = run.phi0;
   for (int k = 0; k < m; ++k, phi += run.dphi) {
