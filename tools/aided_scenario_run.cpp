@@ -40,6 +40,12 @@ AidedRunResult run_aided_scenario(const Scenario& sc, const SynthesisSummary& s,
         const Eigen::Vector3d v = aided ? a.v_ecef_mps : a.receiver.pvt.v_ecef_mps;
         e.valid = aided || a.receiver.pvt.valid;
         if (aided && result.first_aided_s < 0.0) result.first_aided_s = e.t_s;
+        switch (a.mode) {
+          case aiding::NavMode::ultra: e.gnss_measurements = a.measuring_channels; break;
+          case aiding::NavMode::tight: e.gnss_measurements = static_cast<int>(a.receiver.observations.size()); break;
+          case aiding::NavMode::coast: e.gnss_measurements = 0; break;
+          default: e.gnss_measurements = a.receiver.pvt.valid ? static_cast<int>(a.receiver.pvt.used_prns.size()) : 0;
+        }
         if (const auto t = truth.at(e.t_s); t && e.valid) {
           e.error_ned_m = ned_offset_m(t->r_ecef_m, r);
           e.velocity_error_mps = (v - t->v_ecef_mps).norm();

@@ -18,6 +18,9 @@ struct EpochError {
   bool valid = false;
   Eigen::Vector3d error_ned_m = Eigen::Vector3d::Zero();  ///< solution minus truth (antenna)
   double velocity_error_mps = 0.0;
+  /// Satellites whose measurements the solution used: the receiver PVT's in scalar and
+  /// loose mode, observables in tight mode, discriminator measurements in ultra mode.
+  int gnss_measurements = 0;
 };
 
 struct AidedRunResult {
