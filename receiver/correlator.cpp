@@ -116,13 +116,19 @@ struct CodeTable {
 };
 
 /// The table of a code. A receiver interleaves its channels over the same block, so each
-/// thread keeps the tables of the last 64 codes it saw, keyed by address. A code outside
-/// ca_code_chips()'s constant table is checked against a copy of its chips (a caller may
+/// thread keeps the tables of ca_code_chips()'s 32 constant codes, and of the last 64 other
+/// codes it saw, keyed by address and checked against a copy of the chips (a caller may
 /// reuse an address for another code).
 const CodeTable& table_for(const CaCodeChips& code) {
   static const CaCodeChips* const kFirst = &ca_code_chips(1);
   static const CaCodeChips* const kLast = &ca_code_chips(32);
-  const bool constant = std::less_equal<>()(kFirst, &code) && std::less_equal<>()(&code, kLast);
+  if (std::less_equal<>()(kFirst, &code) && std::less_equal<>()(&code, kLast)) {
+    // One of the 32 constant codes: its own slot, no search and no comparison.
+    thread_local std::array<std::unique_ptr<CodeTable>, 32> constant_tables;
+    auto& table = constant_tables[static_cast<std::size_t>(&code - kFirst)];
+    if (!table) table = std::make_unique<CodeTable>(code);
+    return *table;
+  }
   struct Entry {
     const CaCodeChips* key = nullptr;
     CaCodeChips chips{};
@@ -133,7 +139,7 @@ const CodeTable& table_for(const CaCodeChips& code) {
   thread_local int next = 0;
   for (Entry& e : cache) {
     if (e.key == &code) {
-      if (!constant && e.chips != code) {
+      if (e.chips != code) {
         e.chips = code;
         e.table = std::make_unique<CodeTable>(code);
       }
