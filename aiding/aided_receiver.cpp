@@ -161,7 +161,14 @@ struct AidedReceiver::Impl : ChannelSteering {
     nc.noise = process_noise_from(cfg.imu, cfg.oscillator);
     nc.lever_arm_imu_to_antenna_b_m = cfg.lever_arm_imu_to_antenna_b_m;
     const double dt = start->state.t_s - ep.t_s;
-    nav.emplace(start->state, fix.clock_bias_m + fix.clock_drift_mps * dt, fix.clock_drift_mps, nc, start->uncertainty);
+    // The fix's clock bias is against the receiver clock before this epoch's re-setting
+    // (observe() steers it right after the fix): move it onto the clock as it is now, and
+    // restart the step follower from there.
+    double bias = fix.clock_bias_m + fix.clock_drift_mps * dt;
+    if (const auto now = rx.receiver_time(ep.sample_index); now && ep.t_rx)
+      bias += gps::kSpeedOfLight_mps * seconds_of_week_difference(now->sow, ep.t_rx->sow);
+    if (previous_clock) previous_clock = rx.receiver_time(previous_clock_sample);
+    nav.emplace(start->state, bias, fix.clock_drift_mps, nc, start->uncertainty);
     start_method = start->method;
     const EulerAngles e = euler_from_quaternion(start->state.q_b_n);
     spdlog::info("t = {:.2f} s: INS started ({}): roll {:.2f} pitch {:.2f} yaw {:.2f} deg", ep.t_s, start_method,

@@ -2,6 +2,12 @@
 
 #include <spdlog/spdlog.h>
 
+#include <boost/asio/post.hpp>
+#include <boost/asio/thread_pool.hpp>
+#include <exception>
+#include <latch>
+#include <thread>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -48,6 +54,13 @@ struct ScalarReceiver::Impl {
   bool gap_since_epoch = false;  ///< samples lost since the last observation epoch
   double last_reacquire_s = 0.0;
   ChannelSteering* steering = nullptr;
+  struct EpochRecord {
+    CorrelatorEpoch epoch;
+    ChannelSnapshot snapshot;
+    bool new_ephemeris = false;
+  };
+  std::vector<std::vector<EpochRecord>> records;  ///< per channel, for the block being tracked
+  std::unique_ptr<boost::asio::thread_pool> pool;  ///< channel workers (ReceiverConfig::threads > 1)
   std::optional<NavData> assisted;
 
   Impl(ReceiverConfig c, SampleSource& s) : cfg(std::move(c)), src(s), fs(s.sample_rate_hz()), pvt(cfg.pvt) {
@@ -58,6 +71,8 @@ struct ScalarReceiver::Impl {
     if (cfg.reference_week == 0) cfg.reference_week = this_week();
     if (!(cfg.observation_rate_hz > 0.0 && cfg.observation_rate_hz <= 50.0))
       throw std::invalid_argument("observation rate must be in (0, 50] Hz");
+    const unsigned threads = cfg.threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : cfg.threads;
+    if (threads > 1) pool = std::make_unique<boost::asio::thread_pool>(threads);
   }
 
   bool tracked(int prn) const {
@@ -91,33 +106,65 @@ struct ScalarReceiver::Impl {
     }
   }
 
+  /// One channel over one block: correlation, its loop (or the steering filter) after
+  /// every epoch, navigation bits; what concerns the whole receiver is recorded for later.
+  void run_channel(Channel& ch, const SampleBlock& block, std::vector<EpochRecord>& out) {
+    ch.trk->process(block, [&](const CorrelatorEpoch& e) {
+      const bool steered = steering && steering->on_epoch(e, *ch.trk, *ch.nav);
+      const bool pulling_in = ch.trk->state() == ChannelState::pull_in;
+      ch.loop->set_bandwidths(ch.trk->state() == ChannelState::tracking ? cfg.tracking_loops : cfg.pull_in);
+      if (!steered) {
+        // Each epoch's command acts from the very next sample (not after the block).
+        const NcoCommand cmd = ch.loop->update(e, pulling_in);
+        ch.trk->apply(cmd);
+        ch.last_doppler_hz = cmd.carrier_doppler_hz;
+      } else {
+        // Keep the loop ready to take the channel back where the steering leaves it.
+        ch.loop->reset(e.carrier_doppler_hz);
+        ch.last_doppler_hz = e.carrier_doppler_hz;
+      }
+      const bool fresh = ch.trk->bit_edge_period() && ch.nav->add(e, *ch.trk->bit_edge_period());
+      out.push_back({e, ChannelSnapshot{ch.trk->prn(), ch.trk->state(), ch.trk->cn0_dbhz(), ch.nav->ephemeris().has_value()},
+                     fresh});
+    });
+  }
+
   void track(const SampleBlock& block,
              const std::function<void(const CorrelatorEpoch&, const ChannelSnapshot&)>& on_correlation) {
-    for (auto& ch : channels) {
-      // Each epoch's command acts from the very next sample (not after the block).
-      ch.trk->process(block, [&](const CorrelatorEpoch& e) {
-        const bool steered = steering && steering->on_epoch(e, *ch.trk, *ch.nav);
-        const bool pulling_in = ch.trk->state() == ChannelState::pull_in;
-        ch.loop->set_bandwidths(ch.trk->state() == ChannelState::tracking ? cfg.tracking_loops : cfg.pull_in);
-        if (!steered) {
-          const NcoCommand cmd = ch.loop->update(e, pulling_in);
-          ch.trk->apply(cmd);
-          ch.last_doppler_hz = cmd.carrier_doppler_hz;
-        } else {
-          // Keep the loop ready to take the channel back where the steering leaves it.
-          ch.loop->reset(e.carrier_doppler_hz);
-          ch.last_doppler_hz = e.carrier_doppler_hz;
-        }
-        if (ch.trk->bit_edge_period() && ch.nav->add(e, *ch.trk->bit_edge_period())) {
+    records.resize(channels.size());
+    for (auto& r : records) r.clear();
+    // Channels are independent within a block: with worker threads they run in parallel,
+    // except when a steering filter is attached (it sees every channel's epochs in order).
+    if (pool && !steering && channels.size() > 1) {
+      std::latch done(static_cast<std::ptrdiff_t>(channels.size()));
+      std::vector<std::exception_ptr> errors(channels.size());
+      for (std::size_t i = 0; i < channels.size(); ++i) {
+        boost::asio::post(*pool, [&, i] {
+          try {
+            run_channel(channels[i], block, records[i]);
+          } catch (...) {
+            errors[i] = std::current_exception();
+          }
+          done.count_down();
+        });
+      }
+      done.wait();
+      for (const auto& e : errors)
+        if (e) std::rethrow_exception(e);
+    } else {
+      for (std::size_t i = 0; i < channels.size(); ++i) run_channel(channels[i], block, records[i]);
+    }
+    for (std::size_t i = 0; i < channels.size(); ++i) {
+      const Channel& ch = channels[i];
+      for (const EpochRecord& r : records[i]) {
+        if (r.new_ephemeris) {
           ephs[ch.trk->prn()] = *ch.nav->ephemeris();
           if (ch.nav->iono().valid) iono = ch.nav->iono();
           if (ch.nav->utc().valid) utc = ch.nav->utc();
           spdlog::debug("PRN {:2d}: ephemeris IODE {}", ch.trk->prn(), ch.nav->ephemeris()->iode);
         }
-        if (on_correlation) {
-          on_correlation(e, ChannelSnapshot{ch.trk->prn(), ch.trk->state(), ch.trk->cn0_dbhz(), ch.nav->ephemeris().has_value()});
-        }
-      });
+        if (on_correlation) on_correlation(r.epoch, r.snapshot);
+      }
     }
     const auto lost = std::remove_if(channels.begin(), channels.end(), [](const Channel& ch) {
       if (ch.trk->state() == ChannelState::lost) spdlog::info("PRN {:2d}: loss of lock", ch.trk->prn());

@@ -26,6 +26,7 @@ namespace deepnav {
 
 struct ReceiverConfig {
   int channels = 12;
+  unsigned threads = 1;                 ///< channel worker threads (0: all cores); 1 tracks inline
   double observation_rate_hz = 1.0;     ///< up to 50
   int reference_week = 0;               ///< resolves LNAV's 10-bit week (0: today's week)
   double reacquire_interval_s = 5.0;

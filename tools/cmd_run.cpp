@@ -287,6 +287,8 @@ const bool registered = register_command([](CommandParents& parents) {
   cmd->add_option("--out", o->out_dir, "Output folder")->required();
   cmd->add_option("--truth", o->truth_path, "Synthesizer truth.csv: adds error statistics to summary.json");
   cmd->add_option("--channels", o->receiver.channels, "Tracking channels")->capture_default_str();
+  cmd->add_option("--threads", o->receiver.threads, "Channel worker threads (0: all cores; the aided modes track on one)")
+      ->capture_default_str();
   cmd->add_option("--rate", o->receiver.observation_rate_hz, "Observation/PVT rate (Hz, up to 50)")->capture_default_str();
   cmd->add_option("--doppler-max", o->receiver.acquisition.doppler_max_hz, "Acquisition Doppler half-width (Hz)")->capture_default_str();
   cmd->add_option("--iono-from", o->assist_nav,
