@@ -28,13 +28,13 @@ namespace {
 namespace fs = std::filesystem;
 
 struct SweepOptions {
-  std::string scenario = std::string(DEEPNAV_SOURCE_DIR) + "/data/scenarios/jam_static_45s.yaml";
+  std::string scenario = std::string(DEEPNAV_SOURCE_DIR) + "/data/scenarios/jam_static_32s.yaml";
   std::string jammers = "cw";
   std::string js = "20:60:5";
   std::string modes = "scalar";
   std::string mitigations = "none,auto";
   int runs = 1;
-  double onset_s = 25.0;
+  double onset_s = 16.0;
   std::string out_dir;
   int jobs = 1;
   bool list_commands = false;
@@ -88,7 +88,11 @@ std::vector<JamPoint> sweep_points(const SweepOptions& o) {
   const auto jammers = split_list(o.jammers, "--jammer");
   for (const auto& j : jammers) benchmark_jammer(j, 0.0, 0.0);  // rejects unknown types
   const auto modes = split_list(o.modes, "--modes");
-  for (const auto& m : modes) find_receiver_mode(m);
+  for (const auto& m : modes)
+    if (find_receiver_mode(m).needs_imu && !base.imu.enabled)
+      throw UserError(fmt::format("--modes {}: mode '{}' needs an IMU, but scenario '{}' has no imu: section "
+                                  "(e.g. imu: {{grade: tactical, rate_hz: 100}})",
+                                  o.modes, m, o.scenario));
   const auto mitigations = split_list(o.mitigations, "--mitigation");
   for (const auto& m : mitigations) {
     try {

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "ins/frames.hpp"
+#include "receiver/tracking_channel.hpp"
 #include "receiver/truth_file.hpp"
 #include "signals/if_synthesizer.hpp"
 #include "signals/rinex_nav.hpp"
@@ -78,10 +79,36 @@ struct ErrorStats {
 
 nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
-/// Per-satellite tracked fraction and C/N0 in the jammed window, from tracking.csv and
-/// the synthesizer's sat_truth.csv (true Doppler, 10 Hz).
-nlohmann::json channel_figures(const std::string& tracking_path, const std::string& sat_truth_path, double fs_hz,
-                               double window_start_s, double window_end_s) {
+/// When each satellite is tracked in the jammed window, from tracking.csv and the
+/// synthesizer's sat_truth.csv (true Doppler, 10 Hz). An integration counts as tracked when
+/// the channel is in the tracking state, its carrier is within 10 Hz of the true Doppler,
+/// and its C/N0 estimate has not stayed below the receiver's loss threshold (22 dB-Hz) for
+/// the receiver's loss time (1 s): the rule by which scalar tracking drops a channel,
+/// applied to every mode, since the aided modes hold channels open without signal (their
+/// NCOs then follow the INS, so the carrier stays near the true Doppler regardless).
+struct ChannelTimeline {
+  struct Span {
+    double t_s, integration_s, cn0_dbhz;
+    bool tracked;
+  };
+  std::map<int, std::vector<Span>> spans;  ///< per PRN, in time order; PRNs of the truth only
+  std::vector<int> prns;                   ///< every satellite the synthesizer transmitted
+
+  /// Satellites whose latest integration starting in [t - 1 s, t) is tracked.
+  int tracked_at(double t) const {
+    int n = 0;
+    for (const auto& [prn, v] : spans) {
+      const auto it = std::lower_bound(v.begin(), v.end(), t, [](const Span& s, double x) { return s.t_s < x; });
+      if (it == v.begin()) continue;
+      const Span& last = *std::prev(it);
+      if (last.t_s >= t - 1.0 && last.tracked) ++n;
+    }
+    return n;
+  }
+};
+
+ChannelTimeline channel_timeline(const std::string& tracking_path, const std::string& sat_truth_path, double fs_hz,
+                                 double window_start_s, double window_end_s) {
   const Csv truth(sat_truth_path);
   const std::size_t t_col = truth.at("t_s", sat_truth_path), prn_col = truth.at("prn", sat_truth_path),
                     dop_col = truth.at("doppler_hz", sat_truth_path);
@@ -92,46 +119,83 @@ nlohmann::json channel_figures(const std::string& tracking_path, const std::stri
     const auto it = std::lower_bound(v.begin(), v.end(), std::make_pair(t, -1e300));
     return it == v.end() ? v.back().second : it->second;
   };
+  const TrackingConfig loss;  // the receiver's loss-of-lock rule
   const Csv tracking(tracking_path);
   const std::size_t first_col = tracking.at("first_sample", tracking_path), tp = tracking.at("prn", tracking_path),
                     st = tracking.at("state", tracking_path), it = tracking.at("integration_s", tracking_path),
                     dp = tracking.at("doppler_hz", tracking_path), cn = tracking.at("cn0_dbhz", tracking_path);
-  std::map<int, double> tracked_s, cn0_sum;
-  std::map<int, int> cn0_count;
+  ChannelTimeline timeline;
+  for (const auto& [prn, v] : doppler) timeline.prns.push_back(prn);
+  std::map<int, double> below_since;  // per PRN: start of the current run of C/N0 below the threshold
   for (const auto& r : tracking.rows) {
     const double t = number(r, first_col) / fs_hz;
     const int prn = std::stoi(r[tp]);
-    if (t < window_start_s || t >= window_end_s || !doppler.count(prn)) continue;
-    if (std::stoi(r[st]) != 2 || std::abs(number(r, dp) - true_doppler(prn, t)) > kDopplerToleranceHz) continue;
-    tracked_s[prn] += number(r, it);
-    if (t >= window_start_s + kCn0SettleS) {
-      cn0_sum[prn] += number(r, cn);
-      ++cn0_count[prn];
-    }
+    if (!doppler.count(prn) || t >= window_end_s) continue;
+    const double cn0 = number(r, cn);
+    if (!(cn0 < loss.lost_cn0_dbhz))
+      below_since.erase(prn);
+    else
+      below_since.try_emplace(prn, t);
+    const bool faded = below_since.count(prn) && t - below_since[prn] >= loss.lost_after_s;
+    // Kept from one second before the window, so the first epochs see their channels.
+    if (t < window_start_s - 1.0) continue;
+    const bool tracked = std::stoi(r[st]) == static_cast<int>(ChannelState::tracking) &&
+                         std::abs(number(r, dp) - true_doppler(prn, t)) <= kDopplerToleranceHz && !faded;
+    timeline.spans[prn].push_back({t, number(r, it), cn0, tracked});
   }
+  for (auto& [prn, v] : timeline.spans)
+    std::stable_sort(v.begin(), v.end(), [](const auto& a, const auto& b) { return a.t_s < b.t_s; });
+  return timeline;
+}
+
+/// Per-satellite tracked fraction and mean C/N0 estimate in the jammed window.
+nlohmann::json channel_figures(const ChannelTimeline& timeline, double window_start_s, double window_end_s) {
   nlohmann::json channels = nlohmann::json::object();
   const double window = window_end_s - window_start_s;
-  for (const auto& [prn, samples] : doppler) {
-    const double cn0 = cn0_count[prn] ? cn0_sum[prn] / cn0_count[prn] : kNaN;
-    channels[std::to_string(prn)] = {{"tracked_fraction", std::min(1.0, tracked_s[prn] / window)},
+  for (int prn : timeline.prns) {
+    double tracked_s = 0.0, cn0_sum = 0.0;
+    int cn0_count = 0;
+    if (const auto found = timeline.spans.find(prn); found != timeline.spans.end()) {
+      for (const auto& s : found->second) {
+        if (s.t_s < window_start_s || !s.tracked) continue;
+        tracked_s += s.integration_s;
+        if (s.t_s >= window_start_s + kCn0SettleS) {
+          cn0_sum += s.cn0_dbhz;
+          ++cn0_count;
+        }
+      }
+    }
+    const double cn0 = cn0_count ? cn0_sum / cn0_count : kNaN;
+    channels[std::to_string(prn)] = {{"tracked_fraction", std::min(1.0, tracked_s / window)},
                                      {"cn0_dbhz", finite_or_null(cn0)}};
   }
   return channels;
 }
 
-/// Horizontal/vertical error and fix availability of pvt.csv in the jammed window.
-nlohmann::json solution_figures(const std::string& pvt_path, const std::string& truth_path, double window_start_s,
-                                double window_end_s) {
+/// Horizontal/vertical error and fix availability of pvt.csv in the jammed window. Every
+/// solution the run gives counts for the error (an aided mode's coasting INS included);
+/// only GNSS fixes count for availability: a solution not in INS coast with at least four
+/// satellites tracked (as in ChannelTimeline) at its epoch.
+nlohmann::json solution_figures(const std::string& pvt_path, const std::string& truth_path,
+                                const ChannelTimeline& timeline, double window_start_s, double window_end_s) {
+  constexpr int kMinSatellites = 4;
   const TruthFile truth(truth_path);
   const Csv pvt(pvt_path);
   const std::size_t t = pvt.at("t_s", pvt_path), x = pvt.at("x_ecef_m", pvt_path), y = pvt.at("y_ecef_m", pvt_path),
-                    z = pvt.at("z_ecef_m", pvt_path), lat = pvt.at("lat_deg", pvt_path), lon = pvt.at("lon_deg", pvt_path);
+                    z = pvt.at("z_ecef_m", pvt_path), lat = pvt.at("lat_deg", pvt_path), lon = pvt.at("lon_deg", pvt_path),
+                    mode_col = pvt.at("mode", pvt_path);
   std::vector<double> horizontal, vertical;
+  std::map<std::string, double> epochs_in_mode;
+  int solutions = 0, gnss_fixes = 0;
   for (const auto& r : pvt.rows) {
     const double ts = number(r, t);
     if (ts < window_start_s || ts >= window_end_s) continue;
     const auto ref = truth.at(ts);
     if (!ref) continue;
+    ++solutions;
+    const std::string mode = mode_col < r.size() ? r[mode_col] : "";
+    epochs_in_mode[mode] += 1.0;
+    if (mode != "coast" && timeline.tracked_at(ts) >= kMinSatellites) ++gnss_fixes;
     const Eigen::Vector3d d = C_e_n(number(r, lat) * kDegToRad, number(r, lon) * kDegToRad) *
                               (Eigen::Vector3d(number(r, x), number(r, y), number(r, z)) - ref->r_ecef_m);
     horizontal.push_back(d.head<2>().norm());
@@ -140,9 +204,13 @@ nlohmann::json solution_figures(const std::string& pvt_path, const std::string& 
   // Fixes come at whole seconds (1 Hz): the epochs expected in [start, end). The epoch at
   // the very end of the samples may not be formed, so it is not counted either way.
   const double expected = std::ceil(window_end_s) - std::ceil(window_start_s);
+  if (expected - solutions > 0.0) epochs_in_mode["none"] = expected - solutions;
   const ErrorStats h = ErrorStats::of(horizontal), v = ErrorStats::of(vertical);
-  return {{"fixes", horizontal.size()},
-          {"fix_availability", std::min(1.0, static_cast<double>(horizontal.size()) / expected)},
+  return {{"solutions", solutions},
+          {"fixes", gnss_fixes},
+          {"solution_availability", std::min(1.0, solutions / expected)},
+          {"fix_availability", std::min(1.0, gnss_fixes / expected)},
+          {"epochs_in_mode", epochs_in_mode},
           {"horizontal_rms_m", finite_or_null(h.rms)},
           {"horizontal_max_m", finite_or_null(h.max)},
           {"vertical_rms_m", finite_or_null(v.rms)},
@@ -169,7 +237,7 @@ void judge(nlohmann::json& fig) {
   fig["cn0_mean_dbhz"] = n_cn0 ? nlohmann::json(cn0_sum / n_cn0) : nlohmann::json(nullptr);
   std::vector<std::string> reasons;
   const auto& s = fig["solution"];
-  if (s["fix_availability"].get<double>() < c.min_fix_availability) reasons.push_back("fixes missing");
+  if (s["fix_availability"].get<double>() < c.min_fix_availability) reasons.push_back("GNSS fixes missing");
   const auto over = [&](const char* key) { return !s[key].is_null() && s[key].get<double>() > c.max_error_m; };
   if (over("horizontal_max_m") || over("vertical_max_m")) reasons.push_back("error over 10 m");
   if (fig["tracked_fraction_mean"].get<double>() < c.min_tracked_fraction) reasons.push_back("tracking lost");
@@ -233,6 +301,10 @@ nlohmann::json run_jam_point(const JamPoint& p, const std::string& out_dir, cons
     if (!(p.onset_s >= 0.0 && p.onset_s < sc.duration_s))
       throw UserError(fmt::format("--onset {} s: expected within the scenario's {} s", p.onset_s, sc.duration_s));
     sc.jammers = {benchmark_jammer(p.jammer, p.js_db, p.onset_s)};
+    if (mode.needs_imu && !sc.imu.enabled)
+      throw UserError(fmt::format("receiver mode '{}' needs an IMU, but scenario '{}' has no imu: section "
+                                  "(e.g. imu: {{grade: tactical, rate_hz: 100}})",
+                                  p.mode, p.scenario));
     validate_scenario(sc);
   } catch (const std::invalid_argument& e) {
     throw UserError(e.what());
@@ -262,13 +334,16 @@ nlohmann::json run_jam_point(const JamPoint& p, const std::string& out_dir, cons
                                    std::to_string(sc.start_time.week),
                                    "--iono-from",
                                    sc.nav_file,
+                                   "--ephemeris-from",
+                                   sc.nav_file,
                                    "--truth",
                                    s.truth_path,
                                    "--mitigation",
                                    p.mitigation,
                                    "--out",
                                    (work / "run").string()};
-  for (const auto& a : receiver_mode_run_arguments(mode, s.imu_path)) argv.push_back(a);
+  const RunImu imu{s.imu_path, sc.imu.grade, sc.imu.grades_file, sc.imu.lever_arm_m};
+  for (const auto& a : receiver_mode_run_arguments(mode, imu, p.scenario)) argv.push_back(a);
   const std::string log = (dir / "run.log").string();
   fs::remove(log);
   const int rc = wait_child(start_child(argv, log));
@@ -286,11 +361,19 @@ nlohmann::json run_jam_point(const JamPoint& p, const std::string& out_dir, cons
                         {"duration_s", sc.duration_s},
                         {"adc_bits", sc.adc.bits},
                         {"command", shell_command_line(argv)}};
-  fig["channels"] = channel_figures((run / "tracking.csv").string(), s.sat_truth_path, sc.sample_rate_hz, p.onset_s,
-                                    sc.duration_s);
-  fig["solution"] = solution_figures((run / "pvt.csv").string(), s.truth_path, p.onset_s, sc.duration_s);
+  const ChannelTimeline timeline = channel_timeline((run / "tracking.csv").string(), s.sat_truth_path,
+                                                     sc.sample_rate_hz, p.onset_s, sc.duration_s);
+  fig["channels"] = channel_figures(timeline, p.onset_s, sc.duration_s);
+  fig["solution"] = solution_figures((run / "pvt.csv").string(), s.truth_path, timeline, p.onset_s, sc.duration_s);
   judge(fig);
   fs::copy_file(run / "summary.json", dir / "summary.json", fs::copy_options::overwrite_existing);
+  {
+    std::ifstream in(dir / "summary.json");
+    const nlohmann::json summary = nlohmann::json::parse(in, nullptr, false);
+    if (summary.is_discarded()) throw UserError(fmt::format("'{}' is not JSON", (run / "summary.json").string()));
+    fig["mode_changes"] = summary.value("mode_changes", nlohmann::json::array());
+    if (summary.contains("seconds_in_mode")) fig["seconds_in_mode"] = summary["seconds_in_mode"];
+  }
   fs::remove_all(work);
   fig["wall_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   TextOutputFile out((dir / "point.json").string());
