@@ -60,7 +60,17 @@ struct ScalarReceiver::Impl {
     bool new_ephemeris = false;
   };
   std::vector<std::vector<EpochRecord>> records;  ///< per channel, for the block being tracked
-  std::unique_ptr<boost::asio::thread_pool> pool;  ///< channel workers (ReceiverConfig::threads > 1)
+  std::unique_ptr<boost::asio::thread_pool> pool;
+  std::map<int, NavigationStatus> finished_status;  ///< of channels already dropped
+
+  static void add_status(std::map<int, NavigationStatus>& into, const Channel& ch) {
+    NavigationStatus& s = into[ch.trk->prn()];
+    s.prn = ch.trk->prn();
+    s.tracked_s += ch.trk->seconds_tracked();
+    s.subframes_decoded += ch.nav->subframes_decoded();
+    s.parity_failures += ch.nav->parity_failures();
+    s.ephemeris = s.ephemeris || ch.nav->ephemeris().has_value();
+  }  ///< channel workers (ReceiverConfig::threads > 1)
   std::optional<NavData> assisted;
 
   Impl(ReceiverConfig c, SampleSource& s) : cfg(std::move(c)), src(s), fs(s.sample_rate_hz()), pvt(cfg.pvt) {
@@ -166,9 +176,11 @@ struct ScalarReceiver::Impl {
         if (on_correlation) on_correlation(r.epoch, r.snapshot);
       }
     }
-    const auto lost = std::remove_if(channels.begin(), channels.end(), [](const Channel& ch) {
-      if (ch.trk->state() == ChannelState::lost) spdlog::info("PRN {:2d}: loss of lock", ch.trk->prn());
-      return ch.trk->state() == ChannelState::lost;
+    const auto lost = std::remove_if(channels.begin(), channels.end(), [&](const Channel& ch) {
+      if (ch.trk->state() != ChannelState::lost) return false;
+      spdlog::info("PRN {:2d}: loss of lock", ch.trk->prn());
+      add_status(finished_status, ch);
+      return true;
     });
     channels.erase(lost, channels.end());
   }
@@ -328,5 +340,13 @@ std::map<int, Ephemeris> ScalarReceiver::ephemerides() const { return impl_->eph
 IonoParameters ScalarReceiver::iono() const { return impl_->iono; }
 UtcParameters ScalarReceiver::utc() const { return impl_->utc; }
 std::vector<int> ScalarReceiver::acquired_prns() const { return impl_->acquired; }
+
+std::vector<NavigationStatus> ScalarReceiver::navigation_status() const {
+  std::map<int, NavigationStatus> all = impl_->finished_status;
+  for (const auto& ch : impl_->channels) Impl::add_status(all, ch);
+  std::vector<NavigationStatus> out;
+  for (const auto& [prn, s] : all) out.push_back(s);
+  return out;
+}
 
 }  // namespace deepnav

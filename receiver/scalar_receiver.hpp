@@ -79,6 +79,15 @@ class ChannelSteering {
   virtual void after_block(std::int64_t end_sample) = 0;
 };
 
+/// What a channel's navigation data decoding achieved (for products and diagnostics).
+struct NavigationStatus {
+  int prn = 0;
+  double tracked_s = 0.0;
+  int subframes_decoded = 0;
+  int parity_failures = 0;    ///< preamble candidates whose words failed parity
+  bool ephemeris = false;     ///< decoded from the signal (not assisted)
+};
+
 class ScalarReceiver {
  public:
   ScalarReceiver(ReceiverConfig config, SampleSource& source);
@@ -108,6 +117,8 @@ class ScalarReceiver {
   IonoParameters iono() const;
   UtcParameters utc() const;
   std::vector<int> acquired_prns() const;
+  /// Per PRN, over every channel that tracked it (dropped ones included).
+  std::vector<NavigationStatus> navigation_status() const;
 
  private:
   struct Impl;

@@ -226,6 +226,17 @@ void run_receiver(RunOptions o) {
     summary["vertical_error_m"] = vertical.json();
     summary["velocity_error_mps"] = speed_error.json();
   }
+  // Navigation data per satellite: a channel tracked for a whole frame without an
+  // ephemeris points at corrupted navigation bits (or a wrong --week / spectrum sense).
+  nlohmann::json navigation = nlohmann::json::array();
+  for (const NavigationStatus& n : receiver.navigation_status()) {
+    navigation.push_back({{"prn", n.prn}, {"tracked_s", n.tracked_s}, {"subframes_decoded", n.subframes_decoded},
+                          {"parity_failures", n.parity_failures}, {"ephemeris_decoded", n.ephemeris}});
+    if (n.tracked_s > 36.0 && !n.ephemeris)
+      spdlog::warn("PRN {:2d}: tracked {:.0f} s but no ephemeris decoded ({} subframes, {} failed parity): corrupted "
+                   "navigation bits?", n.prn, n.tracked_s, n.subframes_decoded, n.parity_failures);
+  }
+  summary["navigation"] = navigation;
   summary["mode"] = o.mode;
   if (aided) {
     nlohmann::json changes = nlohmann::json::array();
