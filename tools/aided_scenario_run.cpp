@@ -46,7 +46,9 @@ AidedRunResult run_aided_scenario(const Scenario& sc, const SynthesisSummary& s,
           case aiding::NavMode::coast: e.gnss_measurements = 0; break;
           default: e.gnss_measurements = a.receiver.pvt.valid ? static_cast<int>(a.receiver.pvt.used_prns.size()) : 0;
         }
-        if (const auto t = truth.at(e.t_s); t && e.valid) {
+        const auto t = truth.at(e.t_s);
+        e.valid = e.valid && t.has_value();  // an epoch past the truth's end cannot be scored
+        if (e.valid) {
           e.error_ned_m = ned_offset_m(t->r_ecef_m, r);
           e.velocity_error_mps = (v - t->v_ecef_mps).norm();
         }
