@@ -31,6 +31,10 @@ constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 /// A tracked channel's carrier must follow the true Doppler within this.
 constexpr double kDopplerToleranceHz = 10.0;
+/// A second, lower C/N0 floor for the signal fraction: about 10 dB above what the receiver's
+/// estimator reads from a correlator without signal (about 5 dB-Hz, measured on every
+/// channel at J/S 70 dB), so a channel above it sees its satellite.
+constexpr double kSignalFloorDbhz = 15.0;
 /// The receiver's C/N0 estimate averages over 2 s: skip that long after the onset.
 constexpr double kCn0SettleS = 2.0;
 
@@ -89,7 +93,8 @@ nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::js
 struct ChannelTimeline {
   struct Span {
     double t_s, integration_s, cn0_dbhz;
-    bool tracked;
+    bool tracked;      ///< under the receiver's loss rule (22 dB-Hz for 1 s)
+    bool with_signal;  ///< the same with kSignalFloorDbhz in place of 22 dB-Hz
   };
   std::map<int, std::vector<Span>> spans;  ///< per PRN, in time order; PRNs of the truth only
   std::vector<int> prns;                   ///< every satellite the synthesizer transmitted
@@ -126,7 +131,7 @@ ChannelTimeline channel_timeline(const std::string& tracking_path, const std::st
                     dp = tracking.at("doppler_hz", tracking_path), cn = tracking.at("cn0_dbhz", tracking_path);
   ChannelTimeline timeline;
   for (const auto& [prn, v] : doppler) timeline.prns.push_back(prn);
-  std::map<int, double> below_since;  // per PRN: start of the current run of C/N0 below the threshold
+  std::map<int, double> below_since, below_floor_since;  // per PRN: start of the current run below each floor
   for (const auto& r : tracking.rows) {
     const double t = number(r, first_col) / fs_hz;
     const int prn = std::stoi(r[tp]);
@@ -137,11 +142,16 @@ ChannelTimeline channel_timeline(const std::string& tracking_path, const std::st
     else
       below_since.try_emplace(prn, t);
     const bool faded = below_since.count(prn) && t - below_since[prn] >= loss.lost_after_s;
+    if (!(cn0 < kSignalFloorDbhz))
+      below_floor_since.erase(prn);
+    else
+      below_floor_since.try_emplace(prn, t);
+    const bool no_signal = below_floor_since.count(prn) && t - below_floor_since[prn] >= loss.lost_after_s;
     // Kept from one second before the window, so the first epochs see their channels.
     if (t < window_start_s - 1.0) continue;
-    const bool tracked = std::stoi(r[st]) == static_cast<int>(ChannelState::tracking) &&
-                         std::abs(number(r, dp) - true_doppler(prn, t)) <= kDopplerToleranceHz && !faded;
-    timeline.spans[prn].push_back({t, number(r, it), cn0, tracked});
+    const bool following = std::stoi(r[st]) == static_cast<int>(ChannelState::tracking) &&
+                           std::abs(number(r, dp) - true_doppler(prn, t)) <= kDopplerToleranceHz;
+    timeline.spans[prn].push_back({t, number(r, it), cn0, following && !faded, following && !no_signal});
   }
   for (auto& [prn, v] : timeline.spans)
     std::stable_sort(v.begin(), v.end(), [](const auto& a, const auto& b) { return a.t_s < b.t_s; });
@@ -153,11 +163,13 @@ nlohmann::json channel_figures(const ChannelTimeline& timeline, double window_st
   nlohmann::json channels = nlohmann::json::object();
   const double window = window_end_s - window_start_s;
   for (int prn : timeline.prns) {
-    double tracked_s = 0.0, cn0_sum = 0.0;
+    double tracked_s = 0.0, signal_s = 0.0, cn0_sum = 0.0;
     int cn0_count = 0;
     if (const auto found = timeline.spans.find(prn); found != timeline.spans.end()) {
       for (const auto& s : found->second) {
-        if (s.t_s < window_start_s || !s.tracked) continue;
+        if (s.t_s < window_start_s) continue;
+        if (s.with_signal) signal_s += s.integration_s;
+        if (!s.tracked) continue;
         tracked_s += s.integration_s;
         if (s.t_s >= window_start_s + kCn0SettleS) {
           cn0_sum += s.cn0_dbhz;
@@ -167,6 +179,7 @@ nlohmann::json channel_figures(const ChannelTimeline& timeline, double window_st
     }
     const double cn0 = cn0_count ? cn0_sum / cn0_count : kNaN;
     channels[std::to_string(prn)] = {{"tracked_fraction", std::min(1.0, tracked_s / window)},
+                                     {"signal_fraction", std::min(1.0, signal_s / window)},
                                      {"cn0_dbhz", finite_or_null(cn0)}};
   }
   return channels;
@@ -220,12 +233,13 @@ nlohmann::json solution_figures(const std::string& pvt_path, const std::string& 
 /// Adds the summary over channels and the pass/fail verdict.
 void judge(nlohmann::json& fig) {
   const FailureCriteria c;
-  double sum = 0.0, min = 1.0, cn0_sum = 0.0;
+  double sum = 0.0, min = 1.0, cn0_sum = 0.0, signal_sum = 0.0;
   int n = 0, n_cn0 = 0;
   for (const auto& [prn, ch] : fig["channels"].items()) {
     const double f = ch["tracked_fraction"].get<double>();
     sum += f;
     min = std::min(min, f);
+    signal_sum += ch.value("signal_fraction", 0.0);
     ++n;
     if (!ch["cn0_dbhz"].is_null()) {
       cn0_sum += ch["cn0_dbhz"].get<double>();
@@ -234,6 +248,7 @@ void judge(nlohmann::json& fig) {
   }
   fig["tracked_fraction_mean"] = n ? sum / n : 0.0;
   fig["tracked_fraction_min"] = n ? min : 0.0;
+  fig["signal_fraction_mean"] = n ? signal_sum / n : 0.0;
   fig["cn0_mean_dbhz"] = n_cn0 ? nlohmann::json(cn0_sum / n_cn0) : nlohmann::json(nullptr);
   std::vector<std::string> reasons;
   const auto& s = fig["solution"];

@@ -12,6 +12,7 @@
 
 #include "signals/text_output_file.hpp"
 #include "tools/command_registry.hpp"
+#include "tools/jam_point.hpp"
 
 namespace deepnav::cli {
 namespace {
@@ -30,7 +31,8 @@ std::string cell(const nlohmann::json& v, int decimals) {
 void write_runs_csv(const std::vector<nlohmann::json>& points, const std::string& out_dir) {
   TextOutputFile csv((fs::path(out_dir) / "runs.csv").string());
   csv.write(
-      "scenario,jammer,js_db,mode,mitigation,seed,adc_bits,tracked_fraction_mean,tracked_fraction_min,cn0_mean_dbhz,"
+      "scenario,jammer,js_db,mode,mitigation,seed,adc_bits,tracked_fraction_mean,tracked_fraction_min,"
+      "signal_fraction_mean,cn0_mean_dbhz,"
       "fix_availability,solution_availability,epochs_in_mode,horizontal_rms_m,horizontal_max_m,vertical_rms_m,vertical_max_m,failed,failure,"
       "tracked_fraction_by_prn,cn0_by_prn_dbhz,wall_s\n");
   for (const auto& p : points) {
@@ -43,10 +45,11 @@ void write_runs_csv(const std::vector<nlohmann::json>& points, const std::string
       tracked += fmt::format("{}{}:{:.3f}", tracked.empty() ? "" : " ", prn, ch["tracked_fraction"].get<double>());
       cn0 += fmt::format("{}{}:{}", cn0.empty() ? "" : " ", prn, cell(ch["cn0_dbhz"], 1));
     }
-    csv.write(fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", cell(p["scenario"], 0),
+    csv.write(fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", cell(p["scenario"], 0),
                           cell(p["jammer"], 0), cell(p["js_db"], 1), cell(p["mode"], 0), cell(p["mitigation"], 0),
                           cell(p["seed"], 0), cell(p["adc_bits"], 0), cell(p["tracked_fraction_mean"], 3),
-                          cell(p["tracked_fraction_min"], 3), cell(p["cn0_mean_dbhz"], 2),
+                          cell(p["tracked_fraction_min"], 3), cell(p.value("signal_fraction_mean", nlohmann::json()), 3),
+                          cell(p["cn0_mean_dbhz"], 2),
                           cell(s["fix_availability"], 3), cell(s.value("solution_availability", nlohmann::json()), 3),
                           modes, cell(s["horizontal_rms_m"], 3),
                           cell(s["horizontal_max_m"], 3), cell(s["vertical_rms_m"], 3), cell(s["vertical_max_m"], 3),
@@ -61,6 +64,9 @@ struct Series {
   double js_min = 1e300, js_max = -1e300;
   std::map<std::uint64_t, double> first_failure;  ///< per seed; kNoFailure when every J/S passed
   std::map<std::uint64_t, std::string> reason;
+  /// per seed: first J/S at which the satellites see their signal (C/N0 at least 15
+  /// dB-Hz) less than half of the time; kNoFailure when never
+  std::map<std::uint64_t, double> first_signal_loss;
 };
 
 double median(std::vector<double> v) {
@@ -114,13 +120,18 @@ BenchReport write_jam_report(const std::vector<nlohmann::json>& points, const st
       it->second = js;
       s.reason[seed] = p["failure"].get<std::string>();
     }
+    auto [sig, sig_inserted] = s.first_signal_loss.try_emplace(seed, kNoFailure);
+    if (p.contains("signal_fraction_mean") && p["signal_fraction_mean"].get<double>() < FailureCriteria{}.min_tracked_fraction &&
+        std::isinf(sig->second))
+      sig->second = js;
   }
   BenchReport report("Jamming thresholds: first J/S (dB) at which the solution leaves 10 m or tracking is lost",
                      {"scenario", "jammer", "mode", "mitigation", "js_tested_db", "runs", "first_failure_db",
-                      "per_run_db", "gain_over_none_db", "failure"});
+                      "per_run_db", "gain_over_none_db", "failure", "signal_lost_db"});
   std::string md =
       "| scenario | jammer | mode | mitigation | J/S tested (dB) | runs | first failing J/S (dB, median) | per run | "
-      "gain over none (dB) | failure at threshold |\n|---|---|---|---|---|---|---|---|---|---|\n";
+      "gain over none (dB) | failure at threshold | signal lost at J/S (dB, median) |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& [key, s] : series) {
     const auto& [scenario, jammer, mode, mitigation] = key;
     std::vector<double> values;
@@ -145,12 +156,15 @@ BenchReport write_jam_report(const std::vector<nlohmann::json>& points, const st
       else
         gain = fmt::format("{:.1f}", t - b);
     }
-    const std::string tested = fmt::format("{:.0f}..{:.0f}", s.js_min, s.js_max);
+    std::vector<double> signal_values;
+    for (const auto& [seed, v] : s.first_signal_loss) signal_values.push_back(v);
+    const std::string signal_lost = threshold_text(median(signal_values), s.js_max);
+    const std::string tested = fmt::format("{:g}..{:g}", s.js_min, s.js_max);
     const std::string text = threshold_text(t, s.js_max);
     report.add_row({scenario, jammer, mode, mitigation, tested, static_cast<long long>(values.size()), text, per_run,
-                    gain, reasons});
-    md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", scenario, jammer, mode, mitigation, tested,
-                      values.size(), text, per_run, gain, reasons);
+                    gain, reasons, signal_lost});
+    md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", scenario, jammer, mode, mitigation,
+                      tested, values.size(), text, per_run, gain, reasons, signal_lost);
   }
   md += "\nA point fails when, from the jammer onset to the end, a solution is more than 10 m off the truth "
         "(horizontal or vertical; an aided mode's INS coast included), more than 5 % of the epochs have no GNSS "
@@ -159,7 +173,9 @@ BenchReport write_jam_report(const std::vector<nlohmann::json>& points, const st
         "state, its carrier is within 10 Hz of the true Doppler and its C/N0 estimate has not been below 22 "
         "dB-Hz for 1 s (the scalar receiver's loss rule, applied to every mode). Every mode starts with the "
         "broadcast ephemerides of the scenario's navigation file. \"> X\": no failure up to the highest J/S "
-        "tested.\n";
+        "tested. \"Signal lost\": the first J/S at which the satellites are tracked less than half of the time "
+        "when the C/N0 floor is 15 dB-Hz instead of 22 (about 10 dB above the estimator's reading without "
+        "signal): how far the channels still follow their signal, whatever the solution does.\n";
   TextOutputFile file((fs::path(out_dir) / "thresholds.md").string());
   file.write(md);
   file.commit();

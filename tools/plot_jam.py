@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """Plots of `deepnav bench jam`: for each jammer in DIR/runs.csv, one PNG (DIR/jam_<jammer>.png)
-with the horizontal position error (RMS and max), the post-correlation C/N0 and the
-tracked fraction against J/S, one line per receiver mode and mitigation (seeds averaged).
+with the horizontal position error (RMS and max, every solution), the GNSS fix availability
+(and, dashed, that of any solution, an aided mode's INS coast included), the post-correlation
+C/N0 and the tracked fraction against J/S, one line per receiver mode and mitigation (seeds
+averaged).
 usage: plot_jam.py DIR"""
 import csv
 import math
@@ -31,7 +33,7 @@ def main(folder):
         key = f"{r['mode']} / {r['mitigation']}"
         by_jammer[(r["scenario"], r["jammer"])][key][number(r["js_db"])].append(r)
     for (scenario, jammer), series in sorted(by_jammer.items()):
-        fig, axes = plt.subplots(3, 1, figsize=(7.5, 9.5), sharex=True)
+        fig, axes = plt.subplots(4, 1, figsize=(7.5, 12), sharex=True)
         for i, (label, points) in enumerate(sorted(series.items())):
             js = sorted(points)
             color = f"C{i}"
@@ -39,18 +41,26 @@ def main(folder):
             h_max = [mean([number(r["horizontal_max_m"]) for r in points[x]]) for x in js]
             cn0 = [mean([number(r["cn0_mean_dbhz"]) for r in points[x]]) for x in js]
             tracked = [mean([number(r["tracked_fraction_mean"]) for r in points[x]]) for x in js]
+            fixes = [mean([number(r["fix_availability"]) for r in points[x]]) for x in js]
+            solutions = [mean([number(r.get("solution_availability", "")) for r in points[x]]) for x in js]
             axes[0].semilogy(js, h_rms, "o-", color=color, label=f"{label} RMS")
             axes[0].semilogy(js, h_max, "x--", color=color, label=f"{label} max")
-            axes[1].plot(js, cn0, "o-", color=color, label=label)
-            axes[2].plot(js, tracked, "o-", color=color, label=label)
+            axes[1].plot(js, fixes, "o-", color=color, label=f"{label} GNSS fixes")
+            axes[1].plot(js, solutions, "x--", color=color, label=f"{label} any solution")
+            axes[2].plot(js, cn0, "o-", color=color, label=label)
+            axes[3].plot(js, tracked, "o-", color=color, label=label)
         axes[0].axhline(10.0, color="k", lw=0.8, ls=":")
         axes[0].set_ylabel("horizontal error (m)")
         axes[0].legend(fontsize=7)
-        axes[1].set_ylabel("post-correlation C/N0 (dB-Hz)")
+        axes[1].axhline(0.95, color="k", lw=0.8, ls=":")
+        axes[1].set_ylabel("availability")
+        axes[1].set_ylim(-0.05, 1.05)
         axes[1].legend(fontsize=7)
-        axes[2].set_ylabel("tracked fraction (mean)")
-        axes[2].set_ylim(-0.05, 1.05)
-        axes[2].set_xlabel("J/S (dB)")
+        axes[2].set_ylabel("post-correlation C/N0 (dB-Hz)")
+        axes[2].legend(fontsize=7)
+        axes[3].set_ylabel("tracked fraction (mean)")
+        axes[3].set_ylim(-0.05, 1.05)
+        axes[3].set_xlabel("J/S (dB)")
         for ax in axes:
             ax.grid(True, which="both", alpha=0.3)
         axes[0].set_title(f"{scenario}: {jammer} jammer (missing points: no fix / no tracking)")
