@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <deque>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -31,9 +32,10 @@ constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 /// A tracked channel's carrier must follow the true Doppler within this.
 constexpr double kDopplerToleranceHz = 10.0;
-/// A second, lower C/N0 floor for the signal fraction: about 10 dB above what the receiver's
-/// estimator reads from a correlator without signal (about 5 dB-Hz, measured on every
-/// channel at J/S 70 dB), so a channel above it sees its satellite.
+/// A second, lower C/N0 floor for the signal fraction, applied to the mean of a channel's
+/// C/N0 estimates over the last second: about 10 dB above that mean for a correlator without
+/// signal (0 to 5 dB-Hz on every channel at J/S 70 dB), so a channel above it sees its
+/// satellite.
 constexpr double kSignalFloorDbhz = 15.0;
 /// The receiver's C/N0 estimate averages over 2 s: skip that long after the onset.
 constexpr double kCn0SettleS = 2.0;
@@ -94,7 +96,7 @@ struct ChannelTimeline {
   struct Span {
     double t_s, integration_s, cn0_dbhz;
     bool tracked;      ///< under the receiver's loss rule (22 dB-Hz for 1 s)
-    bool with_signal;  ///< the same with kSignalFloorDbhz in place of 22 dB-Hz
+    bool with_signal;  ///< following, with a mean C/N0 over the last second of at least kSignalFloorDbhz
   };
   std::map<int, std::vector<Span>> spans;  ///< per PRN, in time order; PRNs of the truth only
   std::vector<int> prns;                   ///< every satellite the synthesizer transmitted
@@ -131,7 +133,9 @@ ChannelTimeline channel_timeline(const std::string& tracking_path, const std::st
                     dp = tracking.at("doppler_hz", tracking_path), cn = tracking.at("cn0_dbhz", tracking_path);
   ChannelTimeline timeline;
   for (const auto& [prn, v] : doppler) timeline.prns.push_back(prn);
-  std::map<int, double> below_since, below_floor_since;  // per PRN: start of the current run below each floor
+  std::map<int, double> below_since;  // per PRN: start of the current run of C/N0 below the loss threshold
+  std::map<int, std::deque<std::pair<double, double>>> last_second;  // per PRN: (t, C/N0) over the last second
+  std::map<int, double> last_second_sum;
   for (const auto& r : tracking.rows) {
     const double t = number(r, first_col) / fs_hz;
     const int prn = std::stoi(r[tp]);
@@ -142,11 +146,15 @@ ChannelTimeline channel_timeline(const std::string& tracking_path, const std::st
     else
       below_since.try_emplace(prn, t);
     const bool faded = below_since.count(prn) && t - below_since[prn] >= loss.lost_after_s;
-    if (!(cn0 < kSignalFloorDbhz))
-      below_floor_since.erase(prn);
-    else
-      below_floor_since.try_emplace(prn, t);
-    const bool no_signal = below_floor_since.count(prn) && t - below_floor_since[prn] >= loss.lost_after_s;
+    auto& recent = last_second[prn];
+    double& recent_sum = last_second_sum[prn];
+    recent.emplace_back(t, cn0);
+    recent_sum += cn0;
+    while (recent.front().first < t - loss.lost_after_s) {
+      recent_sum -= recent.front().second;
+      recent.pop_front();
+    }
+    const bool no_signal = recent_sum / static_cast<double>(recent.size()) < kSignalFloorDbhz;
     // Kept from one second before the window, so the first epochs see their channels.
     if (t < window_start_s - 1.0) continue;
     const bool following = std::stoi(r[st]) == static_cast<int>(ChannelState::tracking) &&

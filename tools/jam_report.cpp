@@ -173,9 +173,10 @@ BenchReport write_jam_report(const std::vector<nlohmann::json>& points, const st
         "state, its carrier is within 10 Hz of the true Doppler and its C/N0 estimate has not been below 22 "
         "dB-Hz for 1 s (the scalar receiver's loss rule, applied to every mode). Every mode starts with the "
         "broadcast ephemerides of the scenario's navigation file. \"> X\": no failure up to the highest J/S "
-        "tested. \"Signal lost\": the first J/S at which the satellites are tracked less than half of the time "
-        "when the C/N0 floor is 15 dB-Hz instead of 22 (about 10 dB above the estimator's reading without "
-        "signal): how far the channels still follow their signal, whatever the solution does.\n";
+        "tested. \"Signal lost\": the first J/S at which the satellites' channels follow them (tracking state, "
+        "carrier within 10 Hz) with a C/N0 estimate averaging at least 15 dB-Hz over the last second (about 10 dB "
+        "above that average without signal) less than half of the time: how far the channels still see their "
+        "signal, whatever the solution does.\n";
   TextOutputFile file((fs::path(out_dir) / "thresholds.md").string());
   file.write(md);
   file.commit();
