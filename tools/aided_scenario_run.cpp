@@ -10,7 +10,7 @@
 
 namespace deepnav::cli {
 
-AidedRunResult run_aided_scenario(const Scenario& sc, const SynthesisSummary& s, aiding::NavMode mode) {
+AidedRunResult run_aided_scenario(const Scenario& sc, const SynthesisSummary& s, aiding::NavMode mode, int pll_order) {
   const auto start = std::chrono::steady_clock::now();
   FileSampleSourceOptions src;
   src.path = s.if_path;
@@ -21,6 +21,8 @@ AidedRunResult run_aided_scenario(const Scenario& sc, const SynthesisSummary& s,
   aiding::AidedReceiverConfig cfg;
   cfg.mode = mode;
   cfg.receiver.reference_week = sc.start_time.week;
+  cfg.receiver.pull_in.pll_order = pll_order;
+  cfg.receiver.tracking_loops.pll_order = pll_order;
   cfg.imu = load_imu_grade(sc.imu.grades_file, sc.imu.grade).model;
   cfg.lever_arm_imu_to_antenna_b_m = -Eigen::Vector3d(sc.imu.lever_arm_m[0], sc.imu.lever_arm_m[1], sc.imu.lever_arm_m[2]);
   aiding::AidedReceiver rx(cfg, source, read_imu_csv(s.imu_path), sc.duration_s);

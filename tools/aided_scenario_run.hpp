@@ -33,6 +33,9 @@ struct AidedRunResult {
 
 /// Runs `mode` (scalar included) on a synthesized scenario with assisted ephemerides and
 /// ionosphere from the scenario's navigation file.
-AidedRunResult run_aided_scenario(const Scenario& scenario, const SynthesisSummary& synthesis, aiding::NavMode mode);
+/// `pll_order` 3 suits high dynamics (aircraft turns): it follows a Doppler ramp
+/// without a steady-state phase error.
+AidedRunResult run_aided_scenario(const Scenario& scenario, const SynthesisSummary& synthesis, aiding::NavMode mode,
+                                  int pll_order = 2);
 
 }  // namespace deepnav::cli

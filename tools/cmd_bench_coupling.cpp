@@ -72,7 +72,9 @@ UnitResult run_unit(const CouplingOptions& o, const std::string& trajectory, int
   so.threads = 1;
   const SynthesisSummary s = IfSynthesizer(sc, read_rinex_nav(sc.nav_file)).run(dir, so);
   UnitResult u{trajectory, run, {}};
-  for (const auto& m : o.modes) u.by_mode[m] = run_aided_scenario(sc, s, aiding::parse_nav_mode(m));
+  // Aircraft turns ramp the Doppler by tens of Hz/s: third-order PLL for them.
+  const int pll_order = trajectory.rfind("air", 0) == 0 ? 3 : 2;
+  for (const auto& m : o.modes) u.by_mode[m] = run_aided_scenario(sc, s, aiding::parse_nav_mode(m), pll_order);
   std::filesystem::remove_all(dir);
   return u;
 }

@@ -38,6 +38,7 @@ struct RunOptions {
   ReceiverConfig receiver;
   // INS aiding (--mode loose|tight|ultra).
   std::string assist_ephemeris;
+  int pll_order = 2;
   std::string mode = "scalar", imu_path, imu_grade = "tactical", imu_grades_file = "data/imu_grades.yaml";
   std::vector<double> imu_lever_arm_m{0.0, 0.0, 0.0};
 };
@@ -127,6 +128,7 @@ void run_receiver(RunOptions o) {
   MitigationConfig mitigation;
   mitigation.mode = parse_mitigation_mode(o.mitigation);
   MitigationSampleSource mitigated(*source, mitigation);  // --mitigation none: samples pass untouched
+  o.receiver.pull_in.pll_order = o.receiver.tracking_loops.pll_order = o.pll_order;
   const aiding::NavMode mode = parse_mode(o);
   std::unique_ptr<aiding::AidedReceiver> aided;
   std::unique_ptr<ScalarReceiver> scalar;
@@ -298,6 +300,9 @@ const bool registered = register_command([](CommandParents& parents) {
   cmd->add_option("--out", o->out_dir, "Output folder")->required();
   cmd->add_option("--truth", o->truth_path, "Synthesizer truth.csv: adds error statistics to summary.json");
   cmd->add_option("--channels", o->receiver.channels, "Tracking channels")->capture_default_str();
+  cmd->add_option("--pll-order", o->pll_order, "Carrier loop order: 2, or 3 for high dynamics (follows Doppler ramps)")
+      ->check(CLI::IsMember({2, 3}))
+      ->capture_default_str();
   cmd->add_option("--threads", o->receiver.threads, "Channel worker threads (0: all cores; the aided modes track on one)")
       ->capture_default_str();
   cmd->add_option("--rate", o->receiver.observation_rate_hz, "Observation/PVT rate (Hz, up to 50)")->capture_default_str();
