@@ -15,20 +15,10 @@ namespace {
 
 // Samples per fread: bounds the memory of the source whatever the caller asks for.
 constexpr std::size_t kChunkSamples = 1 << 16;
-// gr_complex values are scaled so that the RMS of the first chunk lands here:
-// 2048 leaves 24 dB of headroom below int16 full scale (no clipping of Gaussian
-// noise or moderate interference) while the quantisation step stays ~66 dB
-// below the RMS, far below any loss the receiver would notice.
-constexpr double kTargetRms = 2048.0;
-
-std::int16_t saturate_int16(float value) {
-  const float rounded = std::nearbyint(value);
-  return static_cast<std::int16_t>(std::clamp(rounded, -32768.0f, 32767.0f));
-}
-
 }  // namespace
 
-FileSampleSource::FileSampleSource(FileSampleSourceOptions options) : options_(std::move(options)) {
+FileSampleSource::FileSampleSource(FileSampleSourceOptions options)
+    : options_(std::move(options)), converter_(options_.format, options_.inverted_spectrum) {
   const std::string name = options_.path.string();
   if (!(options_.sample_rate_hz > 0.0) || !std::isfinite(options_.sample_rate_hz))
     throw std::invalid_argument(
@@ -74,16 +64,8 @@ FileSampleSource::~FileSampleSource() {
 
 void FileSampleSource::choose_float_scale() {
   const off_t start = ::ftello(file_);
-  const std::size_t count = read_raw(kChunkSamples);
-  double power = 0.0;
-  for (std::size_t i = 0; i < 2 * count; ++i) {
-    float v;
-    std::memcpy(&v, raw_.data() + 4 * i, sizeof v);
-    if (std::isfinite(v)) power += static_cast<double>(v) * v;
-  }
-  const double rms = count > 0 ? std::sqrt(power / static_cast<double>(count)) : 0.0;
-  // An all-zero start gives no level to go by; unit scale at least keeps zeros zero.
-  float_scale_ = rms > 0.0 ? static_cast<float>(kTargetRms / rms) : 1.0f;
+  const std::size_t count = read_raw(SampleConverter::kCalibrationSamples);
+  converter_.calibrate(std::as_bytes(std::span(raw_.data(), count * bytes_per_sample(options_.format))));
   if (::fseeko(file_, start, SEEK_SET) != 0)
     throw std::runtime_error(
         fmt::format("cannot seek in sample file '{}': {}", options_.path.string(), std::strerror(errno)));
@@ -114,37 +96,11 @@ std::size_t FileSampleSource::read(std::span<Sample> out) {
 }
 
 void FileSampleSource::convert(std::size_t count, std::span<Sample> out) const {
-  const std::int16_t q_sign = options_.inverted_spectrum ? -1 : 1;
-  const unsigned char* raw = raw_.data();
-  switch (options_.format) {
-    case SampleFormat::ibyte:
-      for (std::size_t i = 0; i < count; ++i)
-        out[i] = Sample(static_cast<std::int8_t>(raw[2 * i]),
-                        static_cast<std::int16_t>(q_sign * static_cast<std::int8_t>(raw[2 * i + 1])));
-      break;
-    case SampleFormat::ishort:
-      for (std::size_t i = 0; i < count; ++i) {
-        std::int16_t iq[2];
-        std::memcpy(iq, raw + 4 * i, sizeof iq);
-        // -(-32768) does not fit: saturate rather than wrap.
-        const int q = q_sign * static_cast<int>(iq[1]);
-        out[i] = Sample(iq[0], static_cast<std::int16_t>(std::min(q, 32767)));
-      }
-      break;
-    case SampleFormat::gr_complex:
-      for (std::size_t i = 0; i < count; ++i) {
-        float iq[2];
-        std::memcpy(iq, raw + 8 * i, sizeof iq);
-        if (!std::isfinite(iq[0]) || !std::isfinite(iq[1]))
-          throw std::runtime_error(fmt::format("sample file '{}': sample {} is not a finite number",
-                                               options_.path.string(),
-                                               next_index_ + static_cast<std::int64_t>(i)));
-        out[i] = Sample(saturate_int16(iq[0] * float_scale_), saturate_int16(q_sign * iq[1] * float_scale_));
-      }
-      break;
-    case SampleFormat::byte:
-      for (std::size_t i = 0; i < count; ++i) out[i] = Sample(static_cast<std::int8_t>(raw[i]), 0);
-      break;
+  try {
+    converter_.convert(std::as_bytes(std::span(raw_.data(), count * bytes_per_sample(options_.format))), out,
+                       next_index_);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(fmt::format("sample file '{}': {}", options_.path.string(), e.what()));
   }
 }
 

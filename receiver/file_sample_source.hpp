@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "receiver/sample_converter.hpp"
 #include "receiver/sample_source.hpp"
 #include "signals/sample_format.hpp"
 
@@ -44,7 +45,7 @@ class FileSampleSource final : public SampleSource {
   /// Whole samples in the file (including skipped ones).
   std::int64_t total_samples() const { return total_samples_; }
   /// Factor applied to gr_complex values before rounding to int16 (1 for the integer formats).
-  float float_scale() const { return float_scale_; }
+  float float_scale() const { return converter_.float_scale(); }
   /// Problems that do not stop reading (a trailing partial sample), one sentence each.
   const std::vector<std::string>& warnings() const { return warnings_; }
 
@@ -58,7 +59,7 @@ class FileSampleSource final : public SampleSource {
   std::int64_t total_samples_ = 0;
   std::int64_t next_index_ = 0;
   bool at_end_ = false;
-  float float_scale_ = 1.0f;
+  SampleConverter converter_;
   std::vector<unsigned char> raw_;
   std::vector<std::string> warnings_;
 };
