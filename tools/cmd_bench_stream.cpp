@@ -26,7 +26,7 @@ namespace deepnav::cli {
 namespace {
 
 struct BenchStreamOptions {
-  std::string scenario_path = "data/scenarios/default.yaml";
+  std::string scenario_path = "data/scenarios/rx_speed_12sat.yaml";
   double duration_s = 30.0;
   double paced_s = 10.0;
   std::string json_path;
@@ -121,12 +121,11 @@ void bench_stream(const BenchStreamOptions& o) {
     std::filesystem::path path = o.scenario_path;
     if (!std::filesystem::exists(path) && path.is_relative()) path = std::filesystem::path(DEEPNAV_SOURCE_DIR) / path;
     sc = load_scenario(path.string(), DEEPNAV_SOURCE_DIR);
-    // Every satellite above the horizon, up to 12, at an hour when the bundled navigation
-    // file gives the most (11 at 12:00 GPS time on 2022-01-01).
+    // Every satellite above the horizon, up to 12 (the default scenario, on the equator at
+    // 12:00 GPS time on 2022-01-01, has 12 with the bundled navigation file).
     sc.duration_s = o.duration_s;
     sc.elevation_mask_rad = 0.0;
     sc.max_satellites = 12;
-    sc.start_time = GpsTime::normalized(sc.start_time.week, std::floor(sc.start_time.sow / 86400.0) * 86400.0 + 12 * 3600.0);
     validate_scenario(sc);
     nav = read_rinex_nav(sc.nav_file);
   } catch (const std::exception& e) {
