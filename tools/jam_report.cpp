@@ -130,7 +130,7 @@ BenchReport write_jam_report(const std::vector<nlohmann::json>& points, const st
                       "per_run_db", "gain_over_none_db", "failure", "signal_lost_db"});
   std::string md =
       "| scenario | jammer | mode | mitigation | J/S tested (dB) | runs | first failing J/S (dB, median) | per run | "
-      "gain over none (dB) | failure at threshold | signal lost at J/S (dB, median) |\n"
+      "gain over none (dB, same seeds) | failure at threshold | signal lost at J/S (dB, median) |\n"
       "|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& [key, s] : series) {
     const auto& [scenario, jammer, mode, mitigation] = key;
@@ -146,15 +146,23 @@ BenchReport write_jam_report(const std::vector<nlohmann::json>& points, const st
     std::string gain = "";
     const auto base = series.find({scenario, jammer, mode, "none"});
     if (mitigation != "none" && base != series.end()) {
-      std::vector<double> bv;
-      for (const auto& [seed, b] : base->second.first_failure) bv.push_back(b);
-      const double b = median(bv);
-      if (std::isinf(b))
+      // Over the seeds both series ran, so a mitigation is compared with the same noise and jammer.
+      std::vector<double> bv, tv;
+      for (const auto& [seed, b] : base->second.first_failure)
+        if (s.first_failure.count(seed)) {
+          bv.push_back(b);
+          tv.push_back(s.first_failure.at(seed));
+        }
+      const double b = bv.empty() ? kNoFailure : median(bv);
+      const double m = tv.empty() ? kNoFailure : median(tv);
+      if (bv.empty())
+        gain = "n/a (no common seed)";
+      else if (std::isinf(b))
         gain = "n/a (none never failed)";
-      else if (std::isinf(t))
+      else if (std::isinf(m))
         gain = fmt::format("> {:.1f}", s.js_max - b);
       else
-        gain = fmt::format("{:.1f}", t - b);
+        gain = fmt::format("{:.1f}", m - b);
     }
     std::vector<double> signal_values;
     for (const auto& [seed, v] : s.first_signal_loss) signal_values.push_back(v);

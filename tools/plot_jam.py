@@ -2,7 +2,7 @@
 """Plots of `deepnav bench jam`: for each jammer in DIR/runs.csv, one PNG (DIR/jam_<jammer>.png)
 with the horizontal position error (RMS and max, every solution), the GNSS fix availability
 (and, dashed, that of any solution, an aided mode's INS coast included), the post-correlation
-C/N0 and the tracked fraction against J/S, one line per receiver mode and mitigation (seeds
+C/N0, and the tracked and signal fractions against J/S, one line per receiver mode and mitigation (seeds
 averaged).
 usage: plot_jam.py DIR"""
 import csv
@@ -41,6 +41,7 @@ def main(folder):
             h_max = [mean([number(r["horizontal_max_m"]) for r in points[x]]) for x in js]
             cn0 = [mean([number(r["cn0_mean_dbhz"]) for r in points[x]]) for x in js]
             tracked = [mean([number(r["tracked_fraction_mean"]) for r in points[x]]) for x in js]
+            signal = [mean([number(r.get("signal_fraction_mean", "")) for r in points[x]]) for x in js]
             fixes = [mean([number(r["fix_availability"]) for r in points[x]]) for x in js]
             solutions = [mean([number(r.get("solution_availability", "")) for r in points[x]]) for x in js]
             axes[0].semilogy(js, h_rms, "o-", color=color, label=f"{label} RMS")
@@ -48,7 +49,8 @@ def main(folder):
             axes[1].plot(js, fixes, "o-", color=color, label=f"{label} GNSS fixes")
             axes[1].plot(js, solutions, "x--", color=color, label=f"{label} any solution")
             axes[2].plot(js, cn0, "o-", color=color, label=label)
-            axes[3].plot(js, tracked, "o-", color=color, label=label)
+            axes[3].plot(js, tracked, "o-", color=color, label=f"{label} tracked")
+            axes[3].plot(js, signal, "x--", color=color, label=f"{label} signal (15 dB-Hz)")
         axes[0].axhline(10.0, color="k", lw=0.8, ls=":")
         axes[0].set_ylabel("horizontal error (m)")
         axes[0].legend(fontsize=7)
@@ -58,7 +60,8 @@ def main(folder):
         axes[1].legend(fontsize=7)
         axes[2].set_ylabel("post-correlation C/N0 (dB-Hz)")
         axes[2].legend(fontsize=7)
-        axes[3].set_ylabel("tracked fraction (mean)")
+        axes[3].set_ylabel("fraction of the jammed time (mean)")
+        axes[3].legend(fontsize=7)
         axes[3].set_ylim(-0.05, 1.05)
         axes[3].set_xlabel("J/S (dB)")
         for ax in axes:
