@@ -39,6 +39,7 @@ struct AidedReceiver::Impl : ChannelSteering {
   double fs;
   double last_pvt_t_s = -1e9;
   int ranging = 0;
+  int last_tight_satellites = 0;
   bool imu_end_reported = false;
   // Receiver clock at the end of the previous block, to follow its re-settings.
   std::optional<GpsTime> previous_clock;
@@ -203,6 +204,7 @@ struct AidedReceiver::Impl : ChannelSteering {
       m.rate_sigma_mps = 0.1;
       ms.push_back(m);
     }
+    last_tight_satellites = static_cast<int>(ms.size());
     if (!ms.empty()) nav->update_ranges(ms);
   }
 
@@ -235,6 +237,12 @@ struct AidedReceiver::Impl : ChannelSteering {
     out.clock_drift_mps = nav->clock_drift_mps();
     out.steered_channels = ultra.steered_channels();
     out.measuring_channels = ultra.measuring_channels();
+    switch (out.mode) {
+      case NavMode::ultra: out.filter_satellites = ultra.measuring_channels(); break;
+      case NavMode::tight: out.filter_satellites = last_tight_satellites; break;
+      case NavMode::loose: out.filter_satellites = ep.pvt.valid ? static_cast<int>(ep.pvt.used_prns.size()) : 0; break;
+      default: out.filter_satellites = 0;
+    }
     return out;
   }
 };

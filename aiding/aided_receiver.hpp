@@ -48,6 +48,9 @@ struct AidedEpoch {
   double clock_bias_m = 0.0, clock_drift_mps = 0.0;
   int steered_channels = 0;
   int measuring_channels = 0;
+  /// Satellites whose measurements the filter took at its last update in this mode
+  /// (PVT satellites in loose mode, range rows in tight, discriminators in ultra; 0 coasting).
+  int filter_satellites = 0;
 };
 
 class AidedReceiver {

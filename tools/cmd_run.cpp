@@ -121,7 +121,7 @@ void run_receiver(RunOptions o) {
   TextOutputFile pvt_csv(path("pvt.csv"));
   pvt_csv.write(
       "t_s,gps_week,gps_sow,valid,x_ecef_m,y_ecef_m,z_ecef_m,lat_deg,lon_deg,height_m,vn_mps,ve_mps,vd_mps,"
-      "clock_bias_m,clock_drift_mps,satellites,gdop,pdop,hdop,vdop,excluded,mode\n");
+      "clock_bias_m,clock_drift_mps,satellites,gdop,pdop,hdop,vdop,excluded,mode,filter_satellites\n");
   TextOutputFile tracking_csv(path("tracking.csv"));
   tracking_csv.write("first_sample,prn,state,integration_s,i_prompt,q_prompt,i_early,q_early,i_late,q_late,doppler_hz,code_rate_cps,cn0_dbhz\n");
 
@@ -171,12 +171,13 @@ void run_receiver(RunOptions o) {
         const Eigen::Vector3d v_ned = C_e_n(p.llh.lat_rad, p.llh.lon_rad) * p.v_ecef_mps;
         std::string excluded;
         for (int prn : p.excluded_prns) excluded += (excluded.empty() ? "" : " ") + std::to_string(prn);
-        pvt_csv.write(fmt::format("{:.3f},{},{:.6f},1,{:.4f},{:.4f},{:.4f},{:.9f},{:.9f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{},{:.2f},{:.2f},{:.2f},{:.2f},{},{}\n",
+        pvt_csv.write(fmt::format("{:.3f},{},{:.6f},1,{:.4f},{:.4f},{:.4f},{:.9f},{:.9f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{},{:.2f},{:.2f},{:.2f},{:.2f},{},{},{}\n",
                                   ep.t_s, p.t.week, p.t.sow, p.r_ecef_m.x(), p.r_ecef_m.y(), p.r_ecef_m.z(),
                                   p.llh.lat_rad * kRadToDeg, p.llh.lon_rad * kRadToDeg, p.llh.height_m, v_ned.x(),
                                   v_ned.y(), v_ned.z(), p.clock_bias_m, p.clock_drift_mps, p.used_prns.size(),
                                   p.dops.gdop, p.dops.pdop, p.dops.hdop, p.dops.vdop, excluded,
-                                  a ? aiding::to_string(a->mode) : "scalar"));
+                                  a ? aiding::to_string(a->mode) : "scalar",
+                                  a ? a->filter_satellites : static_cast<int>(p.used_prns.size())));
         pdop.v.push_back(p.dops.pdop);
         sats.v.push_back(static_cast<double>(p.used_prns.size()));
         if (truth) {
