@@ -35,6 +35,22 @@ void StreamSampleSource::publish_header(const stream::StreamHeader& header) {
   header_changed_.notify_all();
 }
 
+void StreamSampleSource::start_io(std::function<void()> loop) {
+  io_thread_ = std::thread(std::move(loop));
+  if (settings_.raw) return;
+  try {
+    wait_for_header();
+  } catch (...) {
+    stop_io();
+    throw;
+  }
+}
+
+void StreamSampleSource::stop_io() {
+  cancel_ = true;
+  if (io_thread_.joinable()) io_thread_.join();
+}
+
 void StreamSampleSource::wait_for_header() {
   const auto deadline =
       std::chrono::steady_clock::now() + std::chrono::duration<double>(settings_.connect_timeout_s);

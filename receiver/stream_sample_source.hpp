@@ -8,9 +8,11 @@
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <mutex>
 #include <optional>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -84,6 +86,13 @@ class StreamSampleSource : public SampleSource {
   /// std::runtime_error naming the stream when it ended or failed first, or after
   /// connect_timeout_s. Raw streams have theirs from the settings at once.
   void wait_for_header();
+  /// Starts the I/O thread running `loop`, then (framed streams) waits for the header; on
+  /// failure the thread is stopped before the error propagates. Called from a derived
+  /// constructor, once its own members exist.
+  void start_io(std::function<void()> loop);
+  /// Tells the I/O thread to quit and joins it. Derived destructors call it first, while
+  /// the members the thread uses still exist.
+  void stop_io();
   /// Producer side.
   void publish_header(const stream::StreamHeader& header);
   template <typename F>
@@ -97,6 +106,7 @@ class StreamSampleSource : public SampleSource {
   std::string url_;
   StreamSampleQueue queue_;
   std::atomic<bool> cancel_{false};  ///< tells the I/O thread to quit
+  std::thread io_thread_;
 
  private:
   bool next_piece();  ///< ensures held_ has a piece; false at the end / on stop

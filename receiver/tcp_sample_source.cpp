@@ -34,21 +34,10 @@ bool same_stream(const stream::StreamHeader& a, const stream::StreamHeader& b) {
 
 TcpSampleSource::TcpSampleSource(StreamSourceSettings settings)
     : StreamSampleSource(settings, fmt::format("tcp://{}:{}", settings.host, settings.port)) {
-  thread_ = std::thread([this] { io_loop(); });
-  if (settings_.raw) return;
-  try {
-    wait_for_header();
-  } catch (...) {
-    cancel_ = true;
-    thread_.join();
-    throw;
-  }
+  start_io([this] { io_loop(); });
 }
 
-TcpSampleSource::~TcpSampleSource() {
-  cancel_ = true;
-  if (thread_.joinable()) thread_.join();
-}
+TcpSampleSource::~TcpSampleSource() { stop_io(); }
 
 bool TcpSampleSource::connect(tcp::socket& socket, std::string& why) {
   boost::system::error_code ec;

@@ -7,7 +7,6 @@
 // its connection closes (without sample indices it cannot be resumed).
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
-#include <thread>
 
 #include "receiver/stream_sample_source.hpp"
 
@@ -35,7 +34,6 @@ class TcpSampleSource final : public StreamSampleSource {
   std::int64_t resume_from_ = 0;  ///< first sample not received yet (framed)
   std::int64_t raw_index_ = 0;
   std::optional<stream::StreamHeader> first_header_;
-  std::thread thread_;
 };
 
 }  // namespace deepnav

@@ -53,21 +53,10 @@ UdpSampleSource::UdpSampleSource(StreamSourceSettings settings)
   if (ec) throw std::runtime_error(fmt::format("{}: cannot open the socket: {}", url_, ec.message()));
   socket_.set_option(asio::socket_base::receive_buffer_size(kSocketReceiveBuffer), ec);  // best effort
   local_port_ = socket_.local_endpoint().port();
-  thread_ = std::thread([this] { io_loop(); });
-  if (settings_.raw) return;
-  try {
-    wait_for_header();
-  } catch (...) {
-    cancel_ = true;
-    thread_.join();
-    throw;
-  }
+  start_io([this] { io_loop(); });
 }
 
-UdpSampleSource::~UdpSampleSource() {
-  cancel_ = true;
-  if (thread_.joinable()) thread_.join();
-}
+UdpSampleSource::~UdpSampleSource() { stop_io(); }
 
 void UdpSampleSource::send_request(bool stop) {
   if (settings_.listen) return;

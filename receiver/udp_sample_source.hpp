@@ -8,7 +8,6 @@
 #include <atomic>
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/udp.hpp>
-#include <thread>
 
 #include "receiver/frame_sequencer.hpp"
 #include "receiver/stream_sample_source.hpp"
@@ -44,7 +43,6 @@ class UdpSampleSource final : public StreamSampleSource {
   std::int64_t resume_from_ = 0;
   std::int64_t raw_index_ = 0;
   bool finished_ = false;
-  std::thread thread_;
 };
 
 }  // namespace deepnav
