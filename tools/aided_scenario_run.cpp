@@ -10,14 +10,18 @@
 
 namespace deepnav::cli {
 
+FileSampleSourceOptions synthesized_source(const Scenario& sc, const SynthesisSummary& s) {
+  FileSampleSourceOptions o;
+  o.path = s.if_path;
+  o.format = sc.format;
+  o.sample_rate_hz = sc.sample_rate_hz;
+  o.intermediate_frequency_hz = sc.if_hz;
+  return o;
+}
+
 AidedRunResult run_aided_scenario(const Scenario& sc, const SynthesisSummary& s, aiding::NavMode mode, int pll_order) {
   const auto start = std::chrono::steady_clock::now();
-  FileSampleSourceOptions src;
-  src.path = s.if_path;
-  src.format = sc.format;
-  src.sample_rate_hz = sc.sample_rate_hz;
-  src.intermediate_frequency_hz = sc.if_hz;
-  FileSampleSource source(src);
+  FileSampleSource source(synthesized_source(sc, s));
   aiding::AidedReceiverConfig cfg;
   cfg.mode = mode;
   cfg.receiver.reference_week = sc.start_time.week;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "aiding/aided_receiver.hpp"
+#include "receiver/file_sample_source.hpp"
 #include "signals/if_synthesizer.hpp"
 #include "signals/scenario.hpp"
 
@@ -30,6 +31,9 @@ struct AidedRunResult {
   std::vector<aiding::ModeChange> mode_changes;
   double wall_s = 0.0;
 };
+
+/// How to read the IF file the synthesizer wrote for `scenario`.
+FileSampleSourceOptions synthesized_source(const Scenario& scenario, const SynthesisSummary& synthesis);
 
 /// Runs `mode` (scalar included) on a synthesized scenario with assisted ephemerides and
 /// ionosphere from the scenario's navigation file.

@@ -19,6 +19,7 @@
 #include "signals/if_synthesizer.hpp"
 #include "signals/rinex_nav.hpp"
 #include "signals/scenario.hpp"
+#include "tools/aided_scenario_run.hpp"
 #include "tools/bench_report.hpp"
 #include "tools/command_registry.hpp"
 
@@ -40,17 +41,8 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-FileSampleSource open_source(const Scenario& sc, const SynthesisSummary& s) {
-  FileSampleSourceOptions o;
-  o.path = s.if_path;
-  o.format = sc.format;
-  o.sample_rate_hz = sc.sample_rate_hz;
-  o.intermediate_frequency_hz = sc.if_hz;
-  return FileSampleSource(o);
-}
-
 RunFigures run_scalar(const Scenario& sc, const SynthesisSummary& s, int channels, unsigned threads) {
-  FileSampleSource source = open_source(sc, s);
+  FileSampleSource source(synthesized_source(sc, s));
   ReceiverConfig rc;
   rc.channels = channels;
   rc.threads = threads;
@@ -65,7 +57,7 @@ RunFigures run_scalar(const Scenario& sc, const SynthesisSummary& s, int channel
 }
 
 RunFigures run_ultra(const Scenario& sc, const SynthesisSummary& s) {
-  FileSampleSource source = open_source(sc, s);
+  FileSampleSource source(synthesized_source(sc, s));
   aiding::AidedReceiverConfig cfg;
   cfg.mode = aiding::NavMode::ultra;
   cfg.receiver.reference_week = sc.start_time.week;

@@ -138,12 +138,7 @@ void run_threshold(const ThresholdOptions& o) {
   so.if_only = false;
   const SynthesisSummary s = IfSynthesizer(sc, read_rinex_nav(sc.nav_file)).run(work, so);
 
-  FileSampleSourceOptions src;
-  src.path = s.if_path;
-  src.format = sc.format;
-  src.sample_rate_hz = sc.sample_rate_hz;
-  src.intermediate_frequency_hz = sc.if_hz;
-  FileSampleSource source(src);
+  FileSampleSource source(synthesized_source(sc, s));
   ReceiverConfig rc;
   rc.reacquire_interval_s = 1e9;  // a channel lost stays lost: the threshold is the loss point
   rc.reference_week = sc.start_time.week;
