@@ -139,8 +139,14 @@ void run_receiver(RunOptions o) {
   }
   ScalarReceiver& receiver = aided ? aided->receiver() : *scalar;
   try {
-    if (!o.assist_nav.empty()) receiver.set_assisted_iono(read_rinex_nav(o.assist_nav).iono);
-    if (!o.assist_ephemeris.empty()) receiver.set_assisted_ephemerides(read_rinex_nav(o.assist_ephemeris));
+    // Both assistance options usually name the same file: read it once.
+    std::optional<NavData> iono_nav;
+    if (!o.assist_nav.empty()) {
+      iono_nav = read_rinex_nav(o.assist_nav);
+      receiver.set_assisted_iono(iono_nav->iono);
+    }
+    if (!o.assist_ephemeris.empty())
+      receiver.set_assisted_ephemerides(o.assist_ephemeris == o.assist_nav ? *iono_nav : read_rinex_nav(o.assist_ephemeris));
   } catch (const std::runtime_error& e) {
     throw UserError(e.what());
   }
