@@ -25,7 +25,7 @@ double scalar_pseudorange_sigma_m(double cn0_dbhz, double elevation_rad) {
 
 }  // namespace
 
-struct AidedReceiver::Impl : ChannelSteering {
+struct AidedReceiver::Impl : ExternalChannelControl {
   AidedReceiverConfig cfg;
   ScalarReceiver rx;
   ImuLog imu;
@@ -53,7 +53,7 @@ struct AidedReceiver::Impl : ChannelSteering {
         ultra(rx, cfg.ultra),
         modes(cfg.mode, cfg.limits),
         fs(source.sample_rate_hz()) {
-    rx.set_steering(this);
+    rx.set_external_control(this);
   }
 
   bool on_epoch(const CorrelatorEpoch& e, TrackingChannel& ch, const NavDecoder& decoder) override {
@@ -110,21 +110,13 @@ struct AidedReceiver::Impl : ChannelSteering {
     previous_clock_sample = end;
   }
 
-  int count_steerable() {
-    int n = 0;
-    rx.for_each_channel([&](TrackingChannel& ch, const NavDecoder& d) {
-      if (d.synchronised() && rx.ephemeris(ch.prn()) && ch.bit_edge_period() && ch.state() != ChannelState::lost) ++n;
-    });
-    return n;
-  }
-
   void evaluate_modes(double t) {
     ModeInputs in;
     in.ins_ready = nav.has_value();
     in.filter_healthy = nav && nav->healthy();
     in.recent_pvt = t - last_pvt_t_s < kRecentPvt_s;
     in.ranging_satellites = modes.mode() == NavMode::ultra ? std::max(ranging, ultra.measuring_channels()) : ranging;
-    in.steerable_channels = count_steerable();
+    in.steerable_channels = ultra.count_steerable();
     if (nav) {
       const Eigen::Vector3d s = nav->position_sigma_ned_m();
       in.horizontal_sigma_m = std::hypot(s(0), s(1));
@@ -186,17 +178,16 @@ struct AidedReceiver::Impl : ChannelSteering {
 
   void tight_update(const ReceiverEpoch& ep) {
     if (!ep.t_rx) return;
-    const std::map<int, Ephemeris> ephs = rx.ephemerides();
     const IonoParameters iono = rx.iono();
     const double dt = ep.t_s - nav->time_s();
     const double bias = nav->clock_bias_m() + nav->clock_drift_mps() * dt;
     std::vector<RangeMeasurement> ms;
     for (const ChannelObservation& o : ep.observations) {
-      const auto it = ephs.find(o.prn);
-      if (it == ephs.end() || o.after_gap) continue;
+      const Ephemeris* eph = rx.ephemeris(o.prn);
+      if (eph == nullptr || o.after_gap) continue;
       RangeMeasurement m;
       m.time_offset_s = dt;
-      m.geometry = predict_range(it->second, *ep.t_rx, bias, nav->antenna_ecef_at(ep.t_s), iono);
+      m.geometry = predict_range(*eph, *ep.t_rx, bias, nav->antenna_ecef_at(ep.t_s), iono);
       if (m.geometry.elevation_rad < cfg.receiver.pvt.elevation_mask_rad) continue;
       m.pseudorange_m = o.pseudorange_m;
       m.pseudorange_sigma_m = scalar_pseudorange_sigma_m(o.cn0_dbhz, m.geometry.elevation_rad);
@@ -210,10 +201,9 @@ struct AidedReceiver::Impl : ChannelSteering {
 
   AidedEpoch on_observation(const ReceiverEpoch& ep) {
     if (ep.pvt.valid) last_pvt_t_s = ep.t_s;
-    const std::map<int, Ephemeris> ephs = rx.ephemerides();
     ranging = 0;
     for (const auto& o : ep.observations)
-      if (ephs.count(o.prn)) ++ranging;
+      if (rx.ephemeris(o.prn)) ++ranging;
     if (!nav && ep.pvt.valid) start_ins(ep);
     if (nav) {
       if (modes.mode() == NavMode::loose) loose_update(ep);

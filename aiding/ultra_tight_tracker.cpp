@@ -27,11 +27,33 @@ double frequency_sigma_hz(double cn0_dbhz, double t_s) {
   return std::sqrt(2.0 * phase_var) / (2.0 * M_PI * t_s);
 }
 
-bool steerable(const CorrelatorEpoch& e, const TrackingChannel& ch, const NavDecoder& nav, const ScalarReceiver& rx) {
-  return e.bit_synced && ch.state() != ChannelState::lost && nav.synchronised() && rx.ephemeris(e.prn) != nullptr;
+}  // namespace
+
+bool UltraTightTracker::can_steer(bool bit_synced, const TrackingChannel& ch, const NavDecoder& nav) const {
+  return bit_synced && ch.state() != ChannelState::lost && nav.synchronised() && rx_.ephemeris(ch.prn()) != nullptr;
 }
 
-}  // namespace
+int UltraTightTracker::count_steerable() {
+  int n = 0;
+  rx_.for_each_channel([&](TrackingChannel& ch, const NavDecoder& nav) {
+    if (can_steer(ch.bit_edge_period().has_value(), ch, nav)) ++n;
+  });
+  return n;
+}
+
+std::optional<UltraTightTracker::SamplePrediction> UltraTightTracker::predict_at(const Ephemeris& eph,
+                                                                                 std::int64_t sample,
+                                                                                 const AidedNavigator& nav) const {
+  const std::optional<GpsTime> t_rx = rx_.receiver_time(sample);
+  if (!t_rx) return std::nullopt;
+  SamplePrediction p;
+  p.t_rx = *t_rx;
+  const double t_s = static_cast<double>(sample) / rx_.sample_rate_hz();
+  p.offset_s = t_s - nav.time_s();
+  p.clock_bias_m = nav.clock_bias_m() + nav.clock_drift_mps() * p.offset_s;
+  p.range = predict_range(eph, *t_rx, p.clock_bias_m, nav.antenna_ecef_at(t_s), rx_.iono());
+  return p;
+}
 
 UltraTightTracker::UltraTightTracker(ScalarReceiver& receiver, UltraTightConfig config)
     : rx_(receiver), cfg_(config) {}
@@ -60,7 +82,7 @@ bool UltraTightTracker::on_epoch(const CorrelatorEpoch& e, TrackingChannel& ch, 
     const bool faded = e.cn0_dbhz > 0.0 && e.cn0_dbhz < cfg_.faded_below_dbhz;
     engaged = faded || (was_steered && e.cn0_dbhz < cfg_.recovered_above_dbhz);
   }
-  if (!engaged || !steerable(e, ch, nav, rx_) || !rx_.receiver_time(end)) {
+  if (!engaged || !can_steer(e.bit_synced, ch, nav) || !rx_.receiver_time(end)) {
     if (was_steered) {
       steered_.erase(e.prn);
       ch.set_loss_detection(true);
@@ -91,15 +113,13 @@ bool UltraTightTracker::on_epoch(const CorrelatorEpoch& e, TrackingChannel& ch, 
 
 std::optional<RangeMeasurement> UltraTightTracker::to_measurement(const DiscriminatorSample& d,
                                                                   const AidedNavigator& nav) const {
-  const std::optional<GpsTime> t_rx = rx_.receiver_time(d.mid_sample);
-  if (!t_rx) return std::nullopt;
-  const double t_s = static_cast<double>(d.mid_sample) / rx_.sample_rate_hz();
+  const std::optional<SamplePrediction> p = predict_at(d.ephemeris, d.mid_sample, nav);
+  if (!p) return std::nullopt;
   RangeMeasurement m;
-  m.time_offset_s = t_s - nav.time_s();
-  const double bias = nav.clock_bias_m() + nav.clock_drift_mps() * m.time_offset_s;
-  m.geometry = predict_range(d.ephemeris, *t_rx, bias, nav.antenna_ecef_at(t_s), rx_.iono());
+  m.time_offset_s = p->offset_s;
+  m.geometry = p->range;
   const double t_tx = d.replica_transmit_sow + d.code_error_chips / gps::kCodeRate_cps;
-  m.pseudorange_m = gps::kSpeedOfLight_mps * seconds_of_week_difference(t_rx->sow, t_tx);
+  m.pseudorange_m = gps::kSpeedOfLight_mps * seconds_of_week_difference(p->t_rx.sow, t_tx);
   // Discriminator noise plus a floor for multipath-free residual modelling errors.
   const double code_sigma = code_sigma_chips(d.cn0_dbhz, d.integration_s, cfg_.spacing_chips) * kChip_m;
   m.pseudorange_sigma_m = std::hypot(code_sigma, 0.5);
@@ -120,10 +140,7 @@ UpdateResult UltraTightTracker::update_and_steer(AidedNavigator& nav, std::int64
   measuring_ = static_cast<int>(ms.size());
   UpdateResult result;
   if (!ms.empty()) result = nav.update_ranges(ms);
-  steerable_ = 0;
   rx_.for_each_channel([&](TrackingChannel& ch, const NavDecoder& decoder) {
-    if (decoder.synchronised() && rx_.ephemeris(ch.prn()) && ch.bit_edge_period() && ch.state() != ChannelState::lost)
-      ++steerable_;
     if (steered_.count(ch.prn())) steer(ch, decoder, nav, end_sample);
   });
   return result;
@@ -131,15 +148,13 @@ UpdateResult UltraTightTracker::update_and_steer(AidedNavigator& nav, std::int64
 
 void UltraTightTracker::steer(TrackingChannel& ch, const NavDecoder& decoder, const AidedNavigator& nav,
                               std::int64_t sample) {
-  const std::optional<GpsTime> t_rx = rx_.receiver_time(sample);
   const std::optional<double> tt_replica = transmit_time_sow(decoder, ch, sample);
   const Ephemeris* eph = rx_.ephemeris(ch.prn());
-  if (!t_rx || !tt_replica || !eph) return;
-  const double t_s = static_cast<double>(sample) / rx_.sample_rate_hz();
-  const double dt = t_s - nav.time_s();
-  const double bias = nav.clock_bias_m() + nav.clock_drift_mps() * dt;
-  const RangePrediction p = predict_range(*eph, *t_rx, bias, nav.antenna_ecef_at(t_s), rx_.iono());
-  const double tt_predicted = t_rx->sow - p.pseudorange_m(bias) / gps::kSpeedOfLight_mps;
+  if (!tt_replica || !eph) return;
+  const std::optional<SamplePrediction> predicted = predict_at(*eph, sample, nav);
+  if (!predicted) return;
+  const RangePrediction& p = predicted->range;
+  const double tt_predicted = predicted->t_rx.sow - p.pseudorange_m(predicted->clock_bias_m) / gps::kSpeedOfLight_mps;
   const double correction_chips = seconds_of_week_difference(tt_predicted, *tt_replica) * gps::kCodeRate_cps;
   if (std::abs(correction_chips) > cfg_.max_code_correction_chips) {
     // The replica and the filter disagree by more than a plausible tracking error: the

@@ -13,7 +13,7 @@
 // over +-0.5 chip and +-25 Hz (10 ms), and enter the filter through the same pseudorange
 // and rate rows as tight coupling.
 //
-// Steering: after each filter update every steered channel gets an NcoCommand from the
+// NCO commands: after each filter update every steered channel gets an NcoCommand from the
 // filter: carrier Doppler from the predicted pseudorange rate (INS velocity, satellite
 // motion, clock drift), code rate from it, and a code phase correction that puts the
 // replica at the predicted transmit time. Optionally a first-order phase loop on the
@@ -61,7 +61,7 @@ class UltraTightTracker {
  public:
   UltraTightTracker(ScalarReceiver& receiver, UltraTightConfig config);
 
-  /// From ChannelSteering::on_epoch while ultra-tight mode runs: true when the channel is
+  /// From ExternalChannelControl::on_epoch while ultra-tight mode runs: true when the channel is
   /// steered (it then has a discriminator sample queued).
   bool on_epoch(const CorrelatorEpoch& epoch, TrackingChannel& channel, const NavDecoder& nav, Engagement engagement);
   /// The filter update with the queued samples (when `measure`), then new NCO commands for
@@ -73,11 +73,21 @@ class UltraTightTracker {
 
   int steered_channels() const { return static_cast<int>(steered_.size()); }
   /// Channels an ultra-tight filter could take over now (ephemeris, transmit time, bit sync).
-  int steerable_channels() const { return steerable_; }
+  int count_steerable();
   /// Channels whose last integration was strong enough to be a measurement.
   int measuring_channels() const { return measuring_; }
 
  private:
+  /// The filter's view of one satellite at an absolute sample index.
+  struct SamplePrediction {
+    GpsTime t_rx;              ///< receiver clock at the sample
+    double offset_s = 0.0;     ///< sample time minus the navigator's time
+    double clock_bias_m = 0.0; ///< the clock model moved to the sample
+    RangePrediction range;     ///< from the antenna position extrapolated to the sample
+  };
+  std::optional<SamplePrediction> predict_at(const Ephemeris& eph, std::int64_t sample, const AidedNavigator& nav) const;
+  /// Whether the filter can take a channel over: bit edges known, not lost, transmit time and ephemeris.
+  bool can_steer(bool bit_synced, const TrackingChannel& channel, const NavDecoder& nav) const;
   std::optional<RangeMeasurement> to_measurement(const DiscriminatorSample& d, const AidedNavigator& nav) const;
   void steer(TrackingChannel& channel, const NavDecoder& nav_decoder, const AidedNavigator& nav, std::int64_t sample);
   ScalarReceiver& rx_;
@@ -93,7 +103,6 @@ class UltraTightTracker {
   };
   std::map<int, ChannelMemory> memory_;
   std::map<int, bool> steered_;
-  int steerable_ = 0;
   int measuring_ = 0;
 };
 

@@ -53,7 +53,7 @@ struct ScalarReceiver::Impl {
   std::int64_t sample_ref = 0;
   bool gap_since_epoch = false;  ///< samples lost since the last observation epoch
   double last_reacquire_s = 0.0;
-  ChannelSteering* steering = nullptr;
+  ExternalChannelControl* external = nullptr;  ///< an outside filter driving channels, or none
   struct EpochRecord {
     CorrelatorEpoch epoch;
     ChannelSnapshot snapshot;
@@ -116,11 +116,11 @@ struct ScalarReceiver::Impl {
     }
   }
 
-  /// One channel over one block: correlation, its loop (or the steering filter) after
+  /// One channel over one block: correlation, its loop (or the outside filter) after
   /// every epoch, navigation bits; what concerns the whole receiver is recorded for later.
   void run_channel(Channel& ch, const SampleBlock& block, std::vector<EpochRecord>& out) {
     ch.trk->process(block, [&](const CorrelatorEpoch& e) {
-      const bool steered = steering && steering->on_epoch(e, *ch.trk, *ch.nav);
+      const bool steered = external && external->on_epoch(e, *ch.trk, *ch.nav);
       const bool pulling_in = ch.trk->state() == ChannelState::pull_in;
       ch.loop->set_bandwidths(ch.trk->state() == ChannelState::tracking ? cfg.tracking_loops : cfg.pull_in);
       if (!steered) {
@@ -129,11 +129,14 @@ struct ScalarReceiver::Impl {
         ch.trk->apply(cmd);
         ch.last_doppler_hz = cmd.carrier_doppler_hz;
       } else {
-        // Keep the loop ready to take the channel back where the steering leaves it.
+        // Keep the loop ready to take the channel back where the outside filter leaves it.
         ch.loop->reset(e.carrier_doppler_hz);
         ch.last_doppler_hz = e.carrier_doppler_hz;
       }
-      const bool fresh = ch.trk->bit_edge_period() && ch.nav->add(e, *ch.trk->bit_edge_period());
+      // The channel assembles the data bits (sums over each bit's 20 code periods); a bit
+      // completed by this epoch goes to the decoder at once.
+      bool fresh = false;
+      for (const PromptBit& bit : ch.trk->take_bits()) fresh = ch.nav->add_bit(bit) || fresh;
       out.push_back({e, ChannelSnapshot{ch.trk->prn(), ch.trk->state(), ch.trk->cn0_dbhz(), ch.nav->ephemeris().has_value()},
                      fresh});
     });
@@ -144,8 +147,8 @@ struct ScalarReceiver::Impl {
     records.resize(channels.size());
     for (auto& r : records) r.clear();
     // Channels are independent within a block: with worker threads they run in parallel,
-    // except when a steering filter is attached (it sees every channel's epochs in order).
-    if (pool && !steering && channels.size() > 1) {
+    // except when an outside filter is attached (it sees every channel's epochs in order).
+    if (pool && !external && channels.size() > 1) {
       std::latch done(static_cast<std::ptrdiff_t>(channels.size()));
       std::vector<std::exception_ptr> errors(channels.size());
       for (std::size_t i = 0; i < channels.size(); ++i) {
@@ -197,7 +200,7 @@ struct ScalarReceiver::Impl {
     for (const auto& ch : channels) {
       if (ch.trk->state() == ChannelState::tracking) ++ep.channels_tracking;
       if (!ch.nav->synchronised()) continue;
-      // A channel held open through a fade (by a steering filter) has a replica but no
+      // A channel held open through a fade (by an outside filter) has a replica but no
       // signal: no observable until the signal is back.
       if (ch.trk->lock_detector().ready() && ch.trk->cn0_dbhz() < cfg.tracking.lost_cn0_dbhz) continue;
       const double chips = ch.trk->code_chips_at(s);
@@ -282,7 +285,7 @@ void ScalarReceiver::run(const std::function<void(const ReceiverEpoch&)>& on_epo
       first = false;
     }
     m.track(block, on_correlation);
-    if (m.steering) m.steering->after_block(block.first_sample_index + static_cast<std::int64_t>(block.samples.size()));
+    if (m.external) m.external->after_block(block.first_sample_index + static_cast<std::int64_t>(block.samples.size()));
     const std::int64_t end = block.first_sample_index + static_cast<std::int64_t>(block.samples.size());
     // Keep the last acquisition window of samples for re-acquisition.
     recent.insert(recent.end(), block.samples.begin(), block.samples.end());
@@ -323,7 +326,7 @@ const Ephemeris* ScalarReceiver::ephemeris(int prn) const {
   return it == impl_->ephs.end() ? nullptr : &it->second;
 }
 
-void ScalarReceiver::set_steering(ChannelSteering* steering) { impl_->steering = steering; }
+void ScalarReceiver::set_external_control(ExternalChannelControl* control) { impl_->external = control; }
 
 void ScalarReceiver::for_each_channel(const std::function<void(TrackingChannel&, const NavDecoder&)>& visit) {
   for (auto& ch : impl_->channels) visit(*ch.trk, *ch.nav);

@@ -68,11 +68,11 @@ struct ChannelSnapshot {
 
 /// An outside navigation filter that takes over channels' NCOs (ultra-tight mode). The
 /// receiver calls it from inside run(); it steers a channel through TrackingChannel::apply.
-class ChannelSteering {
+class ExternalChannelControl {
  public:
-  virtual ~ChannelSteering() = default;
+  virtual ~ExternalChannelControl() = default;
   /// Every completed integration of every channel, as it completes (the channel's NCOs
-  /// are at the epoch's end). Returns true when the steering owns this channel now: the
+  /// are at the epoch's end). Returns true when it owns this channel now: the
   /// channel's scalar loop is then skipped for the epoch.
   virtual bool on_epoch(const CorrelatorEpoch& epoch, TrackingChannel& channel, const NavDecoder& nav) = 0;
   /// After each block has been tracked, with the absolute index one past its last sample.
@@ -105,9 +105,9 @@ class ScalarReceiver {
   void set_assisted_ephemerides(const NavData& nav);
   /// The ephemeris in use for a PRN (decoded, else assisted), nullptr when there is none.
   const Ephemeris* ephemeris(int prn) const;
-  /// Hands the channels' epochs to `steering` (nullptr: scalar loops only). Not owned.
-  void set_steering(ChannelSteering* steering);
-  /// Visits every channel (for a steering filter, from after_block()).
+  /// Hands the channels' epochs to `control` (nullptr: scalar loops only). Not owned.
+  void set_external_control(ExternalChannelControl* control);
+  /// Visits every channel (for an outside filter, from after_block()).
   void for_each_channel(const std::function<void(TrackingChannel&, const NavDecoder&)>& visit);
   /// Receiver clock time at an absolute sample index, once the clock is set.
   std::optional<GpsTime> receiver_time(std::int64_t sample_index) const;

@@ -205,8 +205,6 @@ void TrackingChannel::bit_sync_step(const CorrelatorEpoch& e) {
 }
 
 void TrackingChannel::monitor(const CorrelatorEpoch& e) {
-  if (e.code_period <= last_monitored_period_) return;  // already seen (process() monitors itself)
-  last_monitored_period_ = e.code_period;
   const bool synced_before = bit_edge_.has_value();
   tracked_s_ += e.integration_s;
   lock_.add(e.prompt, e.noise, e.integration_s);

@@ -66,11 +66,8 @@ class TrackingChannel {
   void process(const SampleBlock& block, const std::function<void(const CorrelatorEpoch&)>& on_epoch);
   /// New NCO rates (and optional one-off phase corrections) from the next sample on.
   void apply(const NcoCommand& command);
-  /// Lock monitoring and bit synchronisation of an epoch. process() does this itself;
-  /// calling it again with an epoch already seen has no effect.
-  void monitor(const CorrelatorEpoch& epoch);
   /// Whether the channel declares itself lost on weak or incoherent signal (on by default).
-  /// A steering filter that keeps the replica aligned through fades turns it off.
+  /// An outside filter that keeps the replica aligned through fades turns it off.
   /// Turning it back on starts the weak-signal timer afresh.
   void set_loss_detection(bool enabled) {
     if (enabled && !loss_detection_) low_cn0_since_s_ = -1.0;
@@ -102,6 +99,8 @@ class TrackingChannel {
  private:
   /// Ends a code period; returns the epoch when an integration ends with it.
   std::optional<CorrelatorEpoch> finish_code_period();
+  /// Lock monitoring and bit synchronisation of an epoch that just completed.
+  void monitor(const CorrelatorEpoch& epoch);
   void bit_sync_step(const CorrelatorEpoch& epoch);
   void collect_bit(const CorrelatorEpoch& epoch);
   void reset_integration();
@@ -131,7 +130,6 @@ class TrackingChannel {
   bool loss_detection_ = true;
   double tracked_s_ = 0.0;
   std::deque<std::pair<std::int64_t, double>> phase_history_;  ///< (sample, carrier cycles) at integration ends
-  std::int64_t last_monitored_period_ = -1;
   // Bit assembly after bit sync.
   double bit_sum_ = 0.0;
   int bit_ms_ = 0;

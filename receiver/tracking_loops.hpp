@@ -65,7 +65,7 @@ struct LoopBandwidths {
   double fll_fade_s = 0.08;
 };
 
-/// The scalar receiver's steering: CorrelatorEpoch in, NcoCommand out. The ultra-tight
+/// The scalar receiver's loop: CorrelatorEpoch in, NcoCommand out. The ultra-tight
 /// filter replaces exactly this object.
 class ScalarLoopController {
  public:
@@ -73,7 +73,7 @@ class ScalarLoopController {
   /// The command for the next integration; `use_fll` adds frequency assistance (pull-in).
   NcoCommand update(const CorrelatorEpoch& epoch, bool use_fll);
   void set_bandwidths(const LoopBandwidths& b);
-  /// Restarts the loop at a frequency (another steering had the channel until now).
+  /// Restarts the loop at a frequency (an outside filter had the channel until now).
   void reset(double doppler_hz);
   double doppler_hz() const { return carrier_.frequency_hz(); }
 

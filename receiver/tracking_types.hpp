@@ -11,7 +11,7 @@ namespace deepnav {
 
 /// Rates for the channel's numerically controlled oscillators from the next sample on.
 /// The carrier NCO runs at IF + carrier_doppler_hz; the IF belongs to the front end and is
-/// part of the channel's configuration, so a steering filter deals in Doppler only.
+/// part of the channel's configuration, so an outside filter deals in Doppler only.
 struct NcoCommand {
   double code_rate_cps = 1.023e6;       ///< code chips per second
   double carrier_doppler_hz = 0.0;      ///< carrier frequency minus the IF

@@ -62,7 +62,7 @@ TEST(ModeManager, UltraNeedsAConvergedFilterToStartButToleratesMoreToKeepGoing) 
   in.horizontal_sigma_m = 5.0;
   m.update(1.0, in);
   EXPECT_EQ(m.update(3.5, in), NavMode::ultra);
-  in.horizontal_sigma_m = 20.0;  // coasting through a fade: still steering
+  in.horizontal_sigma_m = 20.0;  // coasting through a fade: still driving the channels
   EXPECT_EQ(m.update(4.0, in), NavMode::ultra);
 }
 
