@@ -3,6 +3,7 @@
 #include <fftw3.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
@@ -32,6 +33,29 @@ struct FftwBuffer {
   fftwf_complex* data;
   std::size_t size;
 };
+
+/// out = a * b elementwise, written out on interleaved floats: std::complex's operator*
+/// checks for NaN/inf results and does not vectorise.
+void multiply_spectra(const std::complex<float>* a, const std::complex<float>* b, std::complex<float>* out, int n) {
+  const float* __restrict x = reinterpret_cast<const float*>(a);
+  const float* __restrict y = reinterpret_cast<const float*>(b);
+  float* __restrict z = reinterpret_cast<float*>(out);
+  for (int k = 0; k < 2 * n; k += 2) {
+    z[k] = x[k] * y[k] - x[k + 1] * y[k + 1];
+    z[k + 1] = x[k] * y[k + 1] + x[k + 1] * y[k];
+  }
+}
+
+/// Smallest n' >= n whose prime factors are all 2, 3, 5 or 7 (sizes FFTW transforms fast;
+/// 4092 = 4 * 3 * 11 * 31 takes five times as long as 4096).
+int smooth_fft_size(int n) {
+  for (int m = n;; ++m) {
+    int r = m;
+    for (int f : {2, 3, 5, 7})
+      while (r % f == 0) r /= f;
+    if (r == 1) return m;
+  }
+}
 
 /// Code replica of `n` samples at fs, chip 0 at sample 0.
 std::vector<float> code_replica(int prn, int n, double fs) {
@@ -71,12 +95,14 @@ double acquisition_threshold(int k, double cells, double pfa) {
 struct Acquisition::Impl {
   AcquisitionConfig cfg;
   int n = 0;                 ///< samples per coherent block
+  int nf = 0;                ///< FFT size: n, or the next fast size (the block is stretched to it)
   double samples_per_ms = 0;
   std::vector<double> dopplers;
   FftwBuffer in, out;
   fftwf_plan forward = nullptr, inverse = nullptr;
-  std::vector<std::vector<std::complex<float>>> code_spectra;  ///< conj(FFT(replica)) per PRN (index prn - 1)
-  std::vector<std::vector<float>> replicas;
+  std::vector<std::vector<std::complex<float>>> code_spectra;  ///< conj(FFT(stretched replica)) per PRN (index prn - 1)
+  std::vector<std::vector<float>> replicas;  ///< at the sample rate, for the refinement
+  std::vector<int> stretch_source;           ///< sample of the block each of the nf FFT inputs takes
 
   explicit Impl(AcquisitionConfig c) : cfg(std::move(c)), in(1), out(1) {
     if (!(cfg.sample_rate_hz >= 1.023e6)) throw std::invalid_argument("acquisition: sample rate must be at least 1.023 MHz");
@@ -91,24 +117,31 @@ struct Acquisition::Impl {
     const double t_coh = cfg.coherent_ms * 1e-3;
     if (cfg.doppler_step_hz <= 0.0) cfg.doppler_step_hz = 2.0 / (3.0 * t_coh);
     n = static_cast<int>(std::floor(cfg.sample_rate_hz * t_coh));
+    nf = smooth_fft_size(n);
     samples_per_ms = cfg.sample_rate_hz / 1000.0;
+    // Stretching by nearest sample: FFT input j is block sample round(j n / nf), so the
+    // grid's lags are in units of n / nf samples and the replica is drawn at fs nf / n.
+    stretch_source.resize(static_cast<std::size_t>(nf));
+    for (int j = 0; j < nf; ++j)
+      stretch_source[static_cast<std::size_t>(j)] =
+          std::min(n - 1, static_cast<int>(std::lround(static_cast<double>(j) * n / nf)));
     const int half = static_cast<int>(std::floor(cfg.doppler_max_hz / cfg.doppler_step_hz + 1e-9));
     for (int k = -half; k <= half; ++k) dopplers.push_back(k * cfg.doppler_step_hz);
-    in = FftwBuffer(static_cast<std::size_t>(n));
-    out = FftwBuffer(static_cast<std::size_t>(n));
-    forward = fftwf_plan_dft_1d(n, in.data, out.data, FFTW_FORWARD, FFTW_ESTIMATE);
-    inverse = fftwf_plan_dft_1d(n, in.data, out.data, FFTW_BACKWARD, FFTW_ESTIMATE);
+    in = FftwBuffer(static_cast<std::size_t>(std::max(n, nf)));
+    out = FftwBuffer(static_cast<std::size_t>(nf));
+    forward = fftwf_plan_dft_1d(nf, in.data, out.data, FFTW_FORWARD, FFTW_ESTIMATE);
+    inverse = fftwf_plan_dft_1d(nf, in.data, out.data, FFTW_BACKWARD, FFTW_ESTIMATE);
     if (forward == nullptr || inverse == nullptr) throw std::runtime_error("acquisition: FFTW planning failed");
     code_spectra.resize(gps::kMaxPrn);
     replicas.resize(gps::kMaxPrn);
     for (int p : cfg.prns) {
-      auto& r = replicas[static_cast<std::size_t>(p - 1)];
-      r = code_replica(p, n, cfg.sample_rate_hz);
-      for (int k = 0; k < n; ++k) in.c()[k] = {r[static_cast<std::size_t>(k)], 0.0f};
+      replicas[static_cast<std::size_t>(p - 1)] = code_replica(p, n, cfg.sample_rate_hz);
+      const std::vector<float> stretched = code_replica(p, nf, cfg.sample_rate_hz * nf / n);
+      for (int k = 0; k < nf; ++k) in.c()[k] = {stretched[static_cast<std::size_t>(k)], 0.0f};
       fftwf_execute(forward);
       auto& spec = code_spectra[static_cast<std::size_t>(p - 1)];
-      spec.resize(static_cast<std::size_t>(n));
-      for (int k = 0; k < n; ++k) spec[static_cast<std::size_t>(k)] = std::conj(out.c()[k]);
+      spec.resize(static_cast<std::size_t>(nf));
+      for (int k = 0; k < nf; ++k) spec[static_cast<std::size_t>(k)] = std::conj(out.c()[k]);
     }
   }
   ~Impl() {
@@ -116,16 +149,20 @@ struct Acquisition::Impl {
     if (inverse) fftwf_destroy_plan(inverse);
   }
 
-  /// (x[first + k] - dc) * exp(-j 2 pi (IF + f) t) for k in [0, count), t from sample 0. The
-  /// block's mean is removed first: ADC offsets (odd-level 2-bit converters, real IF) would
-  /// otherwise correlate with every code near zero Doppler.
-  void mix(std::span<const Sample> x, std::int64_t first, int count, double f_hz, std::complex<float>* dst) const {
+  /// Mean of x[first .. first + count): removed before mixing, since ADC offsets (odd-level
+  /// 2-bit converters, real IF) would otherwise correlate with every code near zero Doppler.
+  static std::complex<double> block_mean(std::span<const Sample> x, std::int64_t first, int count) {
     std::complex<double> dc = 0.0;
     for (int k = 0; k < count; ++k) {
       const auto& s = x[static_cast<std::size_t>(first + k)];
       dc += std::complex<double>(s.real(), s.imag());
     }
-    const std::complex<float> mean(dc / static_cast<double>(count));
+    return dc / static_cast<double>(count);
+  }
+
+  /// (x[first + k] - mean) * exp(-j 2 pi (IF + f) t) for k in [0, count), t from sample 0.
+  void mix(std::span<const Sample> x, std::int64_t first, int count, double f_hz, std::complex<float>* dst) const {
+    const std::complex<float> mean(block_mean(x, first, count));
     const double w = -2.0 * M_PI * (cfg.if_hz + f_hz) / cfg.sample_rate_hz;
     std::complex<double> rot = std::polar(1.0, w * static_cast<double>(first));
     const std::complex<double> step = std::polar(1.0, w);
@@ -138,23 +175,68 @@ struct Acquisition::Impl {
     }
   }
 
-  /// Sum over blocks of |sum_n x mixed at f * replica shifted by lag|^2 (direct, for refinement).
-  double power_at(std::span<const Sample> x, int blocks, int prn, double f_hz, double lag) const {
-    const auto& r = replicas[static_cast<std::size_t>(prn - 1)];
-    std::vector<std::complex<float>> mixed(static_cast<std::size_t>(n));
-    const int ilag = static_cast<int>(std::lround(lag));
-    double total = 0.0;
-    for (int b = 0; b < blocks; ++b) {
-      mix(x, static_cast<std::int64_t>(b) * n, n, f_hz, mixed.data());
-      std::complex<double> acc = 0.0;
-      for (int k = 0; k < n; ++k) {
-        const int j = ((k - ilag) % n + n) % n;
-        acc += std::complex<double>(mixed[static_cast<std::size_t>(k)]) * static_cast<double>(r[static_cast<std::size_t>(j)]);
-      }
-      total += std::norm(acc);
+  /// Mixes block b at f into the FFT input, stretched to nf samples when nf > n.
+  void mix_block(std::span<const Sample> x, int b, double f_hz, std::vector<std::complex<float>>& scratch) {
+    const std::int64_t first = static_cast<std::int64_t>(b) * n;
+    if (nf == n) {
+      mix(x, first, n, f_hz, in.c());
+      return;
     }
-    return total;
+    mix(x, first, n, f_hz, scratch.data());
+    for (int j = 0; j < nf; ++j) in.c()[j] = scratch[static_cast<std::size_t>(stretch_source[static_cast<std::size_t>(j)])];
   }
+
+  /// Fine Doppler search at one code phase, at the sample rate: each block's samples are
+  /// code-wiped once at `lag`, then each trial frequency costs one rotation and sum.
+  class DopplerRefiner {
+   public:
+    /// `storage` is reused between calls (a fresh buffer per PRN costs page faults).
+    DopplerRefiner(const Impl& acq, std::span<const Sample> x, int blocks, int prn, int lag,
+                   std::vector<std::complex<double>>& storage)
+        : w_per_hz_(-2.0 * M_PI / acq.cfg.sample_rate_hz), if_hz_(acq.cfg.if_hz), n_(acq.n), blocks_(blocks), wiped_(storage) {
+      const auto& r = acq.replicas[static_cast<std::size_t>(prn - 1)];
+      wiped_.resize(static_cast<std::size_t>(blocks) * static_cast<std::size_t>(n_));
+      for (int b = 0; b < blocks; ++b) {
+        const std::int64_t first = static_cast<std::int64_t>(b) * n_;
+        const std::complex<double> mean = block_mean(x, first, n_);
+        for (int k = 0, j = (n_ - lag % n_) % n_; k < n_; ++k, j = (j + 1 == n_ ? 0 : j + 1)) {
+          const auto& s = x[static_cast<std::size_t>(first + k)];
+          wiped_[static_cast<std::size_t>(first + k)] =
+              (std::complex<double>(s.real(), s.imag()) - mean) * static_cast<double>(r[static_cast<std::size_t>(j)]);
+        }
+      }
+    }
+    /// Sum over blocks of the coherent power at f (same units as the direct correlation).
+    double power(double f_hz) const {
+      const std::complex<double> step = std::polar(1.0, w_per_hz_ * (if_hz_ + f_hz));
+      double total = 0.0;
+      for (int b = 0; b < blocks_; ++b) {
+        const std::complex<double>* y = wiped_.data() + static_cast<std::size_t>(b) * static_cast<std::size_t>(n_);
+        // Written out: std::complex's operator* checks for NaN/inf results and does not vectorise.
+        double rot_re = 1.0, rot_im = 0.0, acc_re = 0.0, acc_im = 0.0;
+        for (int k = 0; k < n_; ++k) {
+          acc_re += y[k].real() * rot_re - y[k].imag() * rot_im;
+          acc_im += y[k].real() * rot_im + y[k].imag() * rot_re;
+          const double re = rot_re * step.real() - rot_im * step.imag();
+          rot_im = rot_re * step.imag() + rot_im * step.real();
+          rot_re = re;
+          if ((k & 1023) == 1023) {  // keep the recursion on the unit circle
+            const double norm = std::hypot(rot_re, rot_im);
+            rot_re /= norm;
+            rot_im /= norm;
+          }
+        }
+        total += acc_re * acc_re + acc_im * acc_im;
+      }
+      return total;
+    }
+
+   private:
+    double w_per_hz_, if_hz_;
+    int n_, blocks_;
+    std::vector<std::complex<double>>& wiped_;
+  };
+  std::array<std::vector<std::complex<double>>, 2> refiner_storage;
 
   std::vector<AcquisitionResult> search(std::span<const Sample> x) {
     const int blocks = static_cast<int>(std::min<std::int64_t>(cfg.noncoherent, static_cast<std::int64_t>(x.size()) / n));
@@ -164,28 +246,30 @@ struct Acquisition::Impl {
     }
     // Spectra of the mixed input: one per Doppler bin and block, shared by every PRN.
     const std::size_t nb = dopplers.size();
+    const auto cells_per_row = static_cast<std::size_t>(nf);
+    std::vector<std::complex<float>> scratch(static_cast<std::size_t>(n));
     std::vector<std::vector<std::complex<float>>> spectra(nb * static_cast<std::size_t>(blocks));
     for (std::size_t d = 0; d < nb; ++d) {
       for (int b = 0; b < blocks; ++b) {
-        mix(x, static_cast<std::int64_t>(b) * n, n, dopplers[d], in.c());
+        mix_block(x, b, dopplers[d], scratch);
         fftwf_execute(forward);
-        spectra[d * static_cast<std::size_t>(blocks) + static_cast<std::size_t>(b)].assign(out.c(), out.c() + n);
+        spectra[d * static_cast<std::size_t>(blocks) + static_cast<std::size_t>(b)].assign(out.c(), out.c() + nf);
       }
     }
     const double cells = static_cast<double>(nb) * std::floor(samples_per_ms);
     const double threshold = acquisition_threshold(blocks, cells, cfg.pfa);
-    std::vector<float> grid(nb * static_cast<std::size_t>(n));
+    std::vector<float> grid(nb * cells_per_row);
     std::vector<AcquisitionResult> results;
     for (int prn : cfg.prns) {
       const auto& spec = code_spectra[static_cast<std::size_t>(prn - 1)];
       std::fill(grid.begin(), grid.end(), 0.0f);
       for (std::size_t d = 0; d < nb; ++d) {
-        float* row = grid.data() + d * static_cast<std::size_t>(n);
+        float* row = grid.data() + d * cells_per_row;
         for (int b = 0; b < blocks; ++b) {
           const auto& s = spectra[d * static_cast<std::size_t>(blocks) + static_cast<std::size_t>(b)];
-          for (int k = 0; k < n; ++k) in.c()[k] = s[static_cast<std::size_t>(k)] * spec[static_cast<std::size_t>(k)];
+          multiply_spectra(s.data(), spec.data(), in.c(), nf);
           fftwf_execute(inverse);
-          for (int k = 0; k < n; ++k) row[k] += std::norm(out.c()[k]);
+          for (int k = 0; k < nf; ++k) row[k] += std::norm(out.c()[k]);
         }
       }
       results.push_back(evaluate(x, blocks, prn, grid, threshold));
@@ -206,46 +290,69 @@ struct Acquisition::Impl {
     }
   }
 
+  /// Mean grid cell more than 1.5 chips (in code phase modulo 1 ms) from the peak's lag.
+  double noise_floor(const std::vector<float>& grid, int lag) const {
+    const double lags_per_ms = samples_per_ms * nf / n;
+    const double exclusion = 1.5 * lags_per_ms / gps::kCodeLength_chips;
+    std::vector<float> weight(static_cast<std::size_t>(nf));
+    for (int k = 0; k < nf; ++k) {
+      double off = std::fmod(std::abs(static_cast<double>(k - lag)), lags_per_ms);
+      off = std::min(off, lags_per_ms - off);
+      weight[static_cast<std::size_t>(k)] = off <= exclusion ? 0.0f : 1.0f;
+    }
+    const double count = std::accumulate(weight.begin(), weight.end(), 0.0) * static_cast<double>(dopplers.size());
+    double sum = 0.0;
+    for (std::size_t d = 0; d < dopplers.size(); ++d) {
+      const float* row = grid.data() + d * static_cast<std::size_t>(nf);
+      sum += std::inner_product(row, row + nf, weight.data(), 0.0);
+    }
+    return count > 0 ? sum / count : 1.0;
+  }
+
   AcquisitionResult evaluate(std::span<const Sample> x, int blocks, int prn, const std::vector<float>& grid,
-                             double threshold) const {
+                             double threshold) {
     const auto peak_it = std::max_element(grid.begin(), grid.end());
     const auto peak_index = static_cast<std::size_t>(std::distance(grid.begin(), peak_it));
-    const std::size_t d_peak = peak_index / static_cast<std::size_t>(n);
-    const int lag = static_cast<int>(peak_index % static_cast<std::size_t>(n));
-    // Noise floor: every cell more than 1.5 chips (in code phase modulo 1 ms) from the peak.
-    const double exclusion = 1.5 * cfg.sample_rate_hz / gps::kCodeRate_cps;
-    double sum = 0.0;
-    std::size_t count = 0;
-    for (int k = 0; k < n; ++k) {
-      double off = std::fmod(std::abs(static_cast<double>(k - lag)), samples_per_ms);
-      off = std::min(off, samples_per_ms - off);
-      if (off <= exclusion) continue;
-      for (std::size_t d = 0; d < dopplers.size(); ++d) sum += grid[d * static_cast<std::size_t>(n) + static_cast<std::size_t>(k)];
-      count += dopplers.size();
-    }
-    const double cell_mean = count > 0 ? sum / static_cast<double>(count) : 1.0;
+    const std::size_t d_peak = peak_index / static_cast<std::size_t>(nf);
+    const int lag = static_cast<int>(peak_index % static_cast<std::size_t>(nf));
+    const double cell_mean = noise_floor(grid, lag);
     AcquisitionResult r;
     r.prn = prn;
     r.threshold = threshold;
     r.statistic = *peak_it / (cell_mean / blocks);
     r.detected = r.statistic > threshold;
 
-    // Delay: parabolic interpolation between neighbouring lags, folded into one code period.
-    const float* row = grid.data() + d_peak * static_cast<std::size_t>(n);
-    const double ym = row[(lag - 1 + n) % n], y0 = row[lag], yp = row[(lag + 1) % n];
+    // Delay: parabolic interpolation between neighbouring lags, converted from the grid's
+    // lag unit (n / nf samples) and folded into one code period.
+    const float* row = grid.data() + d_peak * static_cast<std::size_t>(nf);
+    const double ym = row[(lag - 1 + nf) % nf], y0 = row[lag], yp = row[(lag + 1) % nf];
     const double denom = ym - 2.0 * y0 + yp;
     const double frac = denom < 0.0 ? std::clamp(0.5 * (ym - yp) / denom, -0.5, 0.5) : 0.0;
-    r.delay_samples = std::fmod(lag + frac + samples_per_ms, samples_per_ms);
+    const double delay = (lag + frac) * n / nf;
+    r.delay_samples = std::fmod(delay + samples_per_ms, samples_per_ms);
     r.code_phase_chips = std::fmod(gps::kCodeLength_chips - r.delay_samples * gps::kCodeRate_cps / cfg.sample_rate_hz +
                                        gps::kCodeLength_chips, static_cast<double>(gps::kCodeLength_chips));
+    if (!r.detected) {
+      // Nothing to track: the coarse bin and the grid's peak-to-floor ratio are enough (a
+      // stretched block's repeated samples raise that ratio by nf / n, taken out here).
+      r.doppler_hz = dopplers[d_peak];
+      const double snr = (*peak_it / cell_mean - 1.0) * n / nf;
+      r.cn0_dbhz = snr > 0.0 ? 10.0 * std::log10(snr / (cfg.coherent_ms * 1e-3)) : 0.0;
+      return r;
+    }
 
-    // Doppler: finer search around the peak bin at the peak's code phase, then a parabola
-    // through the best fine cell and its neighbours.
+    // Doppler: finer search around the peak bin at the peak's code phase (at whichever of
+    // the two whole samples around the delay correlates better), then a parabola through
+    // the best fine cell and its neighbours.
     const double fine_step = cfg.doppler_step_hz / 10.0;
     std::vector<double> fine(21);
     int best_i = 0;
+    const auto below = static_cast<int>(std::floor(r.delay_samples));
+    const DopplerRefiner early(*this, x, blocks, prn, below % n, refiner_storage[0]);
+    const DopplerRefiner late(*this, x, blocks, prn, (below + 1) % n, refiner_storage[1]);
+    const DopplerRefiner& refiner = early.power(dopplers[d_peak]) >= late.power(dopplers[d_peak]) ? early : late;
     for (int i = -10; i <= 10; ++i) {
-      fine[static_cast<std::size_t>(i + 10)] = power_at(x, blocks, prn, dopplers[d_peak] + i * fine_step, lag);
+      fine[static_cast<std::size_t>(i + 10)] = refiner.power(dopplers[d_peak] + i * fine_step);
       if (fine[static_cast<std::size_t>(i + 10)] > fine[static_cast<std::size_t>(best_i + 10)]) best_i = i;
     }
     double best_f = dopplers[d_peak] + best_i * fine_step;
@@ -256,8 +363,9 @@ struct Acquisition::Impl {
       if (curvature < 0.0) best_f += std::clamp(0.5 * (pm - pp) / curvature, -0.5, 0.5) * fine_step;
     }
     r.doppler_hz = best_f;
-    // C/N0 from the coherent SNR: grid cells carry the FFT scale n^2 relative to power_at.
-    const double noise = cell_mean / blocks / (static_cast<double>(n) * n);
+    // C/N0 from the coherent SNR. A grid cell holds nf^2 |sum over nf samples|^2: its noise
+    // is nf^3 / n times the direct correlation's over n samples.
+    const double noise = cell_mean / blocks * n / (static_cast<double>(nf) * nf * nf);
     const double snr = (best_p / blocks - noise) / noise;
     r.cn0_dbhz = snr > 0.0 ? 10.0 * std::log10(snr / (cfg.coherent_ms * 1e-3)) : 0.0;
     return r;

@@ -8,8 +8,16 @@
 // search grid away from the peak; under noise alone each cell of a K-block sum is
 // Gamma(K, 1) distributed after that normalisation, so the threshold for a false-alarm
 // probability Pfa over the M cells searched solves Q(K, gamma) = 1 - (1 - Pfa)^(1/M).
-// The strongest cell is then refined in Doppler (a finer search at the peak's code
-// phase) and in delay (parabolic interpolation between samples).
+// The strongest cell of a detected PRN is then refined in Doppler (a finer search at the
+// peak's code phase, at the sample rate) and in delay (parabolic interpolation between
+// lags); a PRN below the threshold keeps its coarse bin.
+//
+// FFT size: a coherent block of n samples whose length has a prime factor above 7
+// (4.092 Msps: 4092 = 4 * 3 * 11 * 31) is stretched to the next size made of 2, 3, 5 and 7
+// (4096) by repeating the nearest sample, and the replica is drawn at the stretched rate:
+// the transforms run about five times faster, at the cost of a timing error that ramps
+// through +-1/2 sample across the block (about 0.2 dB of peak power at 4 samples per chip,
+// 0.4 dB at 2). Delays are converted back to samples of the input.
 #include <complex>
 #include <cstdint>
 #include <memory>

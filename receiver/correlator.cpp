@@ -570,6 +570,10 @@ double wrap_chips(double chips) {
 
 }  // namespace
 
+int sample_magnitude_bits(const Sample* samples, int n) {
+  return n > 0 ? sample_bits(best_correlator_kernel(), samples, n) : 0;
+}
+
 std::vector<CorrelatorKernel> available_correlator_kernels() {
   std::vector<CorrelatorKernel> k{CorrelatorKernel::portable};
 #if defined(__x86_64__)
@@ -628,7 +632,8 @@ CorrelatorSums correlate(CorrelatorKernel kernel, const Sample* samples, int n, 
     if (need > (std::int64_t{g.window} << kCodeFracBits) || su.h > kPad / 2) kernel = CorrelatorKernel::portable;
   }
 
-  const int bits = sample_bits(kernel, samples, n);
+  if (s.magnitude_bits > 16) throw std::invalid_argument("correlate: magnitude_bits must be at most 16");
+  const int bits = s.magnitude_bits >= 0 ? s.magnitude_bits : sample_bits(kernel, samples, n);
   const bool small = bits <= kSmallBits;
   const CarrierTable& ct = carrier_table(bits);
   su.cos_tab = ct.cos_tab.data();

@@ -47,6 +47,10 @@ struct CorrelatorSpan {
   double code_step_chips = 0.0;        ///< per sample, in (0, 2]
   double spacing_chips = 0.5;          ///< early-late spacing
   double very_spacing_chips = 0.0;     ///< very-early/very-late spacing; 0 disables them
+  /// Bits of the largest |I| or |Q| in the span (sample_magnitude_bits()), or of a larger
+  /// set of samples holding the span (one scan of a block serves all its channels); it
+  /// picks the fixed-point scaling and must not be below the span's own. -1: scanned here.
+  int magnitude_bits = -1;
 };
 
 /// Instruction-set variants of the kernel; correlate() picks the best one the CPU supports.
@@ -58,6 +62,9 @@ enum class CorrelatorKernel { portable, avx2, avx512 };
 CorrelatorKernel best_correlator_kernel();
 /// The kernels this CPU can run (portable always), for tests and benchmarks.
 std::vector<CorrelatorKernel> available_correlator_kernels();
+
+/// Bits of the largest |I| or |Q| of n samples: every one within +-(2^b - 1); -32768 gives 16.
+int sample_magnitude_bits(const Sample* samples, int n);
 
 /// Correlator sums over n samples. `noise_code` is the code of a PRN that is not tracked.
 /// Sums are in sample units: a noise-free signal of amplitude A aligned with the prompt

@@ -2,15 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 
 namespace deepnav {
 namespace {
 
 /// The noise density changes slowly (front-end gain): its average spans this many lock windows.
 constexpr std::size_t kNoiseWindowFactor = 10;
-
-double mean(const std::deque<double>& d) { return std::accumulate(d.begin(), d.end(), 0.0) / static_cast<double>(d.size()); }
 
 /// One hysteresis step: `count` epochs in a row that argue for the other state flip `flag`.
 void hysteresis(bool& flag, int& count, bool above_on, bool below_off, int confirm) {
@@ -38,20 +35,12 @@ void LockDetector::add(const std::complex<double>& prompt, const std::complex<do
   }
   integration_s_ = t;
   window_ = std::max<std::size_t>(20, static_cast<std::size_t>(std::lround(th_.window_s / t)));
-  prompt_power_.push_back(std::norm(prompt));
-  noise_power_.push_back(std::norm(noise) / t);
-  while (noise_power_.size() > kNoiseWindowFactor * window_) noise_power_.pop_front();
-  abs_i_.push_back(std::abs(prompt.real()));
-  abs_q_.push_back(std::abs(prompt.imag()));
-  i2_.push_back(prompt.real() * prompt.real());
-  q2_.push_back(prompt.imag() * prompt.imag());
-  while (prompt_power_.size() > window_) {
-    prompt_power_.pop_front();
-    abs_i_.pop_front();
-    abs_q_.pop_front();
-    i2_.pop_front();
-    q2_.pop_front();
-  }
+  noise_power_.push(std::norm(noise) / t, kNoiseWindowFactor * window_);
+  prompt_power_.push(std::norm(prompt), window_);
+  abs_i_.push(std::abs(prompt.real()), window_);
+  abs_q_.push(std::abs(prompt.imag()), window_);
+  i2_.push(prompt.real() * prompt.real(), window_);
+  q2_.push(prompt.imag() * prompt.imag(), window_);
   update_flags();
 }
 
@@ -64,20 +53,18 @@ void LockDetector::update_flags() {
 
 double LockDetector::cn0_dbhz() const {
   if (prompt_power_.empty()) return 0.0;
-  const double p = mean(prompt_power_), n = mean(noise_power_) * integration_s_;
+  const double p = prompt_power_.mean(), n = noise_power_.mean() * integration_s_;
   if (n <= 0.0 || p <= n) return 0.0;
   return 10.0 * std::log10((p - n) / (n * integration_s_));
 }
 
 double LockDetector::phase_lock_indicator() const {
-  const double i = std::accumulate(abs_i_.begin(), abs_i_.end(), 0.0);
-  const double q = std::accumulate(abs_q_.begin(), abs_q_.end(), 0.0);
+  const double i = abs_i_.sum(), q = abs_q_.sum();
   return q > 0.0 ? i / q : 0.0;
 }
 
 double LockDetector::cos_two_phi() const {
-  const double i = std::accumulate(i2_.begin(), i2_.end(), 0.0);
-  const double q = std::accumulate(q2_.begin(), q2_.end(), 0.0);
+  const double i = i2_.sum(), q = q2_.sum();
   return i + q > 0.0 ? (i - q) / (i + q) : 0.0;
 }
 

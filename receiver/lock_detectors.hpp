@@ -15,7 +15,8 @@
 // consecutive epochs above its "on" threshold and falls after as many below its "off"
 // threshold.
 #include <complex>
-#include <deque>
+
+#include "receiver/windowed_sum.hpp"
 
 namespace deepnav {
 
@@ -49,8 +50,8 @@ class LockDetector {
 
   LockThresholds th_;
   std::size_t window_ = 200;  ///< epochs, from window_s and the current integration length
-  std::deque<double> prompt_power_, abs_i_, abs_q_, i2_, q2_;
-  std::deque<double> noise_power_;  ///< |N|^2 / T: comparable across integration lengths
+  WindowedSum prompt_power_, abs_i_, abs_q_, i2_, q2_;
+  WindowedSum noise_power_;  ///< |N|^2 / T: comparable across integration lengths
   double integration_s_ = 1e-3;
   bool pll_lock_ = false, code_lock_ = false;
   int pll_count_ = 0, code_count_ = 0;  ///< consecutive epochs pointing at the other state

@@ -20,6 +20,10 @@ using Sample = std::complex<std::int16_t>;
 struct SampleBlock {
   std::int64_t first_sample_index = 0;
   std::vector<Sample> samples;
+  /// Bits of the largest |I| or |Q| in `samples` when a reader has measured it
+  /// (sample_magnitude_bits()), so that the channels sharing the block need not; -1: unknown.
+  /// Whoever changes `samples` resets it.
+  int magnitude_bits = -1;
 };
 
 /// Samples that never arrived (a dropped network packet, an overrun): the

@@ -13,7 +13,9 @@
 #include <cmath>
 #include <set>
 
+#include "receiver/correlator.hpp"
 #include "receiver/nav_decoder.hpp"
+#include "receiver/sample_history.hpp"
 #include "signals/gps_constants.hpp"
 
 namespace deepnav {
@@ -265,10 +267,9 @@ void ScalarReceiver::run(const std::function<void(const ReceiverEpoch&)>& on_epo
   // Cold start: acquisition over the first samples, then those samples are tracked too.
   const std::int64_t acq_samples = static_cast<std::int64_t>(std::llround(m.fs * 1e-3)) *
                                    m.cfg.acquisition.coherent_ms * m.cfg.acquisition.noncoherent;
-  std::vector<Sample> recent;
+  SampleHistory recent(static_cast<std::size_t>(acq_samples));
   SampleBlock block;
   std::int64_t next_obs = -1;
-  std::int64_t recent_first = 0;
   std::int64_t expected_first = -1;
   bool first = true;
   while (m.src.read_block(block, first ? static_cast<std::size_t>(acq_samples) : block_samples)) {
@@ -279,6 +280,7 @@ void ScalarReceiver::run(const std::function<void(const ReceiverEpoch&)>& on_epo
       m.gap_since_epoch = true;
     }
     expected_first = block.first_sample_index + static_cast<std::int64_t>(block.samples.size());
+    block.magnitude_bits = sample_magnitude_bits(block.samples.data(), static_cast<int>(block.samples.size()));
     if (first) {
       m.acquire(block.samples, block.first_sample_index);
       next_obs = block.first_sample_index + obs_step;
@@ -287,13 +289,11 @@ void ScalarReceiver::run(const std::function<void(const ReceiverEpoch&)>& on_epo
     m.track(block, on_correlation);
     if (m.external) m.external->after_block(block.first_sample_index + static_cast<std::int64_t>(block.samples.size()));
     const std::int64_t end = block.first_sample_index + static_cast<std::int64_t>(block.samples.size());
-    // Keep the last acquisition window of samples for re-acquisition.
-    recent.insert(recent.end(), block.samples.begin(), block.samples.end());
-    if (static_cast<std::int64_t>(recent.size()) > acq_samples) {
-      const auto drop = static_cast<std::int64_t>(recent.size()) - acq_samples;
-      recent.erase(recent.begin(), recent.begin() + drop);
-    }
-    recent_first = end - static_cast<std::int64_t>(recent.size());
+    // Keep the last acquisition window of samples for re-acquisition, while a channel is free.
+    if (static_cast<int>(m.channels.size()) < m.cfg.channels)
+      recent.append(block.samples.data(), block.samples.size(), block.first_sample_index);
+    else
+      recent.clear();
     while (next_obs <= end) {
       on_epoch(m.observe(next_obs));
       m.gap_since_epoch = false;
@@ -301,11 +301,11 @@ void ScalarReceiver::run(const std::function<void(const ReceiverEpoch&)>& on_epo
     }
     const double t = static_cast<double>(end) / m.fs;
     if (t - m.last_reacquire_s >= m.cfg.reacquire_interval_s && static_cast<int>(m.channels.size()) < m.cfg.channels &&
-        static_cast<std::int64_t>(recent.size()) == acq_samples) {
+        recent.full()) {
       m.last_reacquire_s = t;
       // The new channels start at the window's first sample, already processed: they begin
       // with the next block, carried across by their NCOs.
-      m.acquire(recent, recent_first);
+      m.acquire(recent.in_order(), recent.first_index());
     }
     if (progress) progress(t);
   }

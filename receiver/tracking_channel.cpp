@@ -107,6 +107,7 @@ void TrackingChannel::process(const SampleBlock& block, const std::function<void
     span.code_step_chips = code_step;
     span.spacing_chips = cfg_.spacing_chips;
     span.very_spacing_chips = cfg_.very_spacing_chips;
+    span.magnitude_bits = block.magnitude_bits;
     const CorrelatorSums s = correlate(block.samples.data() + (idx - block.first_sample_index), n, span, *code_, *noise_code_);
     if (acc_first_ < 0) acc_first_ = idx;
     acc_e_ += s.early;

@@ -137,6 +137,30 @@ TEST(Acquisition, SyntheticSignalFoundWithCorrectDelayDopplerAndCn0) {
   }
 }
 
+TEST(Acquisition, FractionalDelaysAtRatesWhoseBlocksAreStretched) {
+  // 4092 and 2046 samples per ms have the factors 11 and 31: the search runs on a block
+  // stretched to 4096 / 2048 samples. Delays and C/N0 must come back in the input's samples
+  // without bias, whatever the fraction of a sample the code epoch falls on.
+  for (double fs : {4.092e6, 2.046e6}) {
+    AcquisitionConfig cfg;
+    cfg.sample_rate_hz = fs;
+    cfg.prns = {11};
+    Acquisition acq(cfg);
+    double error_sum = 0.0;
+    int count = 0;
+    for (double delay : {301.0, 301.25, 301.5, 301.75, 1500.5, 1900.25}) {
+      const auto r = acq.search(synthetic(11, 45.0, -2200.0, delay, fs, 10, 77 + count));
+      ASSERT_TRUE(r[0].detected) << fs << " " << delay;
+      EXPECT_NEAR(r[0].delay_samples, delay, 0.75) << fs;
+      EXPECT_NEAR(r[0].doppler_hz, -2200.0, 150.0) << fs << " " << delay;
+      EXPECT_NEAR(r[0].cn0_dbhz, 45.0, 1.5) << fs << " " << delay;
+      error_sum += r[0].delay_samples - delay;
+      ++count;
+    }
+    EXPECT_NEAR(error_sum / count, 0.0, 0.3) << fs;  // no systematic offset
+  }
+}
+
 TEST(Acquisition, FalseAlarmRateFollowsPfa) {
   // Pure noise, one PRN, a small grid: a generous Pfa makes the rate measurable quickly.
   AcquisitionConfig cfg;

@@ -178,6 +178,47 @@ TEST(Correlator, EveryKernelMatchesTheSampleBySampleReference) {
   }
 }
 
+TEST(Correlator, AGivenMagnitudeBoundGivesTheScannedResultOrOneWithinTolerance) {
+  // A block's magnitude bits, measured once, serve every channel's spans within it: the
+  // span's own value must give the very integers of a scan, a larger bound (a louder part of
+  // the block elsewhere) the reference within the same tolerance as above.
+  std::mt19937_64 rng(31);
+  for (int trial = 0; trial < 60; ++trial) {
+    const int n = kLengths[trial % 6];
+    const RandomCase c = random_case(rng, n);
+    const auto& code = ca_code_chips(c.prn);
+    const auto& noise = ca_code_chips(c.prn % 32 + 1);
+    const int bits = sample_magnitude_bits(c.x.data(), n);
+    double power = 0.0, peak = 0.0;
+    for (const Sample& v : c.x) {
+      power += std::norm(std::complex<double>(v.real(), v.imag()));
+      peak = std::max(peak, std::abs(std::complex<double>(v.real(), v.imag())));
+    }
+    const CorrelatorSums ref = correlate_reference(c.x.data(), n, c.span, code, noise);
+    for (CorrelatorKernel k : available_correlator_kernels()) {
+      SCOPED_TRACE(testing::Message() << "kernel " << static_cast<int>(k) << " trial " << trial << " bits " << bits);
+      const CorrelatorSums scanned = correlate(k, c.x.data(), n, c.span, code, noise);
+      CorrelatorSpan given = c.span;
+      given.magnitude_bits = bits;
+      const CorrelatorSums same = correlate(k, c.x.data(), n, given, code, noise);
+      EXPECT_EQ(same.prompt, scanned.prompt);
+      EXPECT_EQ(same.early, scanned.early);
+      EXPECT_EQ(same.noise, scanned.noise);
+      given.magnitude_bits = std::min(16, bits + 1 + trial % 3);
+      const CorrelatorSums bound = correlate(k, c.x.data(), n, given, code, noise);
+      const auto tol = [&](std::complex<double> r) { return 0.105 * std::abs(r) + 0.36 * std::sqrt(power) + 4.0 * peak; };
+      EXPECT_LE(std::abs(bound.prompt - ref.prompt), tol(ref.prompt));
+      EXPECT_LE(std::abs(bound.late - ref.late), tol(ref.late));
+    }
+  }
+  CorrelatorSpan bad;
+  bad.code_step_chips = 0.25;
+  bad.magnitude_bits = 17;
+  const std::vector<Sample> x(64);
+  EXPECT_THROW(correlate(x.data(), 64, bad, ca_code_chips(1), ca_code_chips(2)), std::invalid_argument);
+  EXPECT_EQ(sample_magnitude_bits(x.data(), 64), 0);
+}
+
 TEST(Correlator, CarrierPhaseAndAmplitudeErrorsAreWithinTheTableResolution) {
   // A noise-free signal on the prompt: the prompt's phase is the replica's phase error,
   // which must stay within the 32-level table's +-5.625 degrees plus the 21-bit phase
