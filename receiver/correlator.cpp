@@ -58,6 +58,14 @@ struct Run {
 
 using Acc = std::int64_t[kTaps][2];
 
+/// A run's samples: interleaved, and planar I and Q when the caller prepared them.
+struct Input {
+  const Sample* x;
+  const std::int16_t* i;  // nullptr: deinterleave here
+  const std::int16_t* q;
+  Input at(int k) const { return {x + k, i ? i + k : nullptr, q ? q + k : nullptr}; }
+};
+
 // ---------------------------------------------------------------------------------------
 // Tables.
 
@@ -175,7 +183,8 @@ inline std::int16_t level(const std::int16_t* table, std::int64_t chip) {
 }
 
 template <bool kSmall, int kT, bool kNear>
-void kernel_portable_impl(const Sample* x, int m, const Run& run, const Setup& su, Acc& acc) {
+void kernel_portable_impl(const Input& in, int m, const Run& run, const Setup& su, Acc& acc) {
+  const Sample* x = in.x;
   // kNear: every tap within kPad chips, so a chip index never leaves the padded table.
   const auto chip_level = [](const std::int16_t* table, std::int64_t chip) {
     return kNear ? table[chip] : level(table, chip);
@@ -215,7 +224,7 @@ void kernel_portable_impl(const Sample* x, int m, const Run& run, const Setup& s
 }
 
 template <bool kSmall>
-void kernel_portable(const Sample* x, int m, const Run& run, const Setup& su, Acc& acc) {
+void kernel_portable(const Input& x, int m, const Run& run, const Setup& su, Acc& acc) {
   const bool near = su.h <= kPad;
   if (su.taps == 3)
     (near ? kernel_portable_impl<kSmall, 3, true> : kernel_portable_impl<kSmall, 3, false>)(x, m, run, su, acc);
@@ -253,9 +262,9 @@ DEEPNAV_AVX512 int sample_bits_avx512(const Sample* x, int n) {
   return std::bit_width(m);
 }
 
-template <int kT, bool kSmall>
-DEEPNAV_AVX512 void kernel_avx512(const Sample* x, int m, const Run& run, const Setup& su, Acc& acc) {
-  const auto* src = reinterpret_cast<const std::int32_t*>(x);
+template <int kT, bool kSmall, bool kPlanar>
+DEEPNAV_AVX512 void kernel_avx512(const Input& in, int m, const Run& run, const Setup& su, Acc& acc) {
+  const auto* src = reinterpret_cast<const std::int32_t*>(in.x);
   const __m512i lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
   const __m512i sixteen = _mm512_set1_epi32(16);
   // Word k of the result is word 2k (I) / 2k+1 (Q, and the high halves of the dwords) of
@@ -293,16 +302,28 @@ DEEPNAV_AVX512 void kernel_avx512(const Sample* x, int m, const Run& run, const 
   std::int64_t pos = run.pos0;
   const std::int64_t block_inc = run.inc * 32;
   for (int k = 0; k < m; k += 32) {
-    __m512i x0, x1;
-    if (const int left = m - k; left >= 32) [[likely]] {
-      x0 = _mm512_loadu_si512(src + k);
-      x1 = _mm512_loadu_si512(src + k + 16);
-    } else {  // masked loads: the missing samples are zero and add nothing
-      x0 = _mm512_maskz_loadu_epi32(static_cast<__mmask16>(0xFFFFu >> (16 - std::min(left, 16))), src + k);
-      x1 = _mm512_maskz_loadu_epi32(static_cast<__mmask16>(0xFFFFu >> (16 - std::max(left - 16, 0))), src + k + 16);
+    __m512i i, q;
+    if constexpr (kPlanar) {
+      if (const int left = m - k; left >= 32) [[likely]] {
+        i = _mm512_loadu_si512(in.i + k);
+        q = _mm512_loadu_si512(in.q + k);
+      } else {  // masked loads: the missing samples are zero and add nothing
+        const auto mask = static_cast<__mmask32>(0xFFFFFFFFu >> (32 - left));
+        i = _mm512_maskz_loadu_epi16(mask, in.i + k);
+        q = _mm512_maskz_loadu_epi16(mask, in.q + k);
+      }
+    } else {
+      __m512i x0, x1;
+      if (const int left = m - k; left >= 32) [[likely]] {
+        x0 = _mm512_loadu_si512(src + k);
+        x1 = _mm512_loadu_si512(src + k + 16);
+      } else {  // masked loads: the missing samples are zero and add nothing
+        x0 = _mm512_maskz_loadu_epi32(static_cast<__mmask16>(0xFFFFu >> (16 - std::min(left, 16))), src + k);
+        x1 = _mm512_maskz_loadu_epi32(static_cast<__mmask16>(0xFFFFu >> (16 - std::max(left - 16, 0))), src + k + 16);
+      }
+      i = _mm512_permutex2var_epi16(x0, even, x1);
+      q = _mm512_permutex2var_epi16(x0, odd, x1);
     }
-    const __m512i i = _mm512_permutex2var_epi16(x0, even, x1);
-    const __m512i q = _mm512_permutex2var_epi16(x0, odd, x1);
 
     const __m512i pidx = _mm512_permutex2var_epi16(phi_a, odd, phi_b);
     phi_a = _mm512_add_epi32(phi_a, phi_step);
@@ -395,7 +416,8 @@ DEEPNAV_AVX2 inline void drain(__m256i& v, std::int64_t& out) {
 }
 
 template <int kT, bool kSmall>
-DEEPNAV_AVX2 void kernel_avx2(const Sample* x, int m, const Run& run, const Setup& su, Acc& acc) {
+DEEPNAV_AVX2 void kernel_avx2(const Input& in, int m, const Run& run, const Setup& su, Acc& acc) {
+  const Sample* x = in.x;
   const auto* src = reinterpret_cast<const std::int32_t*>(x);
   const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
   const __m256i eight = _mm256_set1_epi32(8);
@@ -524,14 +546,18 @@ DEEPNAV_AVX2 void kernel_avx2(const Sample* x, int m, const Run& run, const Setu
 }
 #endif
 
-using KernelFn = void (*)(const Sample*, int, const Run&, const Setup&, Acc&);
+using KernelFn = void (*)(const Input&, int, const Run&, const Setup&, Acc&);
 
-KernelFn pick_kernel(CorrelatorKernel kernel, int taps, bool small) {
+KernelFn pick_kernel(CorrelatorKernel kernel, int taps, bool small, bool planar) {
   switch (kernel) {
 #if defined(__x86_64__)
     case CorrelatorKernel::avx512:
-      if (taps == 3) return small ? kernel_avx512<3, true> : kernel_avx512<3, false>;
-      return small ? kernel_avx512<5, true> : kernel_avx512<5, false>;
+      if (planar) {
+        if (taps == 3) return small ? kernel_avx512<3, true, true> : kernel_avx512<3, false, true>;
+        return small ? kernel_avx512<5, true, true> : kernel_avx512<5, false, true>;
+      }
+      if (taps == 3) return small ? kernel_avx512<3, true, false> : kernel_avx512<3, false, false>;
+      return small ? kernel_avx512<5, true, false> : kernel_avx512<5, false, false>;
     case CorrelatorKernel::avx2:
       if (taps == 3) return small ? kernel_avx2<3, true> : kernel_avx2<3, false>;
       return small ? kernel_avx2<5, true> : kernel_avx2<5, false>;
@@ -570,6 +596,55 @@ double wrap_chips(double chips) {
 
 }  // namespace
 
+#if defined(__x86_64__)
+DEEPNAV_AVX512 void deinterleave_avx512(const Sample* x, int n, std::int16_t* i, std::int16_t* q) {
+  const auto* src = reinterpret_cast<const std::int32_t*>(x);
+  alignas(64) static constexpr std::array<std::uint16_t, 32> kEven = [] {
+    std::array<std::uint16_t, 32> e{};
+    for (std::size_t k = 0; k < 32; ++k) e[k] = static_cast<std::uint16_t>(2 * k);
+    return e;
+  }();
+  const __m512i even = _mm512_load_si512(kEven.data());
+  const __m512i odd = _mm512_add_epi16(even, _mm512_set1_epi16(1));
+  int k = 0;
+  for (; k + 32 <= n; k += 32) {
+    const __m512i x0 = _mm512_loadu_si512(src + k), x1 = _mm512_loadu_si512(src + k + 16);
+    _mm512_storeu_si512(i + k, _mm512_permutex2var_epi16(x0, even, x1));
+    _mm512_storeu_si512(q + k, _mm512_permutex2var_epi16(x0, odd, x1));
+  }
+  for (; k < n; ++k) {
+    i[k] = x[k].real();
+    q[k] = x[k].imag();
+  }
+}
+#endif
+
+void deinterleave(const Sample* x, int n, std::int16_t* i, std::int16_t* q) {
+#if defined(__x86_64__)
+  if (best_correlator_kernel() == CorrelatorKernel::avx512) {
+    deinterleave_avx512(x, n, i, q);
+    return;
+  }
+#endif
+  for (int k = 0; k < n; ++k) {
+    i[k] = x[k].real();
+    q[k] = x[k].imag();
+  }
+}
+
+void prepare_for_correlation(SampleBlock& block) {
+  const auto n = static_cast<int>(block.samples.size());
+  block.magnitude_bits = sample_magnitude_bits(block.samples.data(), n);
+  if (!correlator_reads_planar_input()) {
+    block.planar.clear();
+    return;
+  }
+  block.planar.resize(2 * block.samples.size());
+  deinterleave(block.samples.data(), n, block.planar.data(), block.planar.data() + n);
+}
+
+bool correlator_reads_planar_input() { return best_correlator_kernel() == CorrelatorKernel::avx512; }
+
 int sample_magnitude_bits(const Sample* samples, int n) {
   return n > 0 ? sample_bits(best_correlator_kernel(), samples, n) : 0;
 }
@@ -591,11 +666,22 @@ CorrelatorKernel best_correlator_kernel() {
 
 CorrelatorSums correlate(const Sample* samples, int n, const CorrelatorSpan& s, const CaCodeChips& code,
                          const CaCodeChips& noise_code) {
-  return correlate(best_correlator_kernel(), samples, n, s, code, noise_code);
+  return correlate(best_correlator_kernel(), CorrelatorInput{samples}, n, s, code, noise_code);
+}
+
+CorrelatorSums correlate(const CorrelatorInput& input, int n, const CorrelatorSpan& s, const CaCodeChips& code,
+                         const CaCodeChips& noise_code) {
+  return correlate(best_correlator_kernel(), input, n, s, code, noise_code);
 }
 
 CorrelatorSums correlate(CorrelatorKernel kernel, const Sample* samples, int n, const CorrelatorSpan& s,
                          const CaCodeChips& code, const CaCodeChips& noise_code) {
+  return correlate(kernel, CorrelatorInput{samples}, n, s, code, noise_code);
+}
+
+CorrelatorSums correlate(CorrelatorKernel kernel, const CorrelatorInput& input, int n, const CorrelatorSpan& s,
+                         const CaCodeChips& code, const CaCodeChips& noise_code) {
+  const Sample* samples = input.samples;
   CorrelatorSums out;
   if (n <= 0) return out;
   if (!(s.code_step_chips > 0.0 && s.code_step_chips <= 2.0))
@@ -638,7 +724,9 @@ CorrelatorSums correlate(CorrelatorKernel kernel, const Sample* samples, int n, 
   const CarrierTable& ct = carrier_table(bits);
   su.cos_tab = ct.cos_tab.data();
   su.sin_tab = ct.sin_tab.data();
-  const KernelFn fn = pick_kernel(kernel, su.taps, small);
+  const bool planar = input.i != nullptr && input.q != nullptr;
+  const KernelFn fn = pick_kernel(kernel, su.taps, small, planar);
+  const Input in{samples, planar ? input.i : nullptr, planar ? input.q : nullptr};
 
   const auto dphi = static_cast<std::uint32_t>(std::llround(s.carrier_step_cycles * kCarrierOne));
   Acc acc{};
@@ -652,7 +740,7 @@ CorrelatorSums correlate(CorrelatorKernel kernel, const Sample* samples, int n, 
     run.pos0 = std::llround(wrap_chips(s.code_phase_chips + k0 * s.code_step_chips) * kCodeOne);
     if (run.pos0 >= kCodeWrap) run.pos0 -= kCodeWrap;
     run.inc = inc;
-    fn(samples + k0, m, run, su, acc);
+    fn(in.at(k0), m, run, su, acc);
   }
   const auto sum = [&](int t) {
     return std::complex<double>(static_cast<double>(acc[t][0]) * ct.scale, static_cast<double>(acc[t][1]) * ct.scale);

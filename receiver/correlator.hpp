@@ -63,6 +63,22 @@ CorrelatorKernel best_correlator_kernel();
 /// The kernels this CPU can run (portable always), for tests and benchmarks.
 std::vector<CorrelatorKernel> available_correlator_kernels();
 
+/// The samples of a span: interleaved I/Q, and optionally the same samples as planar I and Q
+/// arrays (deinterleave()), which the AVX-512 kernel reads without deinterleaving them
+/// itself: the channels sharing a block then share one deinterleaving pass.
+struct CorrelatorInput {
+  const Sample* samples = nullptr;
+  const std::int16_t* i = nullptr;  ///< i[k] == samples[k].real(), or nullptr
+  const std::int16_t* q = nullptr;  ///< q[k] == samples[k].imag(), or nullptr
+};
+/// Whether the kernel correlate() picks reads CorrelatorInput::i/q (else they are ignored).
+bool correlator_reads_planar_input();
+/// i[k] = x[k].real(), q[k] = x[k].imag() for k in [0, n).
+void deinterleave(const Sample* x, int n, std::int16_t* i, std::int16_t* q);
+
+/// Fills block.magnitude_bits, and block.planar where the kernel reads it.
+void prepare_for_correlation(SampleBlock& block);
+
 /// Bits of the largest |I| or |Q| of n samples: every one within +-(2^b - 1); -32768 gives 16.
 int sample_magnitude_bits(const Sample* samples, int n);
 
@@ -73,6 +89,11 @@ CorrelatorSums correlate(const Sample* samples, int n, const CorrelatorSpan& spa
                          const CaCodeChips& noise_code);
 /// The same with an explicit kernel (must be one of available_correlator_kernels()).
 CorrelatorSums correlate(CorrelatorKernel kernel, const Sample* samples, int n, const CorrelatorSpan& span,
+                         const CaCodeChips& code, const CaCodeChips& noise_code);
+/// The same on a CorrelatorInput (every kernel gives the same integers with or without the planar copy).
+CorrelatorSums correlate(const CorrelatorInput& input, int n, const CorrelatorSpan& span, const CaCodeChips& code,
+                         const CaCodeChips& noise_code);
+CorrelatorSums correlate(CorrelatorKernel kernel, const CorrelatorInput& input, int n, const CorrelatorSpan& span,
                          const CaCodeChips& code, const CaCodeChips& noise_code);
 
 /// The same sums computed sample by sample in double precision, without any of the

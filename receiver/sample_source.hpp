@@ -20,10 +20,10 @@ using Sample = std::complex<std::int16_t>;
 struct SampleBlock {
   std::int64_t first_sample_index = 0;
   std::vector<Sample> samples;
-  /// Bits of the largest |I| or |Q| in `samples` when a reader has measured it
-  /// (sample_magnitude_bits()), so that the channels sharing the block need not; -1: unknown.
-  /// Whoever changes `samples` resets it.
-  int magnitude_bits = -1;
+  /// What the correlator would otherwise work out per channel, computed once for the block
+  /// (prepare_for_correlation()); whoever changes `samples` clears them.
+  int magnitude_bits = -1;            ///< bits of the largest |I| or |Q| in `samples`; -1: unknown
+  std::vector<std::int16_t> planar;   ///< I of every sample, then Q; empty: not prepared
 };
 
 /// Samples that never arrived (a dropped network packet, an overrun): the

@@ -280,7 +280,7 @@ void ScalarReceiver::run(const std::function<void(const ReceiverEpoch&)>& on_epo
       m.gap_since_epoch = true;
     }
     expected_first = block.first_sample_index + static_cast<std::int64_t>(block.samples.size());
-    block.magnitude_bits = sample_magnitude_bits(block.samples.data(), static_cast<int>(block.samples.size()));
+    prepare_for_correlation(block);
     if (first) {
       m.acquire(block.samples, block.first_sample_index);
       next_obs = block.first_sample_index + obs_step;

@@ -108,7 +108,13 @@ void TrackingChannel::process(const SampleBlock& block, const std::function<void
     span.spacing_chips = cfg_.spacing_chips;
     span.very_spacing_chips = cfg_.very_spacing_chips;
     span.magnitude_bits = block.magnitude_bits;
-    const CorrelatorSums s = correlate(block.samples.data() + (idx - block.first_sample_index), n, span, *code_, *noise_code_);
+    const auto offset = static_cast<std::size_t>(idx - block.first_sample_index);
+    CorrelatorInput input{block.samples.data() + offset};
+    if (block.planar.size() == 2 * block.samples.size()) {
+      input.i = block.planar.data() + offset;
+      input.q = block.planar.data() + block.samples.size() + offset;
+    }
+    const CorrelatorSums s = correlate(input, n, span, *code_, *noise_code_);
     if (acc_first_ < 0) acc_first_ = idx;
     acc_e_ += s.early;
     acc_p_ += s.prompt;

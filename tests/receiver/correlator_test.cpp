@@ -219,6 +219,40 @@ TEST(Correlator, AGivenMagnitudeBoundGivesTheScannedResultOrOneWithinTolerance) 
   EXPECT_EQ(sample_magnitude_bits(x.data(), 64), 0);
 }
 
+TEST(Correlator, PlanarCopiesOfTheSamplesGiveTheSameIntegers) {
+  // The receiver deinterleaves each block once for all its channels; with or without that
+  // copy (and at any offset into it, as the channels' spans fall) every kernel gives the
+  // same sums.
+  std::mt19937_64 rng(41);
+  for (int trial = 0; trial < 60; ++trial) {
+    const int n = kLengths[trial % 6] + static_cast<int>(rng() % 40);
+    const RandomCase c = random_case(rng, n);
+    SampleBlock block;
+    block.samples = c.x;
+    prepare_for_correlation(block);
+    EXPECT_EQ(block.magnitude_bits, sample_magnitude_bits(c.x.data(), n));
+    std::vector<std::int16_t> i(c.x.size()), q(c.x.size());
+    deinterleave(c.x.data(), n, i.data(), q.data());
+    for (int k = 0; k < n; ++k) ASSERT_EQ(i[static_cast<std::size_t>(k)], c.x[static_cast<std::size_t>(k)].real());
+    for (int k = 0; k < n; ++k) ASSERT_EQ(q[static_cast<std::size_t>(k)], c.x[static_cast<std::size_t>(k)].imag());
+    const int offset = static_cast<int>(rng() % 17);
+    const CorrelatorInput planar{c.x.data() + offset, i.data() + offset, q.data() + offset};
+    const auto& code = ca_code_chips(c.prn);
+    const auto& noise = ca_code_chips(c.prn % 32 + 1);
+    for (CorrelatorKernel k : available_correlator_kernels()) {
+      SCOPED_TRACE(testing::Message() << "kernel " << static_cast<int>(k) << " trial " << trial);
+      const CorrelatorSums a = correlate(k, c.x.data() + offset, n - offset, c.span, code, noise);
+      const CorrelatorSums b = correlate(k, planar, n - offset, c.span, code, noise);
+      EXPECT_EQ(a.early, b.early);
+      EXPECT_EQ(a.prompt, b.prompt);
+      EXPECT_EQ(a.late, b.late);
+      EXPECT_EQ(a.very_early, b.very_early);
+      EXPECT_EQ(a.very_late, b.very_late);
+      EXPECT_EQ(a.noise, b.noise);
+    }
+  }
+}
+
 TEST(Correlator, CarrierPhaseAndAmplitudeErrorsAreWithinTheTableResolution) {
   // A noise-free signal on the prompt: the prompt's phase is the replica's phase error,
   // which must stay within the 32-level table's +-5.625 degrees plus the 21-bit phase
