@@ -46,6 +46,13 @@ void multiply_spectra(const std::complex<float>* a, const std::complex<float>* b
   }
 }
 
+/// row[k] += |v[k]|^2, on interleaved floats so that it vectorises.
+void add_power(const std::complex<float>* v, float* row, int n) {
+  const float* __restrict x = reinterpret_cast<const float*>(v);
+  float* __restrict r = row;
+  for (int k = 0; k < n; ++k) r[k] += x[2 * k] * x[2 * k] + x[2 * k + 1] * x[2 * k + 1];
+}
+
 /// Smallest n' >= n whose prime factors are all 2, 3, 5 or 7 (sizes FFTW transforms fast;
 /// 4092 = 4 * 3 * 11 * 31 takes five times as long as 4096).
 int smooth_fft_size(int n) {
@@ -186,55 +193,67 @@ struct Acquisition::Impl {
     for (int j = 0; j < nf; ++j) in.c()[j] = scratch[static_cast<std::size_t>(stretch_source[static_cast<std::size_t>(j)])];
   }
 
-  /// Fine Doppler search at one code phase, at the sample rate: each block's samples are
-  /// code-wiped once at `lag`, then each trial frequency costs one rotation and sum.
+  /// Fine Doppler search at one code phase, at the sample rate. Each block's samples are
+  /// code-wiped at `lag` and mixed down at the coarse frequency once, then summed over
+  /// chunks of about 8 us: a trial frequency f then costs one rotation per chunk, at the
+  /// offset f - coarse (within a few kHz, so a chunk's own phase turns by under 0.1 rad,
+  /// and the chunk is rotated from its centre).
   class DopplerRefiner {
    public:
     /// `storage` is reused between calls (a fresh buffer per PRN costs page faults).
-    DopplerRefiner(const Impl& acq, std::span<const Sample> x, int blocks, int prn, int lag,
+    DopplerRefiner(const Impl& acq, std::span<const Sample> x, int blocks, int prn, int lag, double coarse_hz,
                    std::vector<std::complex<double>>& storage)
-        : w_per_hz_(-2.0 * M_PI / acq.cfg.sample_rate_hz), if_hz_(acq.cfg.if_hz), n_(acq.n), blocks_(blocks), wiped_(storage) {
+        : fs_(acq.cfg.sample_rate_hz), coarse_hz_(coarse_hz), blocks_(blocks), chunks_(storage) {
+      const int n = acq.n;
+      chunk_ = std::max(1, static_cast<int>(fs_ / 128e3));
+      per_block_ = (n + chunk_ - 1) / chunk_;
       const auto& r = acq.replicas[static_cast<std::size_t>(prn - 1)];
-      wiped_.resize(static_cast<std::size_t>(blocks) * static_cast<std::size_t>(n_));
+      chunks_.assign(static_cast<std::size_t>(blocks) * static_cast<std::size_t>(per_block_), 0.0);
+      const double w = -2.0 * M_PI * (acq.cfg.if_hz + coarse_hz) / fs_;
+      const std::complex<double> step = std::polar(1.0, w);
       for (int b = 0; b < blocks; ++b) {
-        const std::int64_t first = static_cast<std::int64_t>(b) * n_;
-        const std::complex<double> mean = block_mean(x, first, n_);
-        for (int k = 0, j = (n_ - lag % n_) % n_; k < n_; ++k, j = (j + 1 == n_ ? 0 : j + 1)) {
-          const auto& s = x[static_cast<std::size_t>(first + k)];
-          wiped_[static_cast<std::size_t>(first + k)] =
-              (std::complex<double>(s.real(), s.imag()) - mean) * static_cast<double>(r[static_cast<std::size_t>(j)]);
-        }
-      }
-    }
-    /// Sum over blocks of the coherent power at f (same units as the direct correlation).
-    double power(double f_hz) const {
-      const std::complex<double> step = std::polar(1.0, w_per_hz_ * (if_hz_ + f_hz));
-      double total = 0.0;
-      for (int b = 0; b < blocks_; ++b) {
-        const std::complex<double>* y = wiped_.data() + static_cast<std::size_t>(b) * static_cast<std::size_t>(n_);
+        const std::int64_t first = static_cast<std::int64_t>(b) * n;
+        const std::complex<double> mean = block_mean(x, first, n);
+        std::complex<double>* out = chunks_.data() + static_cast<std::size_t>(b) * static_cast<std::size_t>(per_block_);
         // Written out: std::complex's operator* checks for NaN/inf results and does not vectorise.
-        double rot_re = 1.0, rot_im = 0.0, acc_re = 0.0, acc_im = 0.0;
-        for (int k = 0; k < n_; ++k) {
-          acc_re += y[k].real() * rot_re - y[k].imag() * rot_im;
-          acc_im += y[k].real() * rot_im + y[k].imag() * rot_re;
-          const double re = rot_re * step.real() - rot_im * step.imag();
+        double rot_re = 1.0, rot_im = 0.0;
+        for (int k = 0, j = (n - lag % n) % n; k < n; ++k, j = (j + 1 == n ? 0 : j + 1)) {
+          const auto& smp = x[static_cast<std::size_t>(first + k)];
+          const double code = r[static_cast<std::size_t>(j)];
+          const double re = (smp.real() - mean.real()) * code, im = (smp.imag() - mean.imag()) * code;
+          out[k / chunk_] += std::complex<double>(re * rot_re - im * rot_im, re * rot_im + im * rot_re);
+          const double next_re = rot_re * step.real() - rot_im * step.imag();
           rot_im = rot_re * step.imag() + rot_im * step.real();
-          rot_re = re;
+          rot_re = next_re;
           if ((k & 1023) == 1023) {  // keep the recursion on the unit circle
             const double norm = std::hypot(rot_re, rot_im);
             rot_re /= norm;
             rot_im /= norm;
           }
         }
-        total += acc_re * acc_re + acc_im * acc_im;
+      }
+      n_ = n;
+    }
+    /// Sum over blocks of the coherent power at f (same units as the direct correlation).
+    double power(double f_hz) const {
+      const double w = -2.0 * M_PI * (f_hz - coarse_hz_) / fs_;
+      double total = 0.0;
+      for (int b = 0; b < blocks_; ++b) {
+        const std::complex<double>* z = chunks_.data() + static_cast<std::size_t>(b) * static_cast<std::size_t>(per_block_);
+        std::complex<double> acc = 0.0;
+        for (int a = 0; a < per_block_; ++a) {
+          const int len = std::min(chunk_, n_ - a * chunk_);
+          acc += z[a] * std::polar(1.0, w * (a * chunk_ + 0.5 * (len - 1)));
+        }
+        total += std::norm(acc);
       }
       return total;
     }
 
    private:
-    double w_per_hz_, if_hz_;
-    int n_, blocks_;
-    std::vector<std::complex<double>>& wiped_;
+    double fs_, coarse_hz_;
+    int blocks_, n_ = 0, chunk_ = 1, per_block_ = 0;
+    std::vector<std::complex<double>>& chunks_;
   };
   std::array<std::vector<std::complex<double>>, 2> refiner_storage;
 
@@ -244,36 +263,34 @@ struct Acquisition::Impl {
       throw std::invalid_argument("acquisition: need at least " + std::to_string(n) + " samples (one coherent block), got " +
                                   std::to_string(x.size()));
     }
-    // Spectra of the mixed input: one per Doppler bin and block, shared by every PRN.
+    // Per Doppler bin, the mixed input's spectra (one per block) are made once and serve
+    // every PRN while they are still in cache; each PRN's grid collects its rows.
     const std::size_t nb = dopplers.size();
     const auto cells_per_row = static_cast<std::size_t>(nf);
     std::vector<std::complex<float>> scratch(static_cast<std::size_t>(n));
-    std::vector<std::vector<std::complex<float>>> spectra(nb * static_cast<std::size_t>(blocks));
+    std::vector<std::vector<std::complex<float>>> spectra(static_cast<std::size_t>(blocks),
+                                                          std::vector<std::complex<float>>(cells_per_row));
+    std::vector<std::vector<float>> grids(cfg.prns.size(), std::vector<float>(nb * cells_per_row, 0.0f));
     for (std::size_t d = 0; d < nb; ++d) {
       for (int b = 0; b < blocks; ++b) {
         mix_block(x, b, dopplers[d], scratch);
         fftwf_execute(forward);
-        spectra[d * static_cast<std::size_t>(blocks) + static_cast<std::size_t>(b)].assign(out.c(), out.c() + nf);
+        std::copy(out.c(), out.c() + nf, spectra[static_cast<std::size_t>(b)].begin());
+      }
+      for (std::size_t p = 0; p < cfg.prns.size(); ++p) {
+        const auto& code = code_spectra[static_cast<std::size_t>(cfg.prns[p] - 1)];
+        float* row = grids[p].data() + d * cells_per_row;
+        for (int b = 0; b < blocks; ++b) {
+          multiply_spectra(spectra[static_cast<std::size_t>(b)].data(), code.data(), in.c(), nf);
+          fftwf_execute(inverse);
+          add_power(out.c(), row, nf);
+        }
       }
     }
     const double cells = static_cast<double>(nb) * std::floor(samples_per_ms);
     const double threshold = acquisition_threshold(blocks, cells, cfg.pfa);
-    std::vector<float> grid(nb * cells_per_row);
     std::vector<AcquisitionResult> results;
-    for (int prn : cfg.prns) {
-      const auto& spec = code_spectra[static_cast<std::size_t>(prn - 1)];
-      std::fill(grid.begin(), grid.end(), 0.0f);
-      for (std::size_t d = 0; d < nb; ++d) {
-        float* row = grid.data() + d * cells_per_row;
-        for (int b = 0; b < blocks; ++b) {
-          const auto& s = spectra[d * static_cast<std::size_t>(blocks) + static_cast<std::size_t>(b)];
-          multiply_spectra(s.data(), spec.data(), in.c(), nf);
-          fftwf_execute(inverse);
-          for (int k = 0; k < nf; ++k) row[k] += std::norm(out.c()[k]);
-        }
-      }
-      results.push_back(evaluate(x, blocks, prn, grid, threshold));
-    }
+    for (std::size_t p = 0; p < cfg.prns.size(); ++p) results.push_back(evaluate(x, blocks, cfg.prns[p], grids[p], threshold));
     reject_cross_correlations(results);
     return results;
   }
@@ -348,8 +365,8 @@ struct Acquisition::Impl {
     std::vector<double> fine(21);
     int best_i = 0;
     const auto below = static_cast<int>(std::floor(r.delay_samples));
-    const DopplerRefiner early(*this, x, blocks, prn, below % n, refiner_storage[0]);
-    const DopplerRefiner late(*this, x, blocks, prn, (below + 1) % n, refiner_storage[1]);
+    const DopplerRefiner early(*this, x, blocks, prn, below % n, dopplers[d_peak], refiner_storage[0]);
+    const DopplerRefiner late(*this, x, blocks, prn, (below + 1) % n, dopplers[d_peak], refiner_storage[1]);
     const DopplerRefiner& refiner = early.power(dopplers[d_peak]) >= late.power(dopplers[d_peak]) ? early : late;
     for (int i = -10; i <= 10; ++i) {
       fine[static_cast<std::size_t>(i + 10)] = refiner.power(dopplers[d_peak] + i * fine_step);
