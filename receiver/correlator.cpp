@@ -262,6 +262,14 @@ DEEPNAV_AVX512 int sample_bits_avx512(const Sample* x, int n) {
   return std::bit_width(m);
 }
 
+/// 0, 2, ..., 62: with permutex2var, word k of the result is word 2k of the pair (a, b) (I
+/// of 32 interleaved samples); the odd words (Q) take these plus one.
+alignas(64) constexpr std::array<std::uint16_t, 32> kEvenWords = [] {
+  std::array<std::uint16_t, 32> e{};
+  for (std::size_t k = 0; k < 32; ++k) e[k] = static_cast<std::uint16_t>(2 * k);
+  return e;
+}();
+
 template <int kT, bool kSmall, bool kPlanar>
 DEEPNAV_AVX512 void kernel_avx512(const Input& in, int m, const Run& run, const Setup& su, Acc& acc) {
   const auto* src = reinterpret_cast<const std::int32_t*>(in.x);
@@ -269,12 +277,7 @@ DEEPNAV_AVX512 void kernel_avx512(const Input& in, int m, const Run& run, const 
   const __m512i sixteen = _mm512_set1_epi32(16);
   // Word k of the result is word 2k (I) / 2k+1 (Q, and the high halves of the dwords) of
   // the pair (a, b): deinterleaves 32 samples.
-  alignas(64) static constexpr std::array<std::uint16_t, 32> kEven = [] {
-    std::array<std::uint16_t, 32> e{};
-    for (std::size_t k = 0; k < 32; ++k) e[k] = static_cast<std::uint16_t>(2 * k);
-    return e;
-  }();
-  const __m512i even = _mm512_load_si512(kEven.data());
+  const __m512i even = _mm512_load_si512(kEvenWords.data());
   const __m512i odd = _mm512_add_epi16(even, _mm512_set1_epi16(1));
   const __m512i cos_t = _mm512_loadu_si512(su.cos_tab), sin_t = _mm512_loadu_si512(su.sin_tab);
 
@@ -599,12 +602,7 @@ double wrap_chips(double chips) {
 #if defined(__x86_64__)
 DEEPNAV_AVX512 void deinterleave_avx512(const Sample* x, int n, std::int16_t* i, std::int16_t* q) {
   const auto* src = reinterpret_cast<const std::int32_t*>(x);
-  alignas(64) static constexpr std::array<std::uint16_t, 32> kEven = [] {
-    std::array<std::uint16_t, 32> e{};
-    for (std::size_t k = 0; k < 32; ++k) e[k] = static_cast<std::uint16_t>(2 * k);
-    return e;
-  }();
-  const __m512i even = _mm512_load_si512(kEven.data());
+  const __m512i even = _mm512_load_si512(kEvenWords.data());
   const __m512i odd = _mm512_add_epi16(even, _mm512_set1_epi16(1));
   int k = 0;
   for (; k + 32 <= n; k += 32) {
