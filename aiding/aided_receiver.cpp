@@ -187,7 +187,7 @@ struct AidedReceiver::Impl : ExternalChannelControl {
       if (eph == nullptr || o.after_gap) continue;
       RangeMeasurement m;
       m.time_offset_s = dt;
-      m.geometry = predict_range(*eph, *ep.t_rx, bias, nav->antenna_ecef_at(ep.t_s), iono);
+      m.geometry = predict_range(*eph, *ep.t_rx, bias, nav->antenna_ecef_at(ep.t_s), nav->antenna_velocity_ecef_mps(), iono);
       if (m.geometry.elevation_rad < cfg.receiver.pvt.elevation_mask_rad) continue;
       m.pseudorange_m = o.pseudorange_m;
       m.pseudorange_sigma_m = scalar_pseudorange_sigma_m(o.cn0_dbhz, m.geometry.elevation_rad);

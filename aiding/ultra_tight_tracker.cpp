@@ -51,7 +51,7 @@ std::optional<UltraTightTracker::SamplePrediction> UltraTightTracker::predict_at
   const double t_s = static_cast<double>(sample) / rx_.sample_rate_hz();
   p.offset_s = t_s - nav.time_s();
   p.clock_bias_m = nav.clock_bias_m() + nav.clock_drift_mps() * p.offset_s;
-  p.range = predict_range(eph, *t_rx, p.clock_bias_m, nav.antenna_ecef_at(t_s), rx_.iono());
+  p.range = predict_range(eph, *t_rx, p.clock_bias_m, nav.antenna_ecef_at(t_s), nav.antenna_velocity_ecef_mps(), rx_.iono());
   return p;
 }
 
