@@ -26,9 +26,9 @@
 namespace deepnav {
 
 struct RangePrediction {
-  Eigen::Vector3d r_sat_ecef_m;      ///< at transmit time, in the ECEF frame of the receive time
-  Eigen::Vector3d v_sat_ecef_mps;
-  Eigen::Vector3d los_ecef;          ///< unit vector receiver -> satellite
+  Eigen::Vector3d r_sat_ecef_m = Eigen::Vector3d::Zero();  ///< at transmit time, in the ECEF frame of the receive time
+  Eigen::Vector3d v_sat_ecef_mps = Eigen::Vector3d::Zero();
+  Eigen::Vector3d los_ecef = Eigen::Vector3d::Zero();      ///< unit vector receiver -> satellite
   double geometric_range_m = 0.0;
   double satellite_clock_m = 0.0;    ///< c * satellite clock offset (subtracted from the range)
   double satellite_drift_mps = 0.0;  ///< c * satellite clock drift
