@@ -25,7 +25,9 @@ AidedNavigator::AidedNavigator(const NavState& initial, double clock_bias_m, dou
 
 void AidedNavigator::propagate(const ImuSample& sample) {
   const double dt = sample.t_s - ins_.state().t_s;
+  const Eigen::Vector3d v_before = ins_.state().v_ned_mps;
   ins_.update(sample);  // validates the time step and the increments
+  last_accel_ned_mps2_ = (ins_.state().v_ned_mps - v_before) / dt;
   clock_bias_m_ += clock_drift_mps_ * dt;
   last_f_b_mps2_ = sample.dv_b_mps / dt - ins_.accel_bias_compensation_mps2();
   last_w_b_radps_ = sample.dtheta_b_rad / dt - ins_.gyro_bias_compensation_radps();
@@ -48,6 +50,11 @@ Eigen::Vector3d AidedNavigator::antenna_velocity_ecef_mps() const {
 
 Eigen::Vector3d AidedNavigator::antenna_ecef_at(double t_s) const {
   return antenna_ecef_m() + antenna_velocity_ecef_mps() * (t_s - ins_.state().t_s);
+}
+
+Eigen::Vector3d AidedNavigator::antenna_velocity_ecef_at(double t_s) const {
+  const NavState& s = ins_.state();
+  return antenna_velocity_ecef_mps() + ned_to_ecef_vector(s.llh, last_accel_ned_mps2_) * (t_s - s.t_s);
 }
 
 wgs84::Llh AidedNavigator::antenna_llh() const { return wgs84::ecef_to_llh(antenna_ecef_m()); }
@@ -88,7 +95,6 @@ UpdateResult AidedNavigator::update_position_velocity(const Eigen::Vector3d& r_a
 
 UpdateResult AidedNavigator::update_ranges(const std::vector<RangeMeasurement>& measurements) {
   const wgs84::Llh& at = ins_.state().llh;
-  const Eigen::Vector3d v_ant = antenna_velocity_ecef_mps();
   std::vector<StateRow> rows;
   std::vector<double> z, r;
   for (const auto& m : measurements) {
@@ -102,11 +108,13 @@ UpdateResult AidedNavigator::update_ranges(const std::vector<RangeMeasurement>& 
       r.push_back(m.pseudorange_sigma_m * m.pseudorange_sigma_m);
     }
     if (m.rate_mps) {
+      const RangePrediction& g = m.rate_at_own_time ? m.rate_geometry : m.geometry;
+      const double offset = m.rate_at_own_time ? m.rate_time_offset_s : m.time_offset_s;
       StateRow h = StateRow::Zero();
-      h.segment<3>(kVel) = -u_ned.transpose();
+      h.segment<3>(kVel) = -ecef_to_ned_vector(at, g.los_ecef).transpose();
       h(kClockDrift) = 1.0;
       rows.push_back(h);
-      z.push_back(m.geometry.pseudorange_rate_mps(v_ant, clock_drift_mps()) - *m.rate_mps);
+      z.push_back(g.pseudorange_rate_mps(antenna_velocity_ecef_at(time_s() + offset), clock_drift_mps()) - *m.rate_mps);
       r.push_back(m.rate_sigma_mps * m.rate_sigma_mps);
     }
   }

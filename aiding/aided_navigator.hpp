@@ -47,6 +47,12 @@ struct RangeMeasurement {
   /// Measurement time minus the navigator's time (the geometry must already be for the
   /// measurement time); the clock model is moved by it.
   double time_offset_s = 0.0;
+  /// A rate measured at another time than the pseudorange (a Doppler averaged over a
+  /// window refers to its middle): the geometry for that time and its offset from the
+  /// navigator's time; the predicted rate takes the antenna velocity there.
+  bool rate_at_own_time = false;
+  RangePrediction rate_geometry;
+  double rate_time_offset_s = 0.0;
 };
 
 class AidedNavigator {
@@ -83,6 +89,9 @@ class AidedNavigator {
   /// Antenna position/velocity extrapolated dt seconds ahead at the current velocity (for
   /// measurements stamped between IMU samples).
   Eigen::Vector3d antenna_ecef_at(double t_s) const;
+  /// Antenna velocity at t_s (near the navigator's time) with the acceleration of the last
+  /// IMU interval: a Doppler tens of milliseconds old in a turn or a climb.
+  Eigen::Vector3d antenna_velocity_ecef_at(double t_s) const;
 
  private:
   StateRow position_row(const Eigen::Vector3d& u_ned) const;
@@ -93,6 +102,7 @@ class AidedNavigator {
   double clock_bias_m_, clock_drift_mps_;  ///< receiver clock model (c * dt, c * dt')
   Eigen::Vector3d last_f_b_mps2_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d last_w_b_radps_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d last_accel_ned_mps2_ = Eigen::Vector3d::Zero();  ///< INS velocity change over the last IMU interval / dt
 };
 
 /// P0 from the 1-sigma figures.

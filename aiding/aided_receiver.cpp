@@ -23,6 +23,18 @@ double scalar_pseudorange_sigma_m(double cn0_dbhz, double elevation_rad) {
   return std::hypot(1.0, dll_m) / std::sqrt(std::max(0.1, std::sin(elevation_rad)));
 }
 
+/// Pseudorange-rate sigma of a scalar channel's Doppler: the carrier phase difference over
+/// the averaging window, each end with the PLL's thermal jitter at its C/N0 (Kaplan &
+/// Hegarty: Bn / (C/N0) (1 + 1 / (2 T C/N0)) rad^2), plus the same 0.02 m/s floor as the
+/// ultra-tight rate (the receiver clock's white frequency noise over the window, common
+/// to every channel, and what is left of the dynamics).
+double scalar_rate_sigma_mps(double cn0_dbhz, double pll_bandwidth_hz, double coherent_s) {
+  const double cn0 = std::pow(10.0, std::max(cn0_dbhz, 20.0) / 10.0);
+  const double phase_var_rad2 = pll_bandwidth_hz / cn0 * (1.0 + 1.0 / (2.0 * coherent_s * cn0));
+  const double rate_mps = std::sqrt(2.0 * phase_var_rad2) / (2.0 * M_PI * kDopplerWindow_s) * gps::kL1Wavelength_m;
+  return std::hypot(rate_mps, 0.02);
+}
+
 }  // namespace
 
 struct AidedReceiver::Impl : ExternalChannelControl {
@@ -187,12 +199,20 @@ struct AidedReceiver::Impl : ExternalChannelControl {
       if (eph == nullptr || o.after_gap) continue;
       RangeMeasurement m;
       m.time_offset_s = dt;
-      m.geometry = predict_range(*eph, *ep.t_rx, bias, nav->antenna_ecef_at(ep.t_s), iono);
+      m.geometry = predict_range(*eph, *ep.t_rx, bias, nav->antenna_ecef_at(ep.t_s), nav->antenna_velocity_ecef_mps(), iono);
       if (m.geometry.elevation_rad < cfg.receiver.pvt.elevation_mask_rad) continue;
       m.pseudorange_m = o.pseudorange_m;
       m.pseudorange_sigma_m = scalar_pseudorange_sigma_m(o.cn0_dbhz, m.geometry.elevation_rad);
       m.rate_mps = -gps::kL1Wavelength_m * o.doppler_hz;
-      m.rate_sigma_mps = 0.1;
+      m.rate_sigma_mps = scalar_rate_sigma_mps(o.cn0_dbhz, cfg.receiver.tracking_loops.pll_hz,
+                                               1e-3 * cfg.receiver.tracking.coherent_ms_after_bit_sync);
+      // The Doppler is the mean over the last window of tracking: predicted at its middle.
+      const double t_rate = ep.t_s + o.doppler_offset_s;
+      m.rate_at_own_time = true;
+      m.rate_time_offset_s = t_rate - nav->time_s();
+      m.rate_geometry = predict_range(*eph, ep.t_rx->plus_seconds(o.doppler_offset_s),
+                                      bias + nav->clock_drift_mps() * o.doppler_offset_s, nav->antenna_ecef_at(t_rate),
+                                      nav->antenna_velocity_ecef_at(t_rate), iono);
       ms.push_back(m);
     }
     last_tight_satellites = static_cast<int>(ms.size());

@@ -51,7 +51,8 @@ std::optional<UltraTightTracker::SamplePrediction> UltraTightTracker::predict_at
   const double t_s = static_cast<double>(sample) / rx_.sample_rate_hz();
   p.offset_s = t_s - nav.time_s();
   p.clock_bias_m = nav.clock_bias_m() + nav.clock_drift_mps() * p.offset_s;
-  p.range = predict_range(eph, *t_rx, p.clock_bias_m, nav.antenna_ecef_at(t_s), rx_.iono());
+  p.antenna_velocity_ecef_mps = nav.antenna_velocity_ecef_at(t_s);
+  p.range = predict_range(eph, *t_rx, p.clock_bias_m, nav.antenna_ecef_at(t_s), p.antenna_velocity_ecef_mps, rx_.iono());
   return p;
 }
 
@@ -104,6 +105,7 @@ bool UltraTightTracker::on_epoch(const CorrelatorEpoch& e, TrackingChannel& ch, 
   d.replica_transmit_sow = *tt;
   d.code_error_chips = dll_code_error_chips(e.early, e.late, cfg_.spacing_chips);
   d.doppler_hz = doppler;
+  d.doppler_sample = e.first_sample;
   d.cn0_dbhz = e.cn0_dbhz;
   d.integration_s = e.integration_s;
   d.ephemeris = *rx_.ephemeris(e.prn);
@@ -124,6 +126,13 @@ std::optional<RangeMeasurement> UltraTightTracker::to_measurement(const Discrimi
   const double code_sigma = code_sigma_chips(d.cn0_dbhz, d.integration_s, cfg_.spacing_chips) * kChip_m;
   m.pseudorange_sigma_m = std::hypot(code_sigma, 0.5);
   if (d.doppler_hz) {
+    // The mean frequency between the centres of two adjoining integrations is the
+    // frequency at their common edge, half an integration before mid_sample.
+    const std::optional<SamplePrediction> at_rate = predict_at(d.ephemeris, d.doppler_sample, nav);
+    if (!at_rate) return m;
+    m.rate_at_own_time = true;
+    m.rate_geometry = at_rate->range;
+    m.rate_time_offset_s = at_rate->offset_s;
     m.rate_mps = -gps::kL1Wavelength_m * *d.doppler_hz;
     m.rate_sigma_mps = std::hypot(frequency_sigma_hz(d.cn0_dbhz, d.integration_s) * gps::kL1Wavelength_m, 0.02);
   }
@@ -167,7 +176,7 @@ void UltraTightTracker::steer(TrackingChannel& ch, const NavDecoder& decoder, co
   }
   ChannelMemory& mem = memory_[ch.prn()];
   NcoCommand cmd;
-  cmd.carrier_doppler_hz = -p.pseudorange_rate_mps(nav.antenna_velocity_ecef_mps(), nav.clock_drift_mps()) /
+  cmd.carrier_doppler_hz = -p.pseudorange_rate_mps(predicted->antenna_velocity_ecef_mps, nav.clock_drift_mps()) /
                            gps::kL1Wavelength_m;
   cmd.code_rate_cps = gps::kCodeRate_cps * (1.0 + cmd.carrier_doppler_hz / gps::kL1_Hz);
   cmd.code_phase_correction_chips = correction_chips;

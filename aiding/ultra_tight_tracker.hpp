@@ -52,6 +52,7 @@ struct DiscriminatorSample {
   double replica_transmit_sow = 0.0;   ///< replica transmit time at mid_sample
   double code_error_chips = 0.0;       ///< signal minus replica (positive: replica lags)
   std::optional<double> doppler_hz;    ///< NCO Doppler plus the residual, when the previous integration adjoins
+  std::int64_t doppler_sample = 0;     ///< where that Doppler refers to: between the two integrations' centres
   double cn0_dbhz = 0.0;
   double integration_s = 0.0;
   Ephemeris ephemeris;
@@ -84,6 +85,7 @@ class UltraTightTracker {
     double offset_s = 0.0;     ///< sample time minus the navigator's time
     double clock_bias_m = 0.0; ///< the clock model moved to the sample
     RangePrediction range;     ///< from the antenna position extrapolated to the sample
+    Eigen::Vector3d antenna_velocity_ecef_mps = Eigen::Vector3d::Zero();  ///< at the sample
   };
   std::optional<SamplePrediction> predict_at(const Ephemeris& eph, std::int64_t sample, const AidedNavigator& nav) const;
   /// Whether the filter can take a channel over: bit edges known, not lost, transmit time and ephemeris.

@@ -252,7 +252,9 @@ struct ScalarReceiver::Impl {
       o.pseudorange_m = c * dt;
       // Doppler from the carrier phase over the last 100 ms (the loop's instantaneous
       // frequency carries its own noise); the loop frequency until that much exists.
-      o.doppler_hz = x.ch->trk->mean_doppler_hz(0.1).value_or(x.ch->last_doppler_hz);
+      o.doppler_hz = x.ch->trk->mean_doppler_hz(kDopplerWindow_s).value_or(x.ch->last_doppler_hz);
+      if (const auto mid = x.ch->trk->mean_doppler_mid_sample(kDopplerWindow_s))
+        o.doppler_offset_s = (*mid - static_cast<double>(s)) / fs;
       o.carrier_phase_cycles = x.ch->trk->carrier_phase_cycles();
       o.cn0_dbhz = x.ch->trk->cn0_dbhz();
       o.lock_time_s = x.ch->trk->seconds_tracked();

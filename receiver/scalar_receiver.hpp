@@ -37,6 +37,9 @@ struct ReceiverConfig {
   PvtConfig pvt;
 };
 
+/// Length of the carrier-phase window an observation's Doppler is averaged over.
+inline constexpr double kDopplerWindow_s = 0.1;
+
 struct ChannelObservation {
   int prn = 0;
   double pseudorange_m = 0.0;
@@ -47,6 +50,9 @@ struct ChannelObservation {
   /// Samples were lost since the previous epoch: the channel coasted across the gap on its
   /// NCOs, so the carrier phase may have slipped (RINEX loss-of-lock indicator).
   bool after_gap = false;
+  /// The Doppler's time minus the epoch's: it is a mean over the last kDopplerWindow_s of
+  /// tracking, so it refers to the middle of that window (about -55 ms).
+  double doppler_offset_s = 0.0;
 };
 
 /// Everything the receiver knows at one observation epoch.

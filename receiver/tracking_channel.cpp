@@ -190,6 +190,16 @@ void TrackingChannel::collect_bit(const CorrelatorEpoch& e) {
   bit_ms_ = 0;
 }
 
+std::optional<double> TrackingChannel::mean_doppler_mid_sample(double window_s) const {
+  if (phase_history_.size() < 2) return std::nullopt;
+  const auto& last = phase_history_.back();
+  const auto window = static_cast<std::int64_t>(window_s * cfg_.sample_rate_hz);
+  for (auto it = phase_history_.rbegin(); it != phase_history_.rend(); ++it) {
+    if (last.first - it->first >= window) return 0.5 * static_cast<double>(last.first + it->first);
+  }
+  return std::nullopt;
+}
+
 std::optional<double> TrackingChannel::mean_doppler_hz(double window_s) const {
   if (phase_history_.size() < 2) return std::nullopt;
   const auto& last = phase_history_.back();

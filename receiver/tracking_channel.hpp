@@ -93,6 +93,9 @@ class TrackingChannel {
   /// accumulated between integration ends: far less noisy than the loop's instantaneous
   /// frequency. nullopt until that much has been tracked.
   std::optional<double> mean_doppler_hz(double window_s) const;
+  /// The sample in the middle of that window: the mean is the Doppler there (to the
+  /// Doppler's second derivative), about window_s / 2 before the last integration's end.
+  std::optional<double> mean_doppler_mid_sample(double window_s) const;
   /// Accumulated carrier phase (cycles, Doppler part) at the end of the last integration.
   double carrier_phase_cycles() const { return carrier_phase_cycles_; }
 

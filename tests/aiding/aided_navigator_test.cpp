@@ -103,7 +103,7 @@ struct TightRun {
     for (int prn = 1; prn <= 32; ++prn) {
       const Ephemeris* e = nav_data.select(prn, t0);
       if (!e) continue;
-      if (predict_range(*e, t0, 0.0, r_ecef, nav_data.iono).elevation_rad > 10.0 * kDeg) out.push_back(e);
+      if (predict_range(*e, t0, 0.0, r_ecef, Eigen::Vector3d::Zero(), nav_data.iono).elevation_rad > 10.0 * kDeg) out.push_back(e);
     }
     return out;
   }
@@ -130,9 +130,10 @@ TEST(AidedNavigator, TightCouplingKeepsEstimatingWithThreeSatellites) {
     const std::size_t used = s.t_s < 120.0 ? sats.size() : 3;  // only three for the last minute
     std::vector<RangeMeasurement> ms;
     for (std::size_t k = 0; k < used; ++k) {
-      const RangePrediction actual = predict_range(*sats[k], t_rx, b, truth.r_ecef_m, tr.nav_data.iono);
+      const RangePrediction actual = predict_range(*sats[k], t_rx, b, truth.r_ecef_m, truth.v_ecef_mps, tr.nav_data.iono);
       RangeMeasurement m;
-      m.geometry = predict_range(*sats[k], t_rx, nav.clock_bias_m(), nav.antenna_ecef_m(), tr.nav_data.iono);
+      m.geometry = predict_range(*sats[k], t_rx, nav.clock_bias_m(), nav.antenna_ecef_m(), nav.antenna_velocity_ecef_mps(),
+                                 tr.nav_data.iono);
       m.pseudorange_m = actual.pseudorange_m(b) + 3.0 * n01(rng);
       m.pseudorange_sigma_m = 3.0;
       m.rate_mps = actual.pseudorange_rate_mps(truth.v_ecef_mps, tr.clock_drift_mps) + 0.05 * n01(rng);
