@@ -6,9 +6,11 @@
 #include <array>
 #include <cmath>
 #include <numeric>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
+#include "receiver/fftw_plan.hpp"
 #include "signals/ca_code.hpp"
 #include "signals/gps_constants.hpp"
 
@@ -106,7 +108,7 @@ struct Acquisition::Impl {
   double samples_per_ms = 0;
   std::vector<double> dopplers;
   FftwBuffer in, out;
-  fftwf_plan forward = nullptr, inverse = nullptr;
+  std::optional<FftwPlan> forward, inverse;
   std::vector<std::vector<std::complex<float>>> code_spectra;  ///< conj(FFT(stretched replica)) per PRN (index prn - 1)
   std::vector<std::vector<float>> replicas;  ///< at the sample rate, for the refinement
   std::vector<int> stretch_source;           ///< sample of the block each of the nf FFT inputs takes
@@ -136,24 +138,19 @@ struct Acquisition::Impl {
     for (int k = -half; k <= half; ++k) dopplers.push_back(k * cfg.doppler_step_hz);
     in = FftwBuffer(static_cast<std::size_t>(std::max(n, nf)));
     out = FftwBuffer(static_cast<std::size_t>(nf));
-    forward = fftwf_plan_dft_1d(nf, in.data, out.data, FFTW_FORWARD, FFTW_ESTIMATE);
-    inverse = fftwf_plan_dft_1d(nf, in.data, out.data, FFTW_BACKWARD, FFTW_ESTIMATE);
-    if (forward == nullptr || inverse == nullptr) throw std::runtime_error("acquisition: FFTW planning failed");
+    forward.emplace(nf, in.data, out.data, FFTW_FORWARD);
+    inverse.emplace(nf, in.data, out.data, FFTW_BACKWARD);
     code_spectra.resize(gps::kMaxPrn);
     replicas.resize(gps::kMaxPrn);
     for (int p : cfg.prns) {
       replicas[static_cast<std::size_t>(p - 1)] = code_replica(p, n, cfg.sample_rate_hz);
       const std::vector<float> stretched = code_replica(p, nf, cfg.sample_rate_hz * nf / n);
       for (int k = 0; k < nf; ++k) in.c()[k] = {stretched[static_cast<std::size_t>(k)], 0.0f};
-      fftwf_execute(forward);
+      forward->execute();
       auto& spec = code_spectra[static_cast<std::size_t>(p - 1)];
       spec.resize(static_cast<std::size_t>(nf));
       for (int k = 0; k < nf; ++k) spec[static_cast<std::size_t>(k)] = std::conj(out.c()[k]);
     }
-  }
-  ~Impl() {
-    if (forward) fftwf_destroy_plan(forward);
-    if (inverse) fftwf_destroy_plan(inverse);
   }
 
   /// Mean of x[first .. first + count): removed before mixing, since ADC offsets (odd-level
@@ -274,7 +271,7 @@ struct Acquisition::Impl {
     for (std::size_t d = 0; d < nb; ++d) {
       for (int b = 0; b < blocks; ++b) {
         mix_block(x, b, dopplers[d], scratch);
-        fftwf_execute(forward);
+        forward->execute();
         std::copy(out.c(), out.c() + nf, spectra[static_cast<std::size_t>(b)].begin());
       }
       for (std::size_t p = 0; p < cfg.prns.size(); ++p) {
@@ -282,7 +279,7 @@ struct Acquisition::Impl {
         float* row = grids[p].data() + d * cells_per_row;
         for (int b = 0; b < blocks; ++b) {
           multiply_spectra(spectra[static_cast<std::size_t>(b)].data(), code.data(), in.c(), nf);
-          fftwf_execute(inverse);
+          inverse->execute();
           add_power(out.c(), row, nf);
         }
       }

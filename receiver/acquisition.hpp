@@ -60,7 +60,7 @@ struct AcquisitionResult {
 
 class Acquisition {
  public:
-  /// Makes the FFTW plans (once; planning is not thread-safe, so construct objects one at a time).
+  /// Makes the FFTW plans (once per object; objects may be made in several threads at once).
   explicit Acquisition(AcquisitionConfig config);
   ~Acquisition();
   Acquisition(const Acquisition&) = delete;

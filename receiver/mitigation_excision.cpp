@@ -2,6 +2,8 @@
 
 #include <fftw3.h>
 
+#include "receiver/fftw_plan.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -11,22 +13,21 @@ namespace deepnav {
 
 struct FrequencyExcision::Fft {
   explicit Fft(std::size_t n)
-      : buffer(fftwf_alloc_complex(n)),
-        forward(fftwf_plan_dft_1d(static_cast<int>(n), buffer, buffer, FFTW_FORWARD, FFTW_ESTIMATE)),
-        inverse(fftwf_plan_dft_1d(static_cast<int>(n), buffer, buffer, FFTW_BACKWARD, FFTW_ESTIMATE)) {
-    if (!buffer || !forward || !inverse) throw std::runtime_error("excision: FFTW could not allocate or plan");
-  }
-  ~Fft() {
-    if (forward) fftwf_destroy_plan(forward);
-    if (inverse) fftwf_destroy_plan(inverse);
-    fftwf_free(buffer);
-  }
+      : buffer(allocate(n)),
+        forward(static_cast<int>(n), buffer, buffer, FFTW_FORWARD),
+        inverse(static_cast<int>(n), buffer, buffer, FFTW_BACKWARD) {}
+  ~Fft() { fftwf_free(buffer); }
   Fft(const Fft&) = delete;
   Fft& operator=(const Fft&) = delete;
   std::complex<float>* data() { return reinterpret_cast<std::complex<float>*>(buffer); }
 
+  static fftwf_complex* allocate(std::size_t n) {
+    fftwf_complex* b = fftwf_alloc_complex(n);
+    if (b == nullptr) throw std::runtime_error("excision: FFTW could not allocate its buffer");
+    return b;
+  }
   fftwf_complex* buffer;
-  fftwf_plan forward, inverse;
+  FftwPlan forward, inverse;
 };
 
 FrequencyExcision::FrequencyExcision(const MitigationConfig& config, double sample_rate_hz) {
@@ -69,7 +70,7 @@ void FrequencyExcision::process(std::span<const std::complex<float>> in, std::sp
 void FrequencyExcision::run_frame() {
   std::complex<float>* X = fft_->data();
   for (std::size_t n = 0; n < fft_size_; ++n) X[n] = history_[n] * window_[n];
-  fftwf_execute(fft_->forward);
+  fft_->forward.execute();
   for (std::size_t k = 0; k < fft_size_; ++k) power_[k] = std::norm(X[k]);
   std::vector<float>& sorted = power_;  // reordered by nth_element: recompute powers below
   const auto mid = sorted.begin() + static_cast<std::ptrdiff_t>(fft_size_ / 2);
@@ -84,7 +85,7 @@ void FrequencyExcision::run_frame() {
   }
   bins_examined_ += static_cast<std::int64_t>(fft_size_);
   bins_excised_ += excised;
-  fftwf_execute(fft_->inverse);
+  fft_->inverse.execute();
   const float scale = 1.0f / static_cast<float>(fft_size_);
   for (std::size_t n = 0; n < fft_size_; ++n) overlap_[n] += X[n] * scale;
   // The first half now has both frames that cover it: hand it out and slide by a hop.

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <thread>
+
 #include <cmath>
 #include <map>
 #include <set>
@@ -159,6 +162,29 @@ TEST(Acquisition, FractionalDelaysAtRatesWhoseBlocksAreStretched) {
     }
     EXPECT_NEAR(error_sum / count, 0.0, 0.3) << fs;  // no systematic offset
   }
+}
+
+TEST(Acquisition, ObjectsMadeAndSearchedInSeveralThreadsAtOnce) {
+  // Benchmarks run several receivers in threads of one process; FFTW's planner is not
+  // thread-safe, so plans are made under a lock (without it this aborts inside FFTW).
+  std::vector<std::thread> threads;
+  std::atomic<int> found{0};
+  for (int t = 0; t < 4; ++t) {
+    threads.emplace_back([&, t] {
+      for (int k = 0; k < 6; ++k) {
+        AcquisitionConfig cfg;
+        cfg.sample_rate_hz = (k % 2 == 0) ? 2.046e6 : 2.5e6;
+        cfg.prns = {7};
+        cfg.noncoherent = 2;
+        cfg.doppler_max_hz = 1000.0;
+        Acquisition acq(cfg);
+        const auto r = acq.search(synthetic(7, 50.0, 300.0, 100.0 + t, cfg.sample_rate_hz, 2, 500 + 10 * t + k));
+        found += r[0].detected ? 1 : 0;
+      }
+    });
+  }
+  for (auto& th : threads) th.join();
+  EXPECT_EQ(found.load(), 24);
 }
 
 TEST(Acquisition, FalseAlarmRateFollowsPfa) {
