@@ -12,6 +12,8 @@ namespace deepnav::aiding {
 namespace {
 
 constexpr double kChip_m = gps::kSpeedOfLight_mps / gps::kCodeRate_cps;
+constexpr double kRateWindow_s = 0.1;   // phase-locked rate: window of the mean frequency
+constexpr double kRateInterval_s = 1.0; // ... and how often a channel gives one
 
 /// 1-sigma of the normalised early-minus-late envelope discriminator (chips) for spacing d
 /// and coherent time T (Kaplan & Hegarty, noncoherent E-L power with normalisation).
@@ -20,11 +22,21 @@ double code_sigma_chips(double cn0_dbhz, double t_s, double spacing_chips) {
   return std::sqrt(spacing_chips / (4.0 * snr) * (1.0 + 2.0 / ((2.0 - spacing_chips) * snr)));
 }
 
+/// Variance (rad^2) of the Costas phase discriminator over one integration of T.
+double phase_variance_rad2(double cn0_dbhz, double t_s) {
+  const double snr = std::pow(10.0, cn0_dbhz / 10.0) * t_s;
+  return 1.0 / (2.0 * snr) * (1.0 + 1.0 / (2.0 * snr));
+}
+
 /// 1-sigma (Hz) of the cross/dot frequency discriminator between two integrations of T.
 double frequency_sigma_hz(double cn0_dbhz, double t_s) {
-  const double snr = std::pow(10.0, cn0_dbhz / 10.0) * t_s;
-  const double phase_var = 1.0 / (2.0 * snr) * (1.0 + 1.0 / (2.0 * snr));
-  return std::sqrt(2.0 * phase_var) / (2.0 * M_PI * t_s);
+  return std::sqrt(2.0 * phase_variance_rad2(cn0_dbhz, t_s)) / (2.0 * M_PI * t_s);
+}
+
+/// 1-sigma (Hz) of a mean frequency from the carrier phase at both ends of a window, each
+/// end within one integration's phase noise.
+double phase_rate_sigma_hz(double cn0_dbhz, double t_s, double window_s) {
+  return std::sqrt(2.0 * phase_variance_rad2(cn0_dbhz, t_s)) / (2.0 * M_PI * window_s);
 }
 
 }  // namespace
@@ -104,8 +116,28 @@ bool UltraTightTracker::on_epoch(const CorrelatorEpoch& e, TrackingChannel& ch, 
   d.mid_sample = mid;
   d.replica_transmit_sow = *tt;
   d.code_error_chips = dll_code_error_chips(e.early, e.late, cfg_.spacing_chips);
-  d.doppler_hz = doppler;
-  d.doppler_sample = e.first_sample;
+  if (e.pll_lock) {
+    // Phase-locked: the mean frequency over the last window from the channel's accumulated
+    // carrier phase (Costas corrections included), like the tight rows. The frequency
+    // discriminator across NCO updates is biased by the steering itself (up to 0.6 m of
+    // position error on the aircraft circle); consecutive windows also share the phase
+    // loop's error, so one window per interval.
+    if (end - mem.last_rate_sample >= static_cast<std::int64_t>(kRateInterval_s * rx_.sample_rate_hz())) {
+      const auto f = ch.mean_doppler_hz(kRateWindow_s);
+      const auto at = ch.mean_doppler_mid_sample(kRateWindow_s);
+      if (f && at) {
+        d.doppler_hz = *f;
+        d.doppler_sample = std::llround(*at);
+        d.rate_window_s = kRateWindow_s;
+        mem.last_rate_sample = end;
+      }
+    }
+  } else {
+    // Frequency tracking only (weak signals): the cross/dot discriminator between the two
+    // adjoining integrations, referred to their common edge.
+    d.doppler_hz = doppler;
+    d.doppler_sample = e.first_sample;
+  }
   d.cn0_dbhz = e.cn0_dbhz;
   d.integration_s = e.integration_s;
   d.ephemeris = *rx_.ephemeris(e.prn);
@@ -134,7 +166,11 @@ std::optional<RangeMeasurement> UltraTightTracker::to_measurement(const Discrimi
     m.rate_geometry = at_rate->range;
     m.rate_time_offset_s = at_rate->offset_s;
     m.rate_mps = -gps::kL1Wavelength_m * *d.doppler_hz;
-    m.rate_sigma_mps = std::hypot(frequency_sigma_hz(d.cn0_dbhz, d.integration_s) * gps::kL1Wavelength_m, 0.02);
+    // Frequency discriminator noise, or the phase noise at both ends of the window, plus
+    // a floor (receiver clock white frequency noise, dynamics left over).
+    const double sigma_hz = d.rate_window_s > 0.0 ? phase_rate_sigma_hz(d.cn0_dbhz, d.integration_s, d.rate_window_s)
+                                                  : frequency_sigma_hz(d.cn0_dbhz, d.integration_s);
+    m.rate_sigma_mps = std::hypot(sigma_hz * gps::kL1Wavelength_m, 0.02);
   }
   return m;
 }

@@ -51,8 +51,11 @@ struct DiscriminatorSample {
   std::int64_t mid_sample = 0;
   double replica_transmit_sow = 0.0;   ///< replica transmit time at mid_sample
   double code_error_chips = 0.0;       ///< signal minus replica (positive: replica lags)
-  std::optional<double> doppler_hz;    ///< NCO Doppler plus the residual, when the previous integration adjoins
-  std::int64_t doppler_sample = 0;     ///< where that Doppler refers to: between the two integrations' centres
+  /// Phase-locked: the mean carrier frequency over the last rate_window_s (once per second);
+  /// otherwise NCO Doppler plus the frequency discriminator, when the previous integration adjoins.
+  std::optional<double> doppler_hz;
+  std::int64_t doppler_sample = 0;     ///< where that Doppler refers to (mid-window, or the two integrations' common edge)
+  double rate_window_s = 0.0;          ///< > 0: doppler_hz is a phase-based mean over this window
   double cn0_dbhz = 0.0;
   double integration_s = 0.0;
   Ephemeris ephemeris;
@@ -102,6 +105,7 @@ class UltraTightTracker {
     double phase_correction_cycles = 0.0;  ///< pending Costas correction for the next command
     double applied_correction_cycles = 0.0;  ///< correction applied since the last integration ended
     double last_cn0_dbhz = 0.0;
+    std::int64_t last_rate_sample = 0;  ///< end of the integration that gave the last phase-based rate
   };
   std::map<int, ChannelMemory> memory_;
   std::map<int, bool> steered_;
