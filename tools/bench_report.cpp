@@ -27,6 +27,11 @@ void BenchReport::add_row(std::vector<Cell> row) {
   rows_.push_back(std::move(row));
 }
 
+std::string source_relative(const std::string& path) {
+  const std::string root = std::string(DEEPNAV_SOURCE_DIR) + "/";
+  return path.rfind(root, 0) == 0 ? path.substr(root.size()) : path;
+}
+
 void BenchReport::add_note(const std::string& key, nlohmann::json value) { notes_[key] = std::move(value); }
 
 std::string BenchReport::format_cell(std::size_t column, const Cell& cell) const {

@@ -8,6 +8,10 @@
 
 namespace deepnav::cli {
 
+/// A path as written from the repository's root when it lies inside the source tree
+/// (so that recorded figures do not carry one checkout's location), else unchanged.
+std::string source_relative(const std::string& path);
+
 class BenchReport {
  public:
   using Cell = std::variant<std::string, double, long long>;

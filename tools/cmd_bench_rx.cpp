@@ -164,7 +164,7 @@ void run_rx_bench(const RxBenchOptions& o) {
     report.add_row({std::string("correlator ") + kernel_name(k), 12LL, 1LL, 0LL, 0.0, 0.0, 0.0, rate});
   }
   std::filesystem::remove_all(work);
-  report.add_note("scenario", o.scenario);
+  report.add_note("scenario", source_relative(o.scenario));
   report.add_note("repeats", std::to_string(o.repeats) + " runs per receiver row, the median shown");
   report.add_note("notes", "receiver rows: whole receiver (acquisition, tracking, navigation data, PVT; assisted "
                            "ephemerides); channel_samples_per_s = realtime_factor x fs x channels. Correlator rows: "

@@ -91,7 +91,7 @@ void run_mode_thresholds(const ThresholdOptions& o) {
   std::filesystem::remove_all(work);
   report.add_note("ramp", fmt::format("{} dB-Hz until {} s, then -{} dB/s to {} dB-Hz", o.start_dbhz, o.ramp_start_s,
                                       o.rate_dbps, o.end_dbhz));
-  report.add_note("scenario", o.aided_scenario);
+  report.add_note("scenario", source_relative(o.aided_scenario));
   report.add_note("imu_grade", sc.imu.grade);
   report.emit(o.json_path);
 }
