@@ -77,11 +77,13 @@ UpdateResult AidedNavigator::update_position_velocity(const Eigen::Vector3d& r_a
                                                       const Eigen::Vector3d& v_antenna_ecef_mps,
                                                       const Eigen::Vector3d& position_sigma_ned_m,
                                                       const Eigen::Vector3d& velocity_sigma_ned_mps,
-                                                      double time_offset_s) {
+                                                      double time_offset_s, std::optional<double> velocity_time_offset_s) {
   const wgs84::Llh& at = ins_.state().llh;
   Eigen::Matrix<double, 6, 1> z, r;
   z.head<3>() = ecef_to_ned_vector(at, antenna_ecef_at(time_s() + time_offset_s) - r_antenna_ecef_m);
-  z.tail<3>() = ecef_to_ned_vector(at, antenna_velocity_ecef_mps() - v_antenna_ecef_mps);
+  const Eigen::Vector3d v_ins = velocity_time_offset_s ? antenna_velocity_ecef_at(time_s() + *velocity_time_offset_s)
+                                                       : antenna_velocity_ecef_mps();
+  z.tail<3>() = ecef_to_ned_vector(at, v_ins - v_antenna_ecef_mps);
   r << position_sigma_ned_m.cwiseAbs2(), velocity_sigma_ned_mps.cwiseAbs2();
   Eigen::Matrix<double, 6, kStates> H = Eigen::Matrix<double, 6, kStates>::Zero();
   for (int i = 0; i < 3; ++i) {

@@ -63,9 +63,13 @@ class AidedNavigator {
   /// Strapdown update with one IMU sample, then the covariance over the same interval.
   void propagate(const ImuSample& sample);
 
+  /// A PVT fix: position at time_s() + time_offset_s, velocity at time_s() +
+  /// velocity_time_offset_s (a Doppler velocity is a mean over the Dopplers' window, earlier
+  /// than the fix; the INS velocity there is compared with it).
   UpdateResult update_position_velocity(const Eigen::Vector3d& r_antenna_ecef_m, const Eigen::Vector3d& v_antenna_ecef_mps,
                                         const Eigen::Vector3d& position_sigma_ned_m,
-                                        const Eigen::Vector3d& velocity_sigma_ned_mps, double time_offset_s = 0.0);
+                                        const Eigen::Vector3d& velocity_sigma_ned_mps, double time_offset_s = 0.0,
+                                        std::optional<double> velocity_time_offset_s = std::nullopt);
   UpdateResult update_ranges(const std::vector<RangeMeasurement>& measurements);
 
   /// Adds a known step to the receiver clock bias (the receiver re-set its clock).

@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -184,8 +185,19 @@ struct AidedReceiver::Impl : ExternalChannelControl {
     if (!ep.pvt.valid) return;
     const double h = std::max(1.0, ep.pvt.dops.hdop * cfg.pvt_position_sigma_scale_m / std::sqrt(2.0));
     const double v = std::max(1.5, ep.pvt.dops.vdop * cfg.pvt_position_sigma_scale_m);
+    // The PVT's velocity comes from Dopplers averaged over their last window (about 55 ms
+    // before the fix): compared with the INS velocity at the mean of their times.
+    double doppler_offset_s = 0.0;
+    int dopplers = 0;
+    for (const ChannelObservation& o : ep.observations) {
+      if (std::find(ep.pvt.used_prns.begin(), ep.pvt.used_prns.end(), o.prn) == ep.pvt.used_prns.end()) continue;
+      doppler_offset_s += o.doppler_offset_s;
+      ++dopplers;
+    }
+    if (dopplers > 0) doppler_offset_s /= dopplers;
+    const double dt = ep.t_s - nav->time_s();
     nav->update_position_velocity(ep.pvt.r_ecef_m, ep.pvt.v_ecef_mps, Eigen::Vector3d(h, h, v),
-                                  Eigen::Vector3d::Constant(cfg.pvt_velocity_sigma_mps), ep.t_s - nav->time_s());
+                                  Eigen::Vector3d::Constant(cfg.pvt_velocity_sigma_mps), dt, dt + doppler_offset_s);
   }
 
   void tight_update(const ReceiverEpoch& ep) {
