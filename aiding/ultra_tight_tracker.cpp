@@ -28,15 +28,11 @@ double phase_variance_rad2(double cn0_dbhz, double t_s) {
   return 1.0 / (2.0 * snr) * (1.0 + 1.0 / (2.0 * snr));
 }
 
-/// 1-sigma (Hz) of the cross/dot frequency discriminator between two integrations of T.
-double frequency_sigma_hz(double cn0_dbhz, double t_s) {
-  return std::sqrt(2.0 * phase_variance_rad2(cn0_dbhz, t_s)) / (2.0 * M_PI * t_s);
-}
-
-/// 1-sigma (Hz) of a mean frequency from the carrier phase at both ends of a window, each
-/// end within one integration's phase noise.
-double phase_rate_sigma_hz(double cn0_dbhz, double t_s, double window_s) {
-  return std::sqrt(2.0 * phase_variance_rad2(cn0_dbhz, t_s)) / (2.0 * M_PI * window_s);
+/// 1-sigma (Hz) of a mean frequency from two phases `span_s` apart, each with one
+/// integration's (T) phase noise: the carrier phase at both ends of a window, or the
+/// cross/dot discriminator between two adjoining integrations (span T).
+double mean_frequency_sigma_hz(double cn0_dbhz, double t_s, double span_s) {
+  return std::sqrt(2.0 * phase_variance_rad2(cn0_dbhz, t_s)) / (2.0 * M_PI * span_s);
 }
 
 }  // namespace
@@ -119,9 +115,9 @@ bool UltraTightTracker::on_epoch(const CorrelatorEpoch& e, TrackingChannel& ch, 
   if (e.pll_lock) {
     // Phase-locked: the mean frequency over the last window from the channel's accumulated
     // carrier phase (Costas corrections included), like the tight rows. The frequency
-    // discriminator across NCO updates is biased by the steering itself (up to 0.6 m of
-    // position error on the aircraft circle); consecutive windows also share the phase
-    // loop's error, so one window per interval.
+    // discriminator across NCO updates is biased by the filter's own NCO commands (up to
+    // 0.6 m of position error on the aircraft circle); consecutive windows also share the
+    // phase loop's error, so one window per interval.
     if (end - mem.last_rate_sample >= static_cast<std::int64_t>(kRateInterval_s * rx_.sample_rate_hz())) {
       const auto f = ch.mean_doppler_hz(kRateWindow_s);
       const auto at = ch.mean_doppler_mid_sample(kRateWindow_s);
@@ -158,8 +154,7 @@ std::optional<RangeMeasurement> UltraTightTracker::to_measurement(const Discrimi
   const double code_sigma = code_sigma_chips(d.cn0_dbhz, d.integration_s, cfg_.spacing_chips) * kChip_m;
   m.pseudorange_sigma_m = std::hypot(code_sigma, 0.5);
   if (d.doppler_hz) {
-    // The mean frequency between the centres of two adjoining integrations is the
-    // frequency at their common edge, half an integration before mid_sample.
+    // Predicted where the Doppler refers to (doppler_sample), not at mid_sample.
     const std::optional<SamplePrediction> at_rate = predict_at(d.ephemeris, d.doppler_sample, nav);
     if (!at_rate) return m;
     m.rate_at_own_time = true;
@@ -168,8 +163,8 @@ std::optional<RangeMeasurement> UltraTightTracker::to_measurement(const Discrimi
     m.rate_mps = -gps::kL1Wavelength_m * *d.doppler_hz;
     // Frequency discriminator noise, or the phase noise at both ends of the window, plus
     // a floor (receiver clock white frequency noise, dynamics left over).
-    const double sigma_hz = d.rate_window_s > 0.0 ? phase_rate_sigma_hz(d.cn0_dbhz, d.integration_s, d.rate_window_s)
-                                                  : frequency_sigma_hz(d.cn0_dbhz, d.integration_s);
+    const double span_s = d.rate_window_s > 0.0 ? d.rate_window_s : d.integration_s;
+    const double sigma_hz = mean_frequency_sigma_hz(d.cn0_dbhz, d.integration_s, span_s);
     m.rate_sigma_mps = std::hypot(sigma_hz * gps::kL1Wavelength_m, 0.02);
   }
   return m;

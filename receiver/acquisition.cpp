@@ -136,7 +136,7 @@ struct Acquisition::Impl {
           std::min(n - 1, static_cast<int>(std::lround(static_cast<double>(j) * n / nf)));
     const int half = static_cast<int>(std::floor(cfg.doppler_max_hz / cfg.doppler_step_hz + 1e-9));
     for (int k = -half; k <= half; ++k) dopplers.push_back(k * cfg.doppler_step_hz);
-    in = FftwBuffer(static_cast<std::size_t>(std::max(n, nf)));
+    in = FftwBuffer(static_cast<std::size_t>(nf));  // nf >= n: holds a mixed block too
     out = FftwBuffer(static_cast<std::size_t>(nf));
     forward.emplace(nf, in.data, out.data, FFTW_FORWARD);
     inverse.emplace(nf, in.data, out.data, FFTW_BACKWARD);
@@ -153,20 +153,25 @@ struct Acquisition::Impl {
     }
   }
 
-  /// Mean of x[first .. first + count): removed before mixing, since ADC offsets (odd-level
-  /// 2-bit converters, real IF) would otherwise correlate with every code near zero Doppler.
-  static std::complex<double> block_mean(std::span<const Sample> x, std::int64_t first, int count) {
-    std::complex<double> dc = 0.0;
-    for (int k = 0; k < count; ++k) {
-      const auto& s = x[static_cast<std::size_t>(first + k)];
-      dc += std::complex<double>(s.real(), s.imag());
+  /// Mean of each coherent block: removed before mixing, since ADC offsets (odd-level 2-bit
+  /// converters, real IF) would otherwise correlate with every code near zero Doppler.
+  std::vector<std::complex<double>> block_means(std::span<const Sample> x, int blocks) const {
+    std::vector<std::complex<double>> means(static_cast<std::size_t>(blocks));
+    for (int b = 0; b < blocks; ++b) {
+      std::complex<double> dc = 0.0;
+      for (int k = 0; k < n; ++k) {
+        const auto& s = x[static_cast<std::size_t>(static_cast<std::int64_t>(b) * n + k)];
+        dc += std::complex<double>(s.real(), s.imag());
+      }
+      means[static_cast<std::size_t>(b)] = dc / static_cast<double>(n);
     }
-    return dc / static_cast<double>(count);
+    return means;
   }
 
   /// (x[first + k] - mean) * exp(-j 2 pi (IF + f) t) for k in [0, count), t from sample 0.
-  void mix(std::span<const Sample> x, std::int64_t first, int count, double f_hz, std::complex<float>* dst) const {
-    const std::complex<float> mean(block_mean(x, first, count));
+  void mix(std::span<const Sample> x, std::int64_t first, int count, std::complex<double> block_mean, double f_hz,
+           std::complex<float>* dst) const {
+    const std::complex<float> mean(block_mean);
     const double w = -2.0 * M_PI * (cfg.if_hz + f_hz) / cfg.sample_rate_hz;
     std::complex<double> rot = std::polar(1.0, w * static_cast<double>(first));
     const std::complex<double> step = std::polar(1.0, w);
@@ -179,14 +184,15 @@ struct Acquisition::Impl {
     }
   }
 
-  /// Mixes block b at f into the FFT input, stretched to nf samples when nf > n.
-  void mix_block(std::span<const Sample> x, int b, double f_hz, std::vector<std::complex<float>>& scratch) {
+  /// Mixes block b (mean `block_mean`) at f into the FFT input, stretched to nf samples when nf > n.
+  void mix_block(std::span<const Sample> x, int b, std::complex<double> block_mean, double f_hz,
+                 std::vector<std::complex<float>>& scratch) {
     const std::int64_t first = static_cast<std::int64_t>(b) * n;
     if (nf == n) {
-      mix(x, first, n, f_hz, in.c());
+      mix(x, first, n, block_mean, f_hz, in.c());
       return;
     }
-    mix(x, first, n, f_hz, scratch.data());
+    mix(x, first, n, block_mean, f_hz, scratch.data());
     for (int j = 0; j < nf; ++j) in.c()[j] = scratch[static_cast<std::size_t>(stretch_source[static_cast<std::size_t>(j)])];
   }
 
@@ -198,19 +204,23 @@ struct Acquisition::Impl {
   class DopplerRefiner {
    public:
     /// `storage` is reused between calls (a fresh buffer per PRN costs page faults).
-    DopplerRefiner(const Impl& acq, std::span<const Sample> x, int blocks, int prn, int lag, double coarse_hz,
-                   std::vector<std::complex<double>>& storage)
-        : fs_(acq.cfg.sample_rate_hz), coarse_hz_(coarse_hz), blocks_(blocks), chunks_(storage) {
-      const int n = acq.n;
-      chunk_ = std::max(1, static_cast<int>(fs_ / 128e3));
-      per_block_ = (n + chunk_ - 1) / chunk_;
+    DopplerRefiner(const Impl& acq, std::span<const Sample> x, const std::vector<std::complex<double>>& means, int prn,
+                   int lag, double coarse_hz, std::vector<std::complex<double>>& storage)
+        : fs_(acq.cfg.sample_rate_hz),
+          coarse_hz_(coarse_hz),
+          blocks_(static_cast<int>(means.size())),
+          n_(acq.n),
+          chunk_(std::max(1, static_cast<int>(fs_ / 128e3))),
+          per_block_((n_ + chunk_ - 1) / chunk_),
+          chunks_(storage) {
+      const int n = n_, blocks = blocks_;
       const auto& r = acq.replicas[static_cast<std::size_t>(prn - 1)];
       chunks_.assign(static_cast<std::size_t>(blocks) * static_cast<std::size_t>(per_block_), 0.0);
       const double w = -2.0 * M_PI * (acq.cfg.if_hz + coarse_hz) / fs_;
       const std::complex<double> step = std::polar(1.0, w);
       for (int b = 0; b < blocks; ++b) {
         const std::int64_t first = static_cast<std::int64_t>(b) * n;
-        const std::complex<double> mean = block_mean(x, first, n);
+        const std::complex<double> mean = means[static_cast<std::size_t>(b)];
         std::complex<double>* out = chunks_.data() + static_cast<std::size_t>(b) * static_cast<std::size_t>(per_block_);
         // Written out: std::complex's operator* checks for NaN/inf results and does not vectorise.
         double rot_re = 1.0, rot_im = 0.0;
@@ -229,7 +239,6 @@ struct Acquisition::Impl {
           }
         }
       }
-      n_ = n;
     }
     /// Sum over blocks of the coherent power at f (same units as the direct correlation).
     double power(double f_hz) const {
@@ -249,7 +258,7 @@ struct Acquisition::Impl {
 
    private:
     double fs_, coarse_hz_;
-    int blocks_, n_ = 0, chunk_ = 1, per_block_ = 0;
+    int blocks_, n_, chunk_, per_block_;
     std::vector<std::complex<double>>& chunks_;
   };
   std::array<std::vector<std::complex<double>>, 2> refiner_storage;
@@ -268,9 +277,10 @@ struct Acquisition::Impl {
     std::vector<std::vector<std::complex<float>>> spectra(static_cast<std::size_t>(blocks),
                                                           std::vector<std::complex<float>>(cells_per_row));
     std::vector<std::vector<float>> grids(cfg.prns.size(), std::vector<float>(nb * cells_per_row, 0.0f));
+    const std::vector<std::complex<double>> means = block_means(x, blocks);
     for (std::size_t d = 0; d < nb; ++d) {
       for (int b = 0; b < blocks; ++b) {
-        mix_block(x, b, dopplers[d], scratch);
+        mix_block(x, b, means[static_cast<std::size_t>(b)], dopplers[d], scratch);
         forward->execute();
         std::copy(out.c(), out.c() + nf, spectra[static_cast<std::size_t>(b)].begin());
       }
@@ -287,7 +297,7 @@ struct Acquisition::Impl {
     const double cells = static_cast<double>(nb) * std::floor(samples_per_ms);
     const double threshold = acquisition_threshold(blocks, cells, cfg.pfa);
     std::vector<AcquisitionResult> results;
-    for (std::size_t p = 0; p < cfg.prns.size(); ++p) results.push_back(evaluate(x, blocks, cfg.prns[p], grids[p], threshold));
+    for (std::size_t p = 0; p < cfg.prns.size(); ++p) results.push_back(evaluate(x, means, cfg.prns[p], grids[p], threshold));
     reject_cross_correlations(results);
     return results;
   }
@@ -323,8 +333,10 @@ struct Acquisition::Impl {
     return count > 0 ? sum / count : 1.0;
   }
 
-  AcquisitionResult evaluate(std::span<const Sample> x, int blocks, int prn, const std::vector<float>& grid,
-                             double threshold) {
+  /// `means`: one per coherent block searched.
+  AcquisitionResult evaluate(std::span<const Sample> x, const std::vector<std::complex<double>>& means, int prn,
+                             const std::vector<float>& grid, double threshold) {
+    const int blocks = static_cast<int>(means.size());
     const auto peak_it = std::max_element(grid.begin(), grid.end());
     const auto peak_index = static_cast<std::size_t>(std::distance(grid.begin(), peak_it));
     const std::size_t d_peak = peak_index / static_cast<std::size_t>(nf);
@@ -362,8 +374,8 @@ struct Acquisition::Impl {
     std::vector<double> fine(21);
     int best_i = 0;
     const auto below = static_cast<int>(std::floor(r.delay_samples));
-    const DopplerRefiner early(*this, x, blocks, prn, below % n, dopplers[d_peak], refiner_storage[0]);
-    const DopplerRefiner late(*this, x, blocks, prn, (below + 1) % n, dopplers[d_peak], refiner_storage[1]);
+    const DopplerRefiner early(*this, x, means, prn, below % n, dopplers[d_peak], refiner_storage[0]);
+    const DopplerRefiner late(*this, x, means, prn, (below + 1) % n, dopplers[d_peak], refiner_storage[1]);
     const DopplerRefiner& refiner = early.power(dopplers[d_peak]) >= late.power(dopplers[d_peak]) ? early : late;
     for (int i = -10; i <= 10; ++i) {
       fine[static_cast<std::size_t>(i + 10)] = refiner.power(dopplers[d_peak] + i * fine_step);

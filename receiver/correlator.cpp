@@ -600,7 +600,8 @@ double wrap_chips(double chips) {
 }  // namespace
 
 #if defined(__x86_64__)
-DEEPNAV_AVX512 void deinterleave_avx512(const Sample* x, int n, std::int16_t* i, std::int16_t* q) {
+/// Deinterleaves whole groups of 32 samples; returns how many samples it did.
+DEEPNAV_AVX512 int deinterleave_avx512(const Sample* x, int n, std::int16_t* i, std::int16_t* q) {
   const auto* src = reinterpret_cast<const std::int32_t*>(x);
   const __m512i even = _mm512_load_si512(kEvenWords.data());
   const __m512i odd = _mm512_add_epi16(even, _mm512_set1_epi16(1));
@@ -610,21 +611,16 @@ DEEPNAV_AVX512 void deinterleave_avx512(const Sample* x, int n, std::int16_t* i,
     _mm512_storeu_si512(i + k, _mm512_permutex2var_epi16(x0, even, x1));
     _mm512_storeu_si512(q + k, _mm512_permutex2var_epi16(x0, odd, x1));
   }
-  for (; k < n; ++k) {
-    i[k] = x[k].real();
-    q[k] = x[k].imag();
-  }
+  return k;
 }
 #endif
 
 void deinterleave(const Sample* x, int n, std::int16_t* i, std::int16_t* q) {
+  int k = 0;
 #if defined(__x86_64__)
-  if (best_correlator_kernel() == CorrelatorKernel::avx512) {
-    deinterleave_avx512(x, n, i, q);
-    return;
-  }
+  if (best_correlator_kernel() == CorrelatorKernel::avx512) k = deinterleave_avx512(x, n, i, q);
 #endif
-  for (int k = 0; k < n; ++k) {
+  for (; k < n; ++k) {
     i[k] = x[k].real();
     q[k] = x[k].imag();
   }

@@ -7,6 +7,8 @@ bool SampleSource::read_block(SampleBlock& block, std::size_t max_samples) {
   const std::size_t got = read(std::span<Sample>(block.samples));
   block.samples.resize(got);
   block.first_sample_index = next_sample_index() - static_cast<std::int64_t>(got);
+  block.magnitude_bits = -1;  // new samples: what was prepared for the old ones is void
+  block.planar.clear();
   return got > 0;
 }
 

@@ -62,7 +62,7 @@ struct ScalarReceiver::Impl {
     bool new_ephemeris = false;
   };
   std::vector<std::vector<EpochRecord>> records;  ///< per channel, for the block being tracked
-  std::unique_ptr<boost::asio::thread_pool> pool;
+  std::unique_ptr<boost::asio::thread_pool> pool;  ///< channel workers (ReceiverConfig::threads > 1)
   unsigned thread_count = 1;
   std::map<int, NavigationStatus> finished_status;  ///< of channels already dropped
 
@@ -73,7 +73,7 @@ struct ScalarReceiver::Impl {
     s.subframes_decoded += ch.nav->subframes_decoded();
     s.parity_failures += ch.nav->parity_failures();
     s.ephemeris = s.ephemeris || ch.nav->ephemeris().has_value();
-  }  ///< channel workers (ReceiverConfig::threads > 1)
+  }
   std::optional<NavData> assisted;
 
   Impl(ReceiverConfig c, SampleSource& s) : cfg(std::move(c)), src(s), fs(s.sample_rate_hz()), pvt(cfg.pvt) {

@@ -190,26 +190,25 @@ void TrackingChannel::collect_bit(const CorrelatorEpoch& e) {
   bit_ms_ = 0;
 }
 
-std::optional<double> TrackingChannel::mean_doppler_mid_sample(double window_s) const {
-  if (phase_history_.size() < 2) return std::nullopt;
-  const auto& last = phase_history_.back();
+const std::pair<std::int64_t, double>* TrackingChannel::window_start(double window_s) const {
+  if (phase_history_.size() < 2) return nullptr;
   const auto window = static_cast<std::int64_t>(window_s * cfg_.sample_rate_hz);
-  for (auto it = phase_history_.rbegin(); it != phase_history_.rend(); ++it) {
-    if (last.first - it->first >= window) return 0.5 * static_cast<double>(last.first + it->first);
-  }
-  return std::nullopt;
+  for (auto it = phase_history_.rbegin(); it != phase_history_.rend(); ++it)
+    if (phase_history_.back().first - it->first >= window) return &*it;
+  return nullptr;
+}
+
+std::optional<double> TrackingChannel::mean_doppler_mid_sample(double window_s) const {
+  const auto* start = window_start(window_s);
+  if (start == nullptr) return std::nullopt;
+  return 0.5 * static_cast<double>(phase_history_.back().first + start->first);
 }
 
 std::optional<double> TrackingChannel::mean_doppler_hz(double window_s) const {
-  if (phase_history_.size() < 2) return std::nullopt;
+  const auto* start = window_start(window_s);
+  if (start == nullptr) return std::nullopt;
   const auto& last = phase_history_.back();
-  const auto window = static_cast<std::int64_t>(window_s * cfg_.sample_rate_hz);
-  for (auto it = phase_history_.rbegin(); it != phase_history_.rend(); ++it) {
-    if (last.first - it->first >= window) {
-      return (last.second - it->second) * cfg_.sample_rate_hz / static_cast<double>(last.first - it->first);
-    }
-  }
-  return std::nullopt;
+  return (last.second - start->second) * cfg_.sample_rate_hz / static_cast<double>(last.first - start->first);
 }
 
 void TrackingChannel::bit_sync_step(const CorrelatorEpoch& e) {

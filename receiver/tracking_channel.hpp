@@ -133,6 +133,8 @@ class TrackingChannel {
   bool loss_detection_ = true;
   double tracked_s_ = 0.0;
   std::deque<std::pair<std::int64_t, double>> phase_history_;  ///< (sample, carrier cycles) at integration ends
+  /// The latest history entry at least window_s before the last one, or nullptr.
+  const std::pair<std::int64_t, double>* window_start(double window_s) const;
   // Bit assembly after bit sync.
   double bit_sum_ = 0.0;
   int bit_ms_ = 0;
