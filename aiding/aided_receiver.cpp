@@ -54,9 +54,8 @@ struct AidedReceiver::Impl : ExternalChannelControl {
   int ranging = 0;
   int last_tight_satellites = 0;
   bool imu_end_reported = false;
-  // Receiver clock at the end of the previous block, to follow its re-settings.
-  std::optional<GpsTime> previous_clock;
-  std::int64_t previous_clock_sample = 0;
+  // The receiver's sum of clock steps the filter's clock has followed.
+  double followed_clock_steps_s = 0.0;
 
   Impl(AidedReceiverConfig c, SampleSource& source, ImuLog log)
       : cfg(std::move(c)),
@@ -81,7 +80,7 @@ struct AidedReceiver::Impl : ExternalChannelControl {
   void after_block(std::int64_t end) override {
     const double t = static_cast<double>(end) / fs;
     propagate_to(t);
-    follow_receiver_clock(end);
+    follow_receiver_clock();
     if (nav && modes.mode() != NavMode::ultra && modes.mode() != NavMode::scalar) ultra.update_and_steer(*nav, end, false);
     if (nav && modes.mode() == NavMode::ultra) {
       const UpdateResult r = ultra.update_and_steer(*nav, end, true);
@@ -111,16 +110,11 @@ struct AidedReceiver::Impl : ExternalChannelControl {
   }
 
   /// The scalar receiver re-sets its clock after fixes (steps of its bias); the filter's
-  /// clock bias follows each step.
-  void follow_receiver_clock(std::int64_t end) {
-    const std::optional<GpsTime> now = rx.receiver_time(end);
-    if (now && previous_clock && nav) {
-      const GpsTime expected = previous_clock->plus_seconds(static_cast<double>(end - previous_clock_sample) / fs);
-      const double step_s = seconds_of_week_difference(now->sow, expected.sow);
-      if (std::abs(step_s) > 1e-12) nav->shift_clock_bias(gps::kSpeedOfLight_mps * step_s);
-    }
-    previous_clock = now;
-    previous_clock_sample = end;
+  /// clock bias follows each step, taken from the receiver's own sum of steps.
+  void follow_receiver_clock() {
+    const double steps_s = rx.clock_steps_s();
+    if (nav && steps_s != followed_clock_steps_s) nav->shift_clock_bias(gps::kSpeedOfLight_mps * (steps_s - followed_clock_steps_s));
+    followed_clock_steps_s = steps_s;
   }
 
   void evaluate_modes(double t) {
@@ -168,12 +162,11 @@ struct AidedReceiver::Impl : ExternalChannelControl {
     nc.lever_arm_imu_to_antenna_b_m = cfg.lever_arm_imu_to_antenna_b_m;
     const double dt = start->state.t_s - ep.t_s;
     // The fix's clock bias is against the receiver clock before this epoch's re-setting
-    // (observe() steers it right after the fix): move it onto the clock as it is now, and
-    // restart the step follower from there.
-    double bias = fix.clock_bias_m + fix.clock_drift_mps * dt;
-    if (const auto now = rx.receiver_time(ep.sample_index); now && ep.t_rx)
-      bias += gps::kSpeedOfLight_mps * seconds_of_week_difference(now->sow, ep.t_rx->sow);
-    if (previous_clock) previous_clock = rx.receiver_time(previous_clock_sample);
+    // (observe() steers it right after the fix, before the next block's follow): move it
+    // onto the clock as it is now, and follow the steps from there.
+    const double steps_s = rx.clock_steps_s();
+    const double bias = fix.clock_bias_m + fix.clock_drift_mps * dt + gps::kSpeedOfLight_mps * (steps_s - followed_clock_steps_s);
+    followed_clock_steps_s = steps_s;
     nav.emplace(start->state, bias, fix.clock_drift_mps, nc, start->uncertainty);
     start_method = start->method;
     const EulerAngles e = euler_from_quaternion(start->state.q_b_n);

@@ -12,8 +12,16 @@ namespace deepnav::aiding {
 namespace {
 
 constexpr double kChip_m = gps::kSpeedOfLight_mps / gps::kCodeRate_cps;
-constexpr double kRateWindow_s = 0.1;   // phase-locked rate: window of the mean frequency
-constexpr double kRateInterval_s = 1.0; // ... and how often a channel gives one
+constexpr double kRateWindow_s = 0.1;   // phase-locked rate: adjoining windows of the mean frequency
+// Rate sigma floors (m/s). Phase windows: what the model leaves out inside a window (the
+// Doppler's second derivative around the window's middle, the INS velocity error there).
+// The receiver clock's white frequency noise is common to every channel (3 cm/s over
+// 100 ms for a TCXO with h0 = 2e-21); the clock drift state takes it, its random walk
+// moves it by that much within a window. Frequency discriminator: more dynamics left over
+// across one integration.
+constexpr double kPhaseRateFloor_mps = 0.005;
+constexpr double kDiscriminatorRateFloor_mps = 0.02;
+constexpr double kMaxWindowPhaseError_cycles = 0.1;  // a window's ends: Costas error within +-36 deg
 
 /// 1-sigma of the normalised early-minus-late envelope discriminator (chips) for spacing d
 /// and coherent time T (Kaplan & Hegarty, noncoherent E-L power with normalisation).
@@ -28,11 +36,11 @@ double phase_variance_rad2(double cn0_dbhz, double t_s) {
   return 1.0 / (2.0 * snr) * (1.0 + 1.0 / (2.0 * snr));
 }
 
-/// 1-sigma (Hz) of a mean frequency from two phases `span_s` apart, each with one
-/// integration's (T) phase noise: the carrier phase at both ends of a window, or the
-/// cross/dot discriminator between two adjoining integrations (span T).
-double mean_frequency_sigma_hz(double cn0_dbhz, double t_s, double span_s) {
-  return std::sqrt(2.0 * phase_variance_rad2(cn0_dbhz, t_s)) / (2.0 * M_PI * span_s);
+/// 1-sigma (Hz) of a mean frequency from two phases `span_s` apart, each with variance
+/// `phase_var_rad2`: the carrier phase at both ends of a window, or the cross/dot
+/// discriminator between two adjoining integrations (span T).
+double mean_frequency_sigma_hz(double phase_var_rad2, double span_s) {
+  return std::sqrt(2.0 * phase_var_rad2) / (2.0 * M_PI * span_s);
 }
 
 }  // namespace
@@ -96,6 +104,7 @@ bool UltraTightTracker::on_epoch(const CorrelatorEpoch& e, TrackingChannel& ch, 
       steered_.erase(e.prn);
       ch.set_loss_detection(true);
     }
+    mem.rate_window_start.reset();  // a window must lie inside one steered stretch
     return false;
   }
   if (!was_steered) {
@@ -112,25 +121,34 @@ bool UltraTightTracker::on_epoch(const CorrelatorEpoch& e, TrackingChannel& ch, 
   d.mid_sample = mid;
   d.replica_transmit_sow = *tt;
   d.code_error_chips = dll_code_error_chips(e.early, e.late, cfg_.spacing_chips);
-  if (e.pll_lock) {
-    // Phase-locked: the mean frequency over the last window from the channel's accumulated
-    // carrier phase (Costas corrections included), like the tight rows. The frequency
-    // discriminator across NCO updates is biased by the filter's own NCO commands (up to
-    // 0.6 m of position error on the aircraft circle); consecutive windows also share the
-    // phase loop's error, so one window per interval.
-    if (end - mem.last_rate_sample >= static_cast<std::int64_t>(kRateInterval_s * rx_.sample_rate_hz())) {
-      const auto f = ch.mean_doppler_hz(kRateWindow_s);
-      const auto at = ch.mean_doppler_mid_sample(kRateWindow_s);
-      if (f && at) {
-        d.doppler_hz = *f;
-        d.doppler_sample = std::llround(*at);
-        d.rate_window_s = kRateWindow_s;
-        mem.last_rate_sample = end;
-      }
+  // The phase is only as good as the Costas error is small: near its +-0.25 cycle range a
+  // noise sample wraps it by half a cycle (5 Hz over a window). A large error means the
+  // phase loop is stressed (the filter's Doppler still off after a start); then the
+  // frequency discriminator serves.
+  const double costas_cycles = costas_phase_error_cycles(e.prompt);
+  if (cfg_.carrier_phase_tracking && e.pll_lock && std::abs(costas_cycles) < kMaxWindowPhaseError_cycles) {
+    // Phase-locked: the mean frequency over adjoining windows of the carrier phase, a delta
+    // range every window. The phase at an integration's end is the NCO's accumulated phase
+    // (Costas corrections included) plus the Costas error still left: the loop's lag then
+    // cancels, so the filter's own corrections to the NCO Doppler do not echo back into
+    // the next window. The frequency discriminator across NCO updates is biased that way
+    // (up to 0.6 m of position error on the aircraft circle). Without the phase loop the
+    // accumulated phase would only repeat the filter's own commands.
+    const double phase_cycles = e.carrier_phase_cycles + costas_cycles;
+    const auto window = static_cast<std::int64_t>(std::llround(kRateWindow_s * rx_.sample_rate_hz()));
+    if (mem.rate_window_start && end - *mem.rate_window_start >= window - e.samples / 2) {
+      d.rate_window_s = static_cast<double>(end - *mem.rate_window_start) / rx_.sample_rate_hz();
+      d.doppler_hz = (phase_cycles - mem.rate_window_start_cycles) / d.rate_window_s;
+      d.doppler_sample = (*mem.rate_window_start + end) / 2;
+    }
+    if (!mem.rate_window_start || d.doppler_hz) {
+      mem.rate_window_start = end;
+      mem.rate_window_start_cycles = phase_cycles;
     }
   } else {
     // Frequency tracking only (weak signals): the cross/dot discriminator between the two
     // adjoining integrations, referred to their common edge.
+    mem.rate_window_start.reset();
     d.doppler_hz = doppler;
     d.doppler_sample = e.first_sample;
   }
@@ -161,11 +179,14 @@ std::optional<RangeMeasurement> UltraTightTracker::to_measurement(const Discrimi
     m.rate_geometry = at_rate->range;
     m.rate_time_offset_s = at_rate->offset_s;
     m.rate_mps = -gps::kL1Wavelength_m * *d.doppler_hz;
-    // Frequency discriminator noise, or the phase noise at both ends of the window, plus
-    // a floor (receiver clock white frequency noise, dynamics left over).
-    const double span_s = d.rate_window_s > 0.0 ? d.rate_window_s : d.integration_s;
-    const double sigma_hz = mean_frequency_sigma_hz(d.cn0_dbhz, d.integration_s, span_s);
-    m.rate_sigma_mps = std::hypot(sigma_hz * gps::kL1Wavelength_m, 0.02);
+    // One integration's phase noise at both ends of the window or of the discriminator's
+    // span (adjoining windows share an end, so their errors are negatively correlated:
+    // taking them as independent understates what a run of windows says).
+    const bool phase_window = d.rate_window_s > 0.0;
+    const double sigma_hz = mean_frequency_sigma_hz(phase_variance_rad2(d.cn0_dbhz, d.integration_s),
+                                                    phase_window ? d.rate_window_s : d.integration_s);
+    m.rate_sigma_mps =
+        std::hypot(sigma_hz * gps::kL1Wavelength_m, phase_window ? kPhaseRateFloor_mps : kDiscriminatorRateFloor_mps);
   }
   return m;
 }

@@ -3,10 +3,12 @@
 // carrier loops.
 //
 // Measurements: each channel's integrations become discriminator values, not raw I/Q.
-// The normalised early-minus-late envelope gives the code tracking error (chips) and the
-// cross/dot frequency discriminator of consecutive prompts the residual Doppler; added to
-// the replica's transmit time and to the NCO Doppler they are a pseudorange and a
-// pseudorange rate, with variances from the channel's C/N0. Why discriminators rather
+// The normalised early-minus-late envelope gives the code tracking error (chips); added to
+// the replica's transmit time it is a pseudorange at every integration. The rate: while
+// the phase loop below holds lock, the mean frequency of the channel's accumulated carrier
+// phase over adjoining 100 ms windows (a delta range per window, at 10 Hz); otherwise the
+// cross/dot frequency discriminator of consecutive prompts added to the NCO Doppler.
+// Variances come from the channel's C/N0. Why discriminators rather
 // than paper 003's E[I], E[Q] model: the I/Q model needs the signal amplitude and the
 // carrier phase as extra states per channel and is linear only within a small fraction of
 // a cycle, while the discriminators are amplitude-free, insensitive to data bits, linear
@@ -51,8 +53,9 @@ struct DiscriminatorSample {
   std::int64_t mid_sample = 0;
   double replica_transmit_sow = 0.0;   ///< replica transmit time at mid_sample
   double code_error_chips = 0.0;       ///< signal minus replica (positive: replica lags)
-  /// Phase-locked: the mean carrier frequency over the last rate_window_s (once per second);
-  /// otherwise NCO Doppler plus the frequency discriminator, when the previous integration adjoins.
+  /// Phase-locked: the mean carrier frequency over the window that just closed (adjoining
+  /// windows of about 100 ms); otherwise NCO Doppler plus the frequency discriminator, when
+  /// the previous integration adjoins.
   std::optional<double> doppler_hz;
   std::int64_t doppler_sample = 0;     ///< where that Doppler refers to (mid-window, or the two integrations' common edge)
   double rate_window_s = 0.0;          ///< > 0: doppler_hz is a phase-based mean over this window
@@ -105,7 +108,8 @@ class UltraTightTracker {
     double phase_correction_cycles = 0.0;  ///< pending Costas correction for the next command
     double applied_correction_cycles = 0.0;  ///< correction applied since the last integration ended
     double last_cn0_dbhz = 0.0;
-    std::int64_t last_rate_sample = 0;  ///< end of the integration that gave the last phase-based rate
+    std::optional<std::int64_t> rate_window_start;  ///< integration end where the current phase window began
+    double rate_window_start_cycles = 0.0;          ///< carrier phase there (NCO plus Costas error)
   };
   std::map<int, ChannelMemory> memory_;
   std::map<int, bool> steered_;

@@ -53,6 +53,7 @@ struct ScalarReceiver::Impl {
   // Receiver time: t_rx(s) = time_ref + (s - sample_ref) / fs.
   std::optional<GpsTime> time_ref;
   std::int64_t sample_ref = 0;
+  double clock_steps_s = 0.0;  ///< sum of the steers applied to time_ref
   bool gap_since_epoch = false;  ///< samples lost since the last observation epoch
   double last_reacquire_s = 0.0;
   ExternalChannelControl* external = nullptr;  ///< an outside filter driving channels, or none
@@ -266,6 +267,7 @@ struct ScalarReceiver::Impl {
     if (ep.pvt.valid && std::abs(ep.pvt.clock_bias_m) > 1e3) {
       // Steer the receiver clock so pseudoranges stay near the geometric ranges.
       time_ref = time_ref->plus_seconds(-ep.pvt.clock_bias_m / c);
+      clock_steps_s -= ep.pvt.clock_bias_m / c;
     }
     return ep;
   }
@@ -355,6 +357,7 @@ std::optional<GpsTime> ScalarReceiver::receiver_time(std::int64_t sample_index) 
 }
 
 double ScalarReceiver::sample_rate_hz() const { return impl_->fs; }
+double ScalarReceiver::clock_steps_s() const { return impl_->clock_steps_s; }
 
 std::map<int, Ephemeris> ScalarReceiver::ephemerides() const { return impl_->ephs; }
 IonoParameters ScalarReceiver::iono() const { return impl_->iono; }
