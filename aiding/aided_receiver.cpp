@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "aiding/innovation_monitor.hpp"
 #include "aiding/ins_initializer.hpp"
 #include "ins/frames.hpp"
 #include "ins/rotations.hpp"
@@ -47,6 +48,7 @@ struct AidedReceiver::Impl : ExternalChannelControl {
   std::optional<AidedNavigator> nav;
   UltraTightTracker ultra;
   ModeManager modes;
+  InnovationMonitor innovations;
   std::string start_method;
   int restarts = 0;
   double fs;
@@ -84,6 +86,7 @@ struct AidedReceiver::Impl : ExternalChannelControl {
     if (nav && modes.mode() != NavMode::ultra && modes.mode() != NavMode::scalar) ultra.update_and_steer(*nav, end, false);
     if (nav && modes.mode() == NavMode::ultra) {
       const UpdateResult r = ultra.update_and_steer(*nav, end, true);
+      innovations.add(t, r);
       if (end % static_cast<std::int64_t>(fs) < static_cast<std::int64_t>(fs / 100))
         spdlog::debug("t = {:.2f} s: ultra update {} measurements, {} rejected, max |nu|/sigma {:.2f}, {} steered",
                       t, ultra.measuring_channels(), r.rejected, r.max_normalized_innovation, ultra.steered_channels());
@@ -138,9 +141,18 @@ struct AidedReceiver::Impl : ExternalChannelControl {
   }
 
   void check_health() {
-    if (!nav || nav->healthy()) return;
-    spdlog::error("navigation filter failed ({}); INS restarted from the next fix", nav->health_reason());
+    if (!nav) return;
+    if (!nav->healthy()) {
+      spdlog::error("navigation filter failed ({}); INS restarted from the next fix", nav->health_reason());
+    } else if (innovations.inconsistent()) {
+      spdlog::error("navigation filter rejects {} of its last {} measurement rows: it no longer agrees with the "
+                    "signals; INS restarted from the next fix",
+                    innovations.rejected(), innovations.rows());
+    } else {
+      return;
+    }
     nav.reset();
+    innovations.clear();
     ultra.release_all();
     init = InsInitializer(cfg.imu, cfg.lever_arm_imu_to_antenna_b_m);
     ++restarts;
@@ -189,6 +201,8 @@ struct AidedReceiver::Impl : ExternalChannelControl {
     }
     if (dopplers > 0) doppler_offset_s /= dopplers;
     const double dt = ep.t_s - nav->time_s();
+    // Not watched by the innovation monitor: the PVT's own errors come in runs under high
+    // dynamics (its velocity model), and the gate turning them away is the right answer.
     nav->update_position_velocity(ep.pvt.r_ecef_m, ep.pvt.v_ecef_mps, Eigen::Vector3d(h, h, v),
                                   Eigen::Vector3d::Constant(cfg.pvt_velocity_sigma_mps), dt, dt + doppler_offset_s);
   }
@@ -221,7 +235,7 @@ struct AidedReceiver::Impl : ExternalChannelControl {
       ms.push_back(m);
     }
     last_tight_satellites = static_cast<int>(ms.size());
-    if (!ms.empty()) nav->update_ranges(ms);
+    if (!ms.empty()) innovations.add(ep.t_s, nav->update_ranges(ms));
   }
 
   AidedEpoch on_observation(const ReceiverEpoch& ep) {

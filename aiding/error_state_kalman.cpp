@@ -27,6 +27,7 @@ UpdateResult ErrorStateKalman::update(const Eigen::VectorXd& z, const Eigen::Mat
                                       double gate_sigma) {
   UpdateResult result;
   if (!healthy_ || z.size() == 0) return result;
+  result.rows = static_cast<int>(z.size());
   // Innovation gate, row by row against the prior.
   const Eigen::VectorXd nu_all = z - H * x_;
   std::vector<Eigen::Index> keep;

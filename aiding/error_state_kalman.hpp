@@ -15,6 +15,7 @@ namespace deepnav::aiding {
 /// Outcome of one measurement update.
 struct UpdateResult {
   bool applied = false;
+  int rows = 0;                 ///< rows offered (kept or not)
   int rejected = 0;             ///< rows dropped by the innovation gate
   double max_normalized_innovation = 0.0;  ///< largest |nu| / sqrt(S_ii) among the rows kept
 };
