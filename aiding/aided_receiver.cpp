@@ -27,9 +27,9 @@ double scalar_pseudorange_sigma_m(double cn0_dbhz, double elevation_rad) {
 
 /// Pseudorange-rate sigma of a scalar channel's Doppler: the carrier phase difference over
 /// the averaging window, each end with the PLL's thermal jitter at its C/N0 (Kaplan &
-/// Hegarty: Bn / (C/N0) (1 + 1 / (2 T C/N0)) rad^2), plus the same 0.02 m/s floor as the
-/// ultra-tight rate (the receiver clock's white frequency noise over the window, common
-/// to every channel, and what is left of the dynamics).
+/// Hegarty: Bn / (C/N0) (1 + 1 / (2 T C/N0)) rad^2), plus a 0.02 m/s floor (the receiver
+/// clock's white frequency noise over the window, common to every channel, and what is
+/// left of the dynamics), as for the ultra-tight frequency-discriminator rate.
 double scalar_rate_sigma_mps(double cn0_dbhz, double pll_bandwidth_hz, double coherent_s) {
   const double cn0 = std::pow(10.0, std::max(cn0_dbhz, 20.0) / 10.0);
   const double phase_var_rad2 = pll_bandwidth_hz / cn0 * (1.0 + 1.0 / (2.0 * coherent_s * cn0));

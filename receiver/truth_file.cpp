@@ -41,6 +41,7 @@ TruthFile::TruthFile(const std::string& path) {
     t.t_s = v[col["t_s"]];
     t.r_ecef_m = {v[col["x_ecef_m"]], v[col["y_ecef_m"]], v[col["z_ecef_m"]]};
     t.v_ecef_mps = {v[col["vx_ecef_mps"]], v[col["vy_ecef_mps"]], v[col["vz_ecef_mps"]]};
+    if (col.count("gps_sow") && col.count("clock_bias_s")) t.true_sow = v[col["gps_sow"]] - v[col["clock_bias_s"]];
     if (!rows_.empty() && !(t.t_s > rows_.back().t_s))
       throw std::runtime_error(path + ":" + std::to_string(line_no) + ": time must increase");
     rows_.push_back(t);
@@ -58,6 +59,7 @@ std::optional<TruthSample> TruthFile::at(double t) const {
   out.t_s = t;
   out.r_ecef_m = (1 - w) * lo->r_ecef_m + w * hi->r_ecef_m;
   out.v_ecef_mps = (1 - w) * lo->v_ecef_mps + w * hi->v_ecef_mps;
+  if (lo->true_sow && hi->true_sow) out.true_sow = *lo->true_sow + w * (*hi->true_sow - *lo->true_sow);
   return out;
 }
 

@@ -12,6 +12,9 @@ struct TruthSample {
   double t_s = 0.0;
   Eigen::Vector3d r_ecef_m = Eigen::Vector3d::Zero();
   Eigen::Vector3d v_ecef_mps = Eigen::Vector3d::Zero();
+  /// True GPS seconds of week at t_s (the receiver clock's reading gps_sow minus its
+  /// clock_bias_s), when the file carries both columns.
+  std::optional<double> true_sow;
 };
 
 class TruthFile {

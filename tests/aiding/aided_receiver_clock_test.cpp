@@ -5,13 +5,12 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <vector>
 
 #include "aiding/aided_receiver.hpp"
 #include "ins/imu_file.hpp"
 #include "receiver/file_sample_source.hpp"
+#include "receiver/truth_file.hpp"
 #include "signals/gps_constants.hpp"
 #include "signals/if_synthesizer.hpp"
 #include "signals/rinex_nav.hpp"
@@ -19,38 +18,6 @@
 
 namespace deepnav::aiding {
 namespace {
-
-/// Receiver clock truth (truth.csv): the clock's reading and its bias at every row.
-struct ClockTruth {
-  std::vector<double> t_s, reading_sow, bias_s;
-
-  explicit ClockTruth(const std::string& path) {
-    std::ifstream in(path);
-    std::string line;
-    std::getline(in, line);
-    std::vector<std::string> header;
-    for (std::stringstream ss(line); std::getline(ss, line, ',');) header.push_back(line);
-    const auto column = [&](const std::string& name) {
-      for (std::size_t i = 0; i < header.size(); ++i)
-        if (header[i] == name) return i;
-      throw std::runtime_error("truth.csv has no column " + name);
-    };
-    const std::size_t ct = column("t_s"), cs = column("gps_sow"), cb = column("clock_bias_s");
-    while (std::getline(in, line)) {
-      std::vector<std::string> f;
-      for (std::stringstream ss(line); std::getline(ss, line, ',');) f.push_back(line);
-      t_s.push_back(std::stod(f[ct]));
-      reading_sow.push_back(std::stod(f[cs]));
-      bias_s.push_back(std::stod(f[cb]));
-    }
-  }
-
-  /// True GPS time (seconds of week) at the row nearest t.
-  double true_sow(double t) const {
-    const auto i = static_cast<std::size_t>(std::lround((t - t_s.front()) / (t_s[1] - t_s[0])));
-    return reading_sow.at(i) - bias_s.at(i);
-  }
-};
 
 TEST(AidedReceiverClock, UltraTightClockFollowsTheReceiverClockStepsWithoutDrifting) {
   Scenario sc = load_scenario(std::string(DEEPNAV_SOURCE_DIR) + "/data/scenarios/land_circle_aided_90s.yaml",
@@ -77,12 +44,14 @@ TEST(AidedReceiverClock, UltraTightClockFollowsTheReceiverClockStepsWithoutDrift
   AidedReceiver rx(cfg, source, read_imu_csv(synth.imu_path), sc.duration_s);
   rx.receiver().set_assisted_iono(nav.iono);
   rx.receiver().set_assisted_ephemerides(nav);
-  const ClockTruth truth(synth.truth_path);
+  const TruthFile truth(synth.truth_path);
 
   std::vector<std::pair<double, double>> clock_error_m;  // (t, filter bias minus true bias)
   rx.run([&](const AidedEpoch& a) {
     if (a.mode != NavMode::ultra || !a.valid || !a.receiver.t_rx || a.receiver.t_s >= sc.duration_s - 0.5) return;
-    const double true_bias_m = gps::kSpeedOfLight_mps * (a.receiver.t_rx->sow - truth.true_sow(a.receiver.t_s));
+    const std::optional<TruthSample> t = truth.at(a.receiver.t_s);
+    ASSERT_TRUE(t && t->true_sow) << "truth.csv carries the receiver clock";
+    const double true_bias_m = gps::kSpeedOfLight_mps * (a.receiver.t_rx->sow - *t->true_sow);
     clock_error_m.emplace_back(a.receiver.t_s, a.clock_bias_m - true_bias_m);
   });
   std::filesystem::remove_all(dir);
