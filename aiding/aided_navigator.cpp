@@ -11,7 +11,7 @@ namespace deepnav::aiding {
 StateMatrix initial_covariance(const InitialUncertainty& u) {
   StateVector sigma;
   sigma << u.position_ned_m, u.velocity_ned_mps, u.attitude_rad, u.accel_bias_mps2, u.gyro_bias_radps, u.clock_bias_m,
-      u.clock_drift_mps;
+      u.clock_drift_mps, u.troposphere_zenith_m;
   return sigma.cwiseAbs2().asDiagonal();
 }
 
@@ -21,7 +21,18 @@ AidedNavigator::AidedNavigator(const NavState& initial, double clock_bias_m, dou
       kf_(StateVector::Zero(), initial_covariance(uncertainty)),
       cfg_(config),
       clock_bias_m_(clock_bias_m),
-      clock_drift_mps_(clock_drift_mps) {}
+      clock_drift_mps_(clock_drift_mps) {
+  const double rw = cfg_.troposphere.random_walk_m_per_sqrt_h;
+  cfg_.noise.psd(kTropo) = cfg_.troposphere.enabled ? rw * rw / 3600.0 : 0.0;
+}
+
+double AidedNavigator::residual_delay_m(const RangePrediction& p) const {
+  return cfg_.troposphere.enabled ? troposphere_residual_m_ * p.troposphere_mapping : 0.0;
+}
+
+double AidedNavigator::residual_delay_rate_mps(const RangePrediction& p) const {
+  return cfg_.troposphere.enabled ? troposphere_residual_m_ * p.troposphere_mapping_rate_per_s : 0.0;
+}
 
 void AidedNavigator::propagate(const ImuSample& sample) {
   const double dt = sample.t_s - ins_.state().t_s;
@@ -95,19 +106,34 @@ UpdateResult AidedNavigator::update_position_velocity(const Eigen::Vector3d& r_a
   return result;
 }
 
-UpdateResult AidedNavigator::update_ranges(const std::vector<RangeMeasurement>& measurements) {
-  const wgs84::Llh& at = ins_.state().llh;
-  std::vector<StateRow> rows;
+namespace {
+
+/// The rows one navigator update builds: per row its H, z, R and the satellite it came from
+/// (pseudorange rows only carry a PRN to the fault monitor; rate rows report 0).
+struct RangeRows {
+  std::vector<StateRow> h;
   std::vector<double> z, r;
-  for (const auto& m : measurements) {
+  std::vector<int> pseudorange_prn;
+};
+
+}  // namespace
+
+UpdateResult AidedNavigator::update_ranges(const std::vector<RangeMeasurement>& measurements,
+                                           std::vector<SatelliteInnovation>* innovations,
+                                           const std::vector<RangeMeasurement>& test_only) {
+  const wgs84::Llh& at = ins_.state().llh;
+  const auto append = [&](const RangeMeasurement& m, RangeRows& rows) {
     // The range falls as the antenna moves towards the satellite: d(rho) = -u . d(r).
     const Eigen::Vector3d u_ned = ecef_to_ned_vector(at, m.geometry.los_ecef);
     if (m.pseudorange_m) {
       StateRow h = -position_row(u_ned);
       h(kClockBias) = 1.0;
-      rows.push_back(h);
-      z.push_back(m.geometry.pseudorange_m(clock_bias_m() + clock_drift_mps() * m.time_offset_s) - *m.pseudorange_m);
-      r.push_back(m.pseudorange_sigma_m * m.pseudorange_sigma_m);
+      if (cfg_.troposphere.enabled) h(kTropo) = m.geometry.troposphere_mapping;
+      rows.h.push_back(h);
+      rows.z.push_back(m.geometry.pseudorange_m(clock_bias_m() + clock_drift_mps() * m.time_offset_s) +
+                       residual_delay_m(m.geometry) - *m.pseudorange_m);
+      rows.r.push_back(m.pseudorange_sigma_m * m.pseudorange_sigma_m);
+      rows.pseudorange_prn.push_back(m.prn);
     }
     if (m.rate_mps) {
       const RangePrediction& g = m.rate_at_own_time ? m.rate_geometry : m.geometry;
@@ -115,20 +141,38 @@ UpdateResult AidedNavigator::update_ranges(const std::vector<RangeMeasurement>& 
       StateRow h = StateRow::Zero();
       h.segment<3>(kVel) = -ecef_to_ned_vector(at, g.los_ecef).transpose();
       h(kClockDrift) = 1.0;
-      rows.push_back(h);
-      z.push_back(g.pseudorange_rate_mps(antenna_velocity_ecef_at(time_s() + offset), clock_drift_mps()) - *m.rate_mps);
-      r.push_back(m.rate_sigma_mps * m.rate_sigma_mps);
+      if (cfg_.troposphere.enabled) h(kTropo) = g.troposphere_mapping_rate_per_s;
+      rows.h.push_back(h);
+      rows.z.push_back(g.pseudorange_rate_mps(antenna_velocity_ecef_at(time_s() + offset), clock_drift_mps()) +
+                       residual_delay_rate_mps(g) - *m.rate_mps);
+      rows.r.push_back(m.rate_sigma_mps * m.rate_sigma_mps);
+      rows.pseudorange_prn.push_back(0);
     }
+  };
+  if (innovations) {
+    innovations->clear();
+    RangeRows watched;
+    for (const auto& m : test_only) append(m, watched);
+    for (std::size_t i = 0; i < watched.z.size(); ++i)
+      if (watched.pseudorange_prn[i] != 0)
+        innovations->push_back({watched.pseudorange_prn[i], kf_.normalized_innovation(watched.z[i], watched.h[i], watched.r[i]), false});
   }
-  const auto n = static_cast<Eigen::Index>(rows.size());
+  RangeRows rows;
+  for (const auto& m : measurements) append(m, rows);
+  const auto n = static_cast<Eigen::Index>(rows.h.size());
   Eigen::MatrixXd H(n, kStates);
   Eigen::VectorXd zv(n), rv(n);
   for (Eigen::Index i = 0; i < n; ++i) {
-    H.row(i) = rows[static_cast<std::size_t>(i)];
-    zv(i) = z[static_cast<std::size_t>(i)];
-    rv(i) = r[static_cast<std::size_t>(i)];
+    H.row(i) = rows.h[static_cast<std::size_t>(i)];
+    zv(i) = rows.z[static_cast<std::size_t>(i)];
+    rv(i) = rows.r[static_cast<std::size_t>(i)];
   }
   const UpdateResult result = kf_.update(zv, H, rv, cfg_.gate_sigma);
+  if (innovations) {
+    for (std::size_t i = 0; i < result.normalized_innovations.size(); ++i)
+      if (rows.pseudorange_prn[i] != 0)
+        innovations->push_back({rows.pseudorange_prn[i], result.normalized_innovations[i], result.row_rejected[i]});
+  }
   if (result.applied) feed_back();
   return result;
 }
@@ -142,6 +186,7 @@ void AidedNavigator::feed_back() {
                              ins_.gyro_bias_compensation_radps() + x.segment<3>(kGyroBias));
   clock_bias_m_ -= x(kClockBias);
   clock_drift_mps_ -= x(kClockDrift);
+  troposphere_residual_m_ -= x(kTropo);
   kf_.clear_fed_back_states();
 }
 

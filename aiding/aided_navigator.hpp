@@ -15,6 +15,7 @@
 
 #include "aiding/error_state_kalman.hpp"
 #include "aiding/ins_error_model.hpp"
+#include "aiding/satellite_fault_monitor.hpp"
 #include "ins/strapdown.hpp"
 #include "receiver/range_model.hpp"
 
@@ -29,16 +30,31 @@ struct InitialUncertainty {
   Eigen::Vector3d gyro_bias_radps = Eigen::Vector3d::Constant(3.0 * M_PI / 180 / 3600);
   double clock_bias_m = 10.0;
   double clock_drift_mps = 1.0;
+  /// Zenith troposphere residual: what a standard atmosphere misses (weather, a site far
+  /// from it) is a few centimetres to decimetres; without a receiver model, the whole delay.
+  double troposphere_zenith_m = 0.5;
+};
+
+/// The zenith troposphere residual state (error_state.hpp): a common delay, mapped to each
+/// satellite by the receiver's mapping function, that the pseudoranges share. Without it a
+/// filter that integrates pseudoranges for minutes takes the residual as white noise and
+/// turns its elevation-dependent pattern into a height and clock error (a few metres when
+/// the signal has no troposphere and the receiver removes a model).
+struct TroposphereResidualConfig {
+  bool enabled = false;
+  double random_walk_m_per_sqrt_h = 0.02;  ///< wet delay wander (1-3 cm/sqrt(h) in the literature)
 };
 
 struct NavigatorConfig {
   ProcessNoise noise;
   Eigen::Vector3d lever_arm_imu_to_antenna_b_m = Eigen::Vector3d::Zero();
   double gate_sigma = 5.0;   ///< innovation gate of the GNSS updates (0: none)
+  TroposphereResidualConfig troposphere;
 };
 
 /// A satellite's measurement for a range update; either part may be absent.
 struct RangeMeasurement {
+  int prn = 0;
   RangePrediction geometry;              ///< satellite geometry at the antenna estimate
   std::optional<double> pseudorange_m;
   double pseudorange_sigma_m = 5.0;
@@ -70,7 +86,13 @@ class AidedNavigator {
                                         const Eigen::Vector3d& position_sigma_ned_m,
                                         const Eigen::Vector3d& velocity_sigma_ned_mps, double time_offset_s = 0.0,
                                         std::optional<double> velocity_time_offset_s = std::nullopt);
-  UpdateResult update_ranges(const std::vector<RangeMeasurement>& measurements);
+  /// Range rows of several satellites in one update. With `innovations`, each satellite's
+  /// pseudorange row reports its normalised innovation against the prior (and whether the
+  /// gate turned it away) for the per-satellite fault monitor; `test_only` measurements are
+  /// reported there but not used (excluded satellites, still watched).
+  UpdateResult update_ranges(const std::vector<RangeMeasurement>& measurements,
+                             std::vector<SatelliteInnovation>* innovations = nullptr,
+                             const std::vector<RangeMeasurement>& test_only = {});
 
   /// Adds a known step to the receiver clock bias (the receiver re-set its clock).
   void shift_clock_bias(double step_m) { clock_bias_m_ += step_m; }
@@ -82,6 +104,13 @@ class AidedNavigator {
   wgs84::Llh antenna_llh() const;
   double clock_bias_m() const { return clock_bias_m_; }
   double clock_drift_mps() const { return clock_drift_mps_; }
+  /// The estimated zenith troposphere residual (m; 0 while the state is off).
+  double troposphere_residual_m() const { return troposphere_residual_m_; }
+  /// What the filter adds to a predicted pseudorange beyond the clock: the troposphere
+  /// residual mapped to the satellite's elevation.
+  double residual_delay_m(const RangePrediction& p) const;
+  /// Its rate as the satellite's elevation changes (m/s), for predicted rates and Dopplers.
+  double residual_delay_rate_mps(const RangePrediction& p) const;
   const StateMatrix& covariance() const { return kf_.P(); }
   /// 1-sigma position uncertainty, north/east/down (m).
   Eigen::Vector3d position_sigma_ned_m() const;
@@ -104,6 +133,7 @@ class AidedNavigator {
   ErrorStateKalman kf_;
   NavigatorConfig cfg_;
   double clock_bias_m_, clock_drift_mps_;  ///< receiver clock model (c * dt, c * dt')
+  double troposphere_residual_m_ = 0.0;
   Eigen::Vector3d last_f_b_mps2_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d last_w_b_radps_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d last_accel_ned_mps2_ = Eigen::Vector3d::Zero();  ///< INS velocity change over the last IMU interval / dt

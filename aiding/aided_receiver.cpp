@@ -17,14 +17,6 @@ namespace {
 
 constexpr double kRecentPvt_s = 3.0;
 
-/// Pseudorange sigma of a scalar channel: DLL noise (0.5 Hz, 0.5 chip spacing) at its
-/// C/N0 plus a 1 m floor for atmosphere-model residuals, inflated at low elevation.
-double scalar_pseudorange_sigma_m(double cn0_dbhz, double elevation_rad) {
-  const double cn0 = std::pow(10.0, cn0_dbhz / 10.0);
-  const double dll_m = std::sqrt(0.5 * 0.5 / (2.0 * cn0)) * gps::kSpeedOfLight_mps / gps::kCodeRate_cps;
-  return std::hypot(1.0, dll_m) / std::sqrt(std::max(0.1, std::sin(elevation_rad)));
-}
-
 /// Pseudorange-rate sigma of a scalar channel's Doppler: the carrier phase difference over
 /// the averaging window, each end with the PLL's thermal jitter at its C/N0 (Kaplan &
 /// Hegarty: Bn / (C/N0) (1 + 1 / (2 T C/N0)) rad^2), plus a 0.02 m/s floor (the receiver
@@ -49,6 +41,7 @@ struct AidedReceiver::Impl : ExternalChannelControl {
   UltraTightTracker ultra;
   ModeManager modes;
   InnovationMonitor innovations;
+  SatelliteFaultMonitor faults;
   std::string start_method;
   int restarts = 0;
   double fs;
@@ -64,8 +57,9 @@ struct AidedReceiver::Impl : ExternalChannelControl {
         rx(cfg.receiver, source),
         imu(std::move(log)),
         init(cfg.imu, cfg.lever_arm_imu_to_antenna_b_m),
-        ultra(rx, cfg.ultra),
+        ultra(rx, cfg.ultra, cfg.receiver.pvt.range_errors, cfg.fault_exclusion ? &faults : nullptr),
         modes(cfg.mode, cfg.limits),
+        faults(cfg.faults),
         fs(source.sample_rate_hz()) {
     rx.set_external_control(this);
   }
@@ -85,8 +79,10 @@ struct AidedReceiver::Impl : ExternalChannelControl {
     follow_receiver_clock();
     if (nav && modes.mode() != NavMode::ultra && modes.mode() != NavMode::scalar) ultra.update_and_steer(*nav, end, false);
     if (nav && modes.mode() == NavMode::ultra) {
-      const UpdateResult r = ultra.update_and_steer(*nav, end, true);
+      std::vector<SatelliteInnovation> rows;
+      const UpdateResult r = ultra.update_and_steer(*nav, end, true, cfg.fault_exclusion ? &rows : nullptr);
       innovations.add(t, r);
+      if (cfg.fault_exclusion) report_exclusions(t, rows);
       if (end % static_cast<std::int64_t>(fs) < static_cast<std::int64_t>(fs / 100))
         spdlog::debug("t = {:.2f} s: ultra update {} measurements, {} rejected, max |nu|/sigma {:.2f}, {} steered",
                       t, ultra.measuring_channels(), r.rejected, r.max_normalized_innovation, ultra.steered_channels());
@@ -153,6 +149,7 @@ struct AidedReceiver::Impl : ExternalChannelControl {
     }
     nav.reset();
     innovations.clear();
+    faults.clear();
     ultra.release_all();
     init = InsInitializer(cfg.imu, cfg.lever_arm_imu_to_antenna_b_m);
     ++restarts;
@@ -172,6 +169,7 @@ struct AidedReceiver::Impl : ExternalChannelControl {
     NavigatorConfig nc;
     nc.noise = process_noise_from(cfg.imu, cfg.oscillator);
     nc.lever_arm_imu_to_antenna_b_m = cfg.lever_arm_imu_to_antenna_b_m;
+    nc.troposphere = cfg.troposphere;
     const double dt = start->state.t_s - ep.t_s;
     // The fix's clock bias is against the receiver clock before this epoch's re-setting
     // (observe() steers it right after the fix, before the next block's follow): move it
@@ -212,16 +210,19 @@ struct AidedReceiver::Impl : ExternalChannelControl {
     const IonoParameters iono = rx.iono();
     const double dt = ep.t_s - nav->time_s();
     const double bias = nav->clock_bias_m() + nav->clock_drift_mps() * dt;
-    std::vector<RangeMeasurement> ms;
+    std::vector<RangeMeasurement> ms, watched;
     for (const ChannelObservation& o : ep.observations) {
       const Ephemeris* eph = rx.ephemeris(o.prn);
       if (eph == nullptr || o.after_gap) continue;
       RangeMeasurement m;
+      m.prn = o.prn;
       m.time_offset_s = dt;
       m.geometry = predict_range(*eph, *ep.t_rx, bias, nav->antenna_ecef_at(ep.t_s), nav->antenna_velocity_ecef_mps(), iono);
       if (m.geometry.elevation_rad < cfg.receiver.pvt.elevation_mask_rad) continue;
       m.pseudorange_m = o.pseudorange_m;
-      m.pseudorange_sigma_m = scalar_pseudorange_sigma_m(o.cn0_dbhz, m.geometry.elevation_rad);
+      const RangeErrorModel& errors = cfg.receiver.pvt.range_errors;
+      m.pseudorange_sigma_m = std::sqrt(errors.model_variance_per_row_m2(m.geometry.elevation_rad, 1.0 / cfg.receiver.observation_rate_hz) +
+                                        errors.thermal_variance_m2(o.cn0_dbhz));
       m.rate_mps = -gps::kL1Wavelength_m * o.doppler_hz;
       m.rate_sigma_mps = scalar_rate_sigma_mps(o.cn0_dbhz, cfg.receiver.tracking_loops.pll_hz,
                                                1e-3 * cfg.receiver.tracking.coherent_ms_after_bit_sync);
@@ -232,10 +233,27 @@ struct AidedReceiver::Impl : ExternalChannelControl {
       m.rate_geometry = predict_range(*eph, ep.t_rx->plus_seconds(o.doppler_offset_s),
                                       bias + nav->clock_drift_mps() * o.doppler_offset_s, nav->antenna_ecef_at(t_rate),
                                       nav->antenna_velocity_ecef_at(t_rate), iono);
-      ms.push_back(m);
+      (cfg.fault_exclusion && faults.excluded(o.prn) ? watched : ms).push_back(m);
     }
     last_tight_satellites = static_cast<int>(ms.size());
-    if (!ms.empty()) innovations.add(ep.t_s, nav->update_ranges(ms));
+    if (ms.empty()) return;
+    std::vector<SatelliteInnovation> rows;
+    const UpdateResult r = nav->update_ranges(ms, cfg.fault_exclusion ? &rows : nullptr, watched);
+    innovations.add(ep.t_s, r);
+    if (cfg.fault_exclusion) report_exclusions(ep.t_s, rows);
+  }
+
+  /// Feeds the per-satellite fault monitor and logs each satellite it excludes or re-admits.
+  void report_exclusions(double t_s, const std::vector<SatelliteInnovation>& rows) {
+    const std::vector<int> before = faults.excluded_prns();
+    faults.add(t_s, rows);
+    const std::vector<int> after = faults.excluded_prns();
+    for (int prn : after)
+      if (std::find(before.begin(), before.end(), prn) == before.end())
+        spdlog::info("t = {:.2f} s: PRN {:2d} excluded: its pseudorange innovations disagree with the filter", t_s, prn);
+    for (int prn : before)
+      if (std::find(after.begin(), after.end(), prn) == after.end())
+        spdlog::info("t = {:.2f} s: PRN {:2d} agrees with the filter again: re-admitted", t_s, prn);
   }
 
   AidedEpoch on_observation(const ReceiverEpoch& ep) {
@@ -301,5 +319,6 @@ ScalarReceiver& AidedReceiver::receiver() { return impl_->rx; }
 const std::vector<ModeChange>& AidedReceiver::mode_changes() const { return impl_->modes.changes(); }
 const std::string& AidedReceiver::ins_start_method() const { return impl_->start_method; }
 int AidedReceiver::filter_restarts() const { return impl_->restarts; }
+int AidedReceiver::satellite_exclusions() const { return impl_->faults.exclusions(); }
 
 }  // namespace deepnav::aiding

@@ -32,6 +32,11 @@ struct AidedReceiverConfig {
   /// update at the receiver's observation epochs.
   double pvt_position_sigma_scale_m = 2.0;  ///< loose: position sigma = DOP x this
   double pvt_velocity_sigma_mps = 0.1;
+  /// Tight and ultra-tight: the zenith troposphere residual state, and per-satellite fault
+  /// exclusion on the pseudorange innovations (satellite_fault_monitor.hpp).
+  TroposphereResidualConfig troposphere;
+  bool fault_exclusion = true;
+  SatelliteFaultConfig faults;
 };
 
 /// The aided solution at one observation epoch, next to the receiver's own.
@@ -71,6 +76,8 @@ class AidedReceiver {
   const std::string& ins_start_method() const;
   /// Set when the filter failed (NaN, lost positive definiteness) and was restarted.
   int filter_restarts() const;
+  /// Times a satellite was excluded by the per-satellite fault monitor.
+  int satellite_exclusions() const;
 
  private:
   struct Impl;

@@ -31,11 +31,16 @@ UpdateResult ErrorStateKalman::update(const Eigen::VectorXd& z, const Eigen::Mat
   // Innovation gate, row by row against the prior.
   const Eigen::VectorXd nu_all = z - H * x_;
   std::vector<Eigen::Index> keep;
+  result.normalized_innovations.resize(static_cast<std::size_t>(z.size()));
+  result.row_rejected.assign(static_cast<std::size_t>(z.size()), false);
   for (Eigen::Index i = 0; i < z.size(); ++i) {
     const double s = H.row(i) * P_ * H.row(i).transpose() + r_diag(i);
-    const double ratio = std::abs(nu_all(i)) / std::sqrt(s);
+    const double normalized = nu_all(i) / std::sqrt(s);
+    const double ratio = std::abs(normalized);
+    result.normalized_innovations[static_cast<std::size_t>(i)] = normalized;
     if (!std::isfinite(ratio) || (gate_sigma > 0.0 && ratio > gate_sigma)) {
       ++result.rejected;
+      result.row_rejected[static_cast<std::size_t>(i)] = true;
       continue;
     }
     result.max_normalized_innovation = std::max(result.max_normalized_innovation, ratio);
@@ -61,6 +66,11 @@ UpdateResult ErrorStateKalman::update(const Eigen::VectorXd& z, const Eigen::Mat
   result.applied = true;
   check();
   return result;
+}
+
+double ErrorStateKalman::normalized_innovation(double z, const StateRow& h, double r) const {
+  const double s = h * P_ * h.transpose() + r;
+  return (z - h * x_) / std::sqrt(s);
 }
 
 void ErrorStateKalman::clear_fed_back_states() { x_.setZero(); }

@@ -7,6 +7,7 @@
 // the filter unhealthy (healthy() false, reason()), and it refuses further updates
 // until reset, so no NaN ever reaches a navigation output.
 #include <string>
+#include <vector>
 
 #include "aiding/error_state.hpp"
 
@@ -18,6 +19,8 @@ struct UpdateResult {
   int rows = 0;                 ///< rows offered (kept or not)
   int rejected = 0;             ///< rows dropped by the innovation gate
   double max_normalized_innovation = 0.0;  ///< largest |nu| / sqrt(S_ii) among the rows kept
+  std::vector<double> normalized_innovations;  ///< per row offered: nu / sqrt(S_ii) against the prior
+  std::vector<bool> row_rejected;              ///< per row offered: turned away by the gate
 };
 
 class ErrorStateKalman {
@@ -33,6 +36,9 @@ class ErrorStateKalman {
   /// The same for a run-time number of rows.
   UpdateResult update(const Eigen::VectorXd& z, const Eigen::MatrixXd& H, const Eigen::VectorXd& r_diag,
                       double gate_sigma = 0.0);
+
+  /// A row's innovation over its predicted sigma against the current state, without an update.
+  double normalized_innovation(double z, const StateRow& h, double r) const;
 
   const StateVector& x() const { return x_; }
   StateVector& x() { return x_; }

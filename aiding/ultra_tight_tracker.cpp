@@ -72,8 +72,9 @@ std::optional<UltraTightTracker::SamplePrediction> UltraTightTracker::predict_at
   return p;
 }
 
-UltraTightTracker::UltraTightTracker(ScalarReceiver& receiver, UltraTightConfig config)
-    : rx_(receiver), cfg_(config) {}
+UltraTightTracker::UltraTightTracker(ScalarReceiver& receiver, UltraTightConfig config,
+                                     const RangeErrorModel& range_errors, const SatelliteFaultMonitor* faults)
+    : rx_(receiver), cfg_(config), range_errors_(range_errors), faults_(faults) {}
 
 bool UltraTightTracker::on_epoch(const CorrelatorEpoch& e, TrackingChannel& ch, const NavDecoder& nav,
                                  Engagement engagement) {
@@ -164,13 +165,16 @@ std::optional<RangeMeasurement> UltraTightTracker::to_measurement(const Discrimi
   const std::optional<SamplePrediction> p = predict_at(d.ephemeris, d.mid_sample, nav);
   if (!p) return std::nullopt;
   RangeMeasurement m;
+  m.prn = d.prn;
   m.time_offset_s = p->offset_s;
   m.geometry = p->range;
   const double t_tx = d.replica_transmit_sow + d.code_error_chips / gps::kCodeRate_cps;
   m.pseudorange_m = gps::kSpeedOfLight_mps * seconds_of_week_difference(p->t_rx.sow, t_tx);
-  // Discriminator noise plus a floor for multipath-free residual modelling errors.
+  // Discriminator noise plus what the range models leave, by elevation (the PVT's weights),
+  // shared by every integration of the same second (range_weight.hpp).
   const double code_sigma = code_sigma_chips(d.cn0_dbhz, d.integration_s, cfg_.spacing_chips) * kChip_m;
-  m.pseudorange_sigma_m = std::hypot(code_sigma, 0.5);
+  m.pseudorange_sigma_m = std::sqrt(code_sigma * code_sigma +
+                                    range_errors_.model_variance_per_row_m2(p->range.elevation_rad, d.integration_s));
   if (d.doppler_hz) {
     // Predicted where the Doppler refers to (doppler_sample), not at mid_sample.
     const std::optional<SamplePrediction> at_rate = predict_at(d.ephemeris, d.doppler_sample, nav);
@@ -191,16 +195,17 @@ std::optional<RangeMeasurement> UltraTightTracker::to_measurement(const Discrimi
   return m;
 }
 
-UpdateResult UltraTightTracker::update_and_steer(AidedNavigator& nav, std::int64_t end_sample, bool measure) {
-  std::vector<RangeMeasurement> ms;
+UpdateResult UltraTightTracker::update_and_steer(AidedNavigator& nav, std::int64_t end_sample, bool measure,
+                                                 std::vector<SatelliteInnovation>* innovations) {
+  std::vector<RangeMeasurement> ms, watched;
   for (const DiscriminatorSample& d : queued_) {
     if (!measure || d.cn0_dbhz < cfg_.min_cn0_dbhz) continue;
-    if (auto m = to_measurement(d, nav)) ms.push_back(*m);
+    if (auto m = to_measurement(d, nav)) (faults_ && faults_->excluded(d.prn) ? watched : ms).push_back(*m);
   }
   queued_.clear();
   measuring_ = static_cast<int>(ms.size());
   UpdateResult result;
-  if (!ms.empty()) result = nav.update_ranges(ms);
+  if (!ms.empty()) result = nav.update_ranges(ms, innovations, watched);
   rx_.for_each_channel([&](TrackingChannel& ch, const NavDecoder& decoder) {
     if (steered_.count(ch.prn())) steer(ch, decoder, nav, end_sample);
   });
@@ -215,7 +220,8 @@ void UltraTightTracker::steer(TrackingChannel& ch, const NavDecoder& decoder, co
   const std::optional<SamplePrediction> predicted = predict_at(*eph, sample, nav);
   if (!predicted) return;
   const RangePrediction& p = predicted->range;
-  const double tt_predicted = predicted->t_rx.sow - p.pseudorange_m(predicted->clock_bias_m) / gps::kSpeedOfLight_mps;
+  const double tt_predicted =
+      predicted->t_rx.sow - (p.pseudorange_m(predicted->clock_bias_m) + nav.residual_delay_m(p)) / gps::kSpeedOfLight_mps;
   const double correction_chips = seconds_of_week_difference(tt_predicted, *tt_replica) * gps::kCodeRate_cps;
   if (std::abs(correction_chips) > cfg_.max_code_correction_chips) {
     // The replica and the filter disagree by more than a plausible tracking error: the
@@ -228,7 +234,8 @@ void UltraTightTracker::steer(TrackingChannel& ch, const NavDecoder& decoder, co
   }
   ChannelMemory& mem = memory_[ch.prn()];
   NcoCommand cmd;
-  cmd.carrier_doppler_hz = -p.pseudorange_rate_mps(predicted->antenna_velocity_ecef_mps, nav.clock_drift_mps()) /
+  cmd.carrier_doppler_hz = -(p.pseudorange_rate_mps(predicted->antenna_velocity_ecef_mps, nav.clock_drift_mps()) +
+                             nav.residual_delay_rate_mps(p)) /
                            gps::kL1Wavelength_m;
   cmd.code_rate_cps = gps::kCodeRate_cps * (1.0 + cmd.carrier_doppler_hz / gps::kL1_Hz);
   cmd.code_phase_correction_chips = correction_chips;

@@ -66,7 +66,11 @@ struct DiscriminatorSample {
 
 class UltraTightTracker {
  public:
-  UltraTightTracker(ScalarReceiver& receiver, UltraTightConfig config);
+  /// `range_errors`: the pseudorange weight model shared with the PVT (its elevation terms
+  /// are added to each discriminator's own noise); `faults` (may be null): satellites it
+  /// excludes are measured but not used.
+  UltraTightTracker(ScalarReceiver& receiver, UltraTightConfig config, const RangeErrorModel& range_errors,
+                    const SatelliteFaultMonitor* faults);
 
   /// From ExternalChannelControl::on_epoch while ultra-tight mode runs: true when the channel is
   /// steered (it then has a discriminator sample queued).
@@ -74,7 +78,9 @@ class UltraTightTracker {
   /// The filter update with the queued samples (when `measure`), then new NCO commands for
   /// the steered channels, from the sample `end_sample` on. The navigator must already be
   /// propagated to the block end.
-  UpdateResult update_and_steer(AidedNavigator& nav, std::int64_t end_sample, bool measure);
+  /// With `innovations`, the pseudorange rows' normalised innovations (for the fault monitor).
+  UpdateResult update_and_steer(AidedNavigator& nav, std::int64_t end_sample, bool measure,
+                                std::vector<SatelliteInnovation>* innovations = nullptr);
   /// Gives every channel back to its scalar loop.
   void release_all();
 
@@ -100,6 +106,8 @@ class UltraTightTracker {
   void steer(TrackingChannel& channel, const NavDecoder& nav_decoder, const AidedNavigator& nav, std::int64_t sample);
   ScalarReceiver& rx_;
   UltraTightConfig cfg_;
+  RangeErrorModel range_errors_;
+  const SatelliteFaultMonitor* faults_;
   std::vector<DiscriminatorSample> queued_;
   struct ChannelMemory {
     std::complex<double> prompt;

@@ -28,11 +28,6 @@ double chi2_quantile(int dof, double p) {
   return k * a * a * a;
 }
 
-double sigma2_m2(double elevation_rad, double cn0_dbhz) {
-  const double s = std::max(std::sin(elevation_rad), 0.1);
-  return 0.25 + 0.25 / (s * s) + 3e3 * std::pow(10.0, -cn0_dbhz / 10.0);
-}
-
 struct SatGeometry {
   Eigen::Vector3d r, v;
   double clock_m, drift_mps;
@@ -56,7 +51,7 @@ PvtSolution PvtSolver::solve(const GpsTime& t_rx, const std::vector<PseudorangeO
     for (const auto& o : use) {
       const auto it = sol.residuals_m.find(o.prn);
       if (it == sol.residuals_m.end()) continue;
-      const double w = it->second * it->second / sigma2_m2(sol.elevation_rad.at(o.prn), o.cn0_dbhz);
+      const double w = it->second * it->second / cfg_.range_errors.pseudorange_variance_m2(sol.elevation_rad.at(o.prn), o.cn0_dbhz);
       sse += w;
       if (w > worst) {
         worst = w;
@@ -115,7 +110,7 @@ PvtSolution PvtSolver::solve_once(const GpsTime& t_rx, const std::vector<Pseudor
       }
       rows.emplace_back(-d.x() / range, -d.y() / range, -d.z() / range, 1.0);
       resid.push_back(o.pseudorange_m - (range + x(3) - g.clock_m + corr));
-      weights.push_back(1.0 / sigma2_m2(el, o.cn0_dbhz));
+      weights.push_back(1.0 / cfg_.range_errors.pseudorange_variance_m2(el, o.cn0_dbhz));
       sol.elevation_rad[o.prn] = el;
       sol.azimuth_rad[o.prn] = az;
       used.push_back(&o);

@@ -17,6 +17,7 @@
 #include "ins/gps_time.hpp"
 #include "ins/wgs84.hpp"
 #include "signals/ephemeris.hpp"
+#include "receiver/range_weight.hpp"
 #include "signals/iono_utc.hpp"
 
 namespace deepnav {
@@ -54,6 +55,7 @@ struct PvtConfig {
   bool ionosphere = true;
   bool troposphere = true;
   double chi2_probability = 1e-3;   ///< false-alarm probability of the residual test
+  RangeErrorModel range_errors;     ///< pseudorange weights (the aided modes use the same)
 };
 
 class PvtSolver {

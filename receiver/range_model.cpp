@@ -68,6 +68,9 @@ RangePrediction predict_range(const Ephemeris& eph, const GpsTime& t_rx, double 
   const Atmosphere after = atmosphere_at(r_rx_ecef_m + h * v_rx_ecef_mps, p.r_sat_ecef_m + h * p.v_sat_ecef_mps, iono,
                                          troposphere, t_rx.sow + h);
   p.carrier_atmosphere_rate_mps = ((after.tropo_m - after.iono_m) - (before.tropo_m - before.iono_m)) / (2.0 * h);
+  p.troposphere_mapping = troposphere_mapping(now.elevation_rad);
+  p.troposphere_mapping_rate_per_s =
+      (troposphere_mapping(after.elevation_rad) - troposphere_mapping(before.elevation_rad)) / (2.0 * h);
   return p;
 }
 

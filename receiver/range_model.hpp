@@ -37,6 +37,11 @@ struct RangePrediction {
   double light_time_factor = 1.0;    ///< 1 / (1 + k), k the flight time's rate (see above)
   double elevation_rad = 0.0;
   double azimuth_rad = 0.0;
+  /// The troposphere model's mapping function at the satellite's elevation and its rate as
+  /// the satellite rises or sets (1/s): how a zenith delay left by the model reaches this
+  /// pseudorange and its rate.
+  double troposphere_mapping = 1.0;
+  double troposphere_mapping_rate_per_s = 0.0;
 
   /// Pseudorange with the receiver clock bias c*dt (m).
   double pseudorange_m(double clock_bias_m) const {

@@ -64,6 +64,8 @@ AidedRunResult run_aided_scenario(const Scenario& sc, const SynthesisSummary& s,
         if (ch.cn0_dbhz >= lost_dbhz) result.tracked_s[e.prn] += e.integration_s;
       });
   result.mode_changes = rx.mode_changes();
+  result.satellite_exclusions = rx.satellite_exclusions();
+  result.filter_restarts = rx.filter_restarts();
   result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

@@ -30,6 +30,8 @@ struct AidedRunResult {
   double first_aided_s = -1.0;          ///< first epoch in a coupled mode (-1: never)
   std::vector<aiding::ModeChange> mode_changes;
   double wall_s = 0.0;
+  int satellite_exclusions = 0;         ///< satellites the aided filter's fault monitor excluded
+  int filter_restarts = 0;
 };
 
 /// How to read the IF file the synthesizer wrote for `scenario`.

@@ -41,6 +41,8 @@ struct RunOptions {
   int pll_order = 2;
   std::string mode = "scalar", imu_path, imu_grade = "tactical", imu_grades_file = "data/imu_grades.yaml";
   std::vector<double> imu_lever_arm_m{0.0, 0.0, 0.0};
+  bool filter_troposphere = false;
+  bool fault_exclusion = true;
 };
 
 /// Error statistics of one quantity.
@@ -85,6 +87,8 @@ aiding::AidedReceiverConfig aided_config(const RunOptions& o, aiding::NavMode mo
   }
   c.lever_arm_imu_to_antenna_b_m = -Eigen::Vector3d(o.imu_lever_arm_m[0], o.imu_lever_arm_m[1], o.imu_lever_arm_m[2]);
   c.ultra.spacing_chips = o.receiver.tracking.spacing_chips;
+  c.troposphere.enabled = o.filter_troposphere;
+  c.fault_exclusion = o.fault_exclusion;
   return c;
 }
 
@@ -255,6 +259,7 @@ void run_receiver(RunOptions o) {
     summary["seconds_in_mode"] = mode_seconds;
     summary["ins_start"] = aided->ins_start_method();
     summary["filter_restarts"] = aided->filter_restarts();
+    summary["satellite_exclusions"] = aided->satellite_exclusions();
   }
   summary["interrupted"] = opened.interrupted();
   if (opened.is_stream) summary["stream"] = opened.report();
@@ -326,6 +331,11 @@ const bool registered = register_command([](CommandParents& parents) {
   cmd->add_option("--imu", o->imu_path, "IMU CSV file (increments or rates, see README) for the aided modes")->check(CLI::ExistingFile);
   cmd->add_option("--imu-grade", o->imu_grade, "The IMU's grade in --imu-grades-file (its noise and bias figures)")->capture_default_str();
   cmd->add_option("--imu-grades-file", o->imu_grades_file, "IMU grades YAML file")->capture_default_str();
+  cmd->add_flag("--filter-troposphere,!--no-filter-troposphere", o->filter_troposphere,
+               "Tight/ultra: estimate a zenith troposphere residual (an 18th filter state)");
+  cmd->add_flag("--fault-exclusion,!--no-fault-exclusion", o->fault_exclusion,
+                "Tight/ultra: exclude a satellite whose pseudorange innovations disagree with the filter")
+      ->capture_default_str();
   cmd->add_option("--imu-lever-arm", o->imu_lever_arm_m, "IMU position from the antenna, body axes x y z (m), as a scenario's imu.lever_arm_m")
       ->expected(3);
   cmd->add_option("--week", o->receiver.reference_week, "GPS week near the data (resolves the 10-bit week; default: today)");
