@@ -19,6 +19,7 @@
 #include "ins/rotations.hpp"
 #include "ins/trajectory_presets.hpp"
 #include "signals/ca_code.hpp"
+#include "signals/error_world.hpp"
 #include "signals/front_end.hpp"
 #include "signals/if_file_writer.hpp"
 #include "signals/gps_constants.hpp"
@@ -114,6 +115,7 @@ struct IfSynthesizer::Impl {
   std::int64_t ref_ms_abs = 0;     ///< whole ms of the start time, counted from the GPS time origin
   double ref_frac_s = 0.0;         ///< start time minus ref_ms_abs (below 1 ms)
   GpsTime ref_time{};              ///< the reference epoch as a GpsTime
+  std::unique_ptr<ErrorWorld> world;  ///< the truth models the signal follows
 
   Impl(Scenario s, NavData n) : sc(std::move(s)), nav(std::move(n)) {
     samples_per_epoch = std::llround(sc.sample_rate_hz / 1000.0);
@@ -123,6 +125,9 @@ struct IfSynthesizer::Impl {
     ref_frac_s = sc.start_time.sow - sow_ms / 1000.0;
     ref_time = GpsTime{sc.start_time.week, sow_ms / 1000.0};
     trajectory = make_trajectory();
+    world = std::make_unique<ErrorWorld>(sc.errors, AtmosphereSwitches{sc.ionosphere, sc.troposphere}, sc.seed,
+                                         sc.start_time, sc.duration_s,
+                                         wgs84::ecef_to_llh(trajectory->at(0.0).r_ecef_m));
     choose_satellites();
   }
 
@@ -202,7 +207,8 @@ struct IfSynthesizer::Impl {
       cn0 = spec.horizon_dbhz + (spec.zenith_dbhz - spec.horizon_dbhz) * std::sin(std::max(0.0, s.elevation_rad));
     }
     if (const auto it = spec.per_prn_dbhz.find(runs[sat].eph.prn); it != spec.per_prn_dbhz.end()) cn0 = it->second;
-    return cn0 + ramp_offset_db(spec, t_s);
+    // The scenario's C/N0 is an isotropic antenna's; the antenna pattern comes on top.
+    return cn0 + s.antenna_gain_db + ramp_offset_db(spec, t_s);
   }
 
   bool in_outage(int prn, double t_s) const {
@@ -225,8 +231,7 @@ struct IfSynthesizer::Impl {
     BoundaryState b;
     b.rx = receiver_at(k, clock, bias0_s, b.traj);
     b.sats.reserve(runs.size());
-    const AtmosphereSwitches atmo{sc.ionosphere, sc.troposphere};
-    for (const auto& run : runs) b.sats.push_back(evaluate_satellite(run.eph, nav.iono, atmo, b.rx, sc.if_hz));
+    for (const auto& run : runs) b.sats.push_back(evaluate_satellite(run.eph, nav.iono, *world, b.rx, sc.if_hz));
     return b;
   }
 
@@ -296,7 +301,8 @@ void write_truth_row(TextOutputFile& f, const GpsTime& start, std::int64_t k, co
 void write_sat_truth_header(TextOutputFile& f) {
   f.write(
       "t_s,prn,code_phase_chips,doppler_hz,carrier_phase_cycles,cn0_dbhz,elevation_deg,azimuth_deg,pseudorange_m,"
-      "range_m,range_rate_mps,iono_m,tropo_m,sat_clock_m,transmitting\n");
+      "range_m,range_rate_mps,iono_m,tropo_m,sat_clock_m,transmitting,iono_broadcast_m,tropo_model_m,orbit_m,"
+      "sat_clock_error_m,antenna_gain_db\n");
 }
 
 }  // namespace
@@ -435,13 +441,15 @@ SynthesisSummary IfSynthesizer::run(const std::string& out_dir, const SynthesisO
             const SatelliteInstant& si = b.sats[s];
             const double t_s = static_cast<double>(k) * 1e-3;
             const bool on = m.amplitude(s, si, t_s) > 0.0f;
-            sat_truth->write(fmt::format("{:.3f},{},{:.6f},{:.4f},{:.4f},{:.2f},{:.4f},{:.4f},{:.4f},{:.4f},{:.5f},{:.4f},{:.4f},{:.4f},{}\n",
+            sat_truth->write(fmt::format("{:.3f},{},{:.6f},{:.4f},{:.4f},{:.2f},{:.4f},{:.4f},{:.4f},{:.4f},{:.5f},{:.4f},{:.4f},{:.4f},{},"
+                                         "{:.4f},{:.4f},{:.4f},{:.4f},{:.3f}\n",
                                          t_s, m.runs[s].eph.prn,
                                          si.code_chips - std::floor(si.code_chips / 1023.0) * 1023.0, si.doppler_hz,
                                          m.sc.if_hz * b.rx.t_rcv_rel_s - si.carrier_cycles,
                                          m.cn0_dbhz(s, si, t_s), si.elevation_rad * kRadToDeg,
                                          si.azimuth_rad * kRadToDeg, si.pseudorange_m, si.range_m, si.range_rate_mps,
-                                         si.iono_m, si.tropo_m, si.sat_clock_m, on ? 1 : 0));
+                                         si.iono_m, si.tropo_m, si.sat_clock_m, on ? 1 : 0, si.iono_broadcast_m,
+                                         si.tropo_model_m, si.orbit_m, si.sat_clock_error_m, si.antenna_gain_db));
           }
         }
       }

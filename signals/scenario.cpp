@@ -274,6 +274,97 @@ std::vector<OutageSpec> parse_outages(const Field& f) {
   return out;
 }
 
+/// Reads `text` as one of `names` (the enum value at the same position).
+template <typename Enum>
+Enum parse_choice(const Field& f, std::initializer_list<std::pair<const char*, Enum>> names) {
+  const std::string v = f.text();
+  std::string list;
+  for (const auto& [name, value] : names) {
+    if (v == name) return value;
+    list += (list.empty() ? "" : ", ") + std::string(name);
+  }
+  f.fail("expected one of " + list + ", got '" + v + "'");
+}
+
+constexpr std::initializer_list<std::pair<const char*, IonosphereTruthSpec::Model>> kIonoModels{
+    {"klobuchar", IonosphereTruthSpec::Model::klobuchar}, {"thin-shell", IonosphereTruthSpec::Model::thin_shell}};
+constexpr std::initializer_list<std::pair<const char*, TroposphereTruthSpec::Model>> kTropoModels{
+    {"saastamoinen-standard", TroposphereTruthSpec::Model::saastamoinen_standard},
+    {"site", TroposphereTruthSpec::Model::site}};
+constexpr std::initializer_list<std::pair<const char*, TroposphereTruthSpec::Mapping>> kTropoMappings{
+    {"niell", TroposphereTruthSpec::Mapping::niell}, {"black-eisner", TroposphereTruthSpec::Mapping::black_eisner}};
+constexpr std::initializer_list<std::pair<const char*, AntennaSpec::Pattern>> kAntennaPatterns{
+    {"isotropic", AntennaSpec::Pattern::isotropic}, {"patch", AntennaSpec::Pattern::patch}};
+
+template <typename Enum>
+const char* choice_name(std::initializer_list<std::pair<const char*, Enum>> names, Enum value) {
+  for (const auto& [name, v] : names)
+    if (v == value) return name;
+  return "?";
+}
+
+/// errors: {preset, ionosphere, troposphere, orbit_clock, antenna}: the preset's values,
+/// then every field given explicitly.
+ErrorSpec parse_errors(const Field& f) {
+  f.allow_only({"preset", "ionosphere", "troposphere", "orbit_clock", "antenna"});
+  ErrorSpec e;
+  if (f.has("preset")) {
+    try {
+      e = error_preset(f["preset"].text());
+    } catch (const std::invalid_argument& x) {
+      f["preset"].fail(x.what());
+    }
+  }
+  if (f.has("ionosphere")) {
+    const Field i = f["ionosphere"];
+    i.allow_only({"model", "vtec_scale", "day_vtec_tecu", "night_vtec_tecu", "shell_height_km", "disturbance_rms"});
+    IonosphereTruthSpec& s = e.ionosphere;
+    if (i.has("model")) s.model = parse_choice(i["model"], kIonoModels);
+    if (i.has("vtec_scale")) s.vtec_scale = i["vtec_scale"].number_in(0, 10);
+    if (i.has("day_vtec_tecu")) s.day_vtec_tecu = i["day_vtec_tecu"].number_in(0, 300);
+    if (i.has("night_vtec_tecu")) s.night_vtec_tecu = i["night_vtec_tecu"].number_in(0, 300);
+    if (i.has("shell_height_km")) s.shell_height_m = i["shell_height_km"].number_in(100, 2000) * 1000.0;
+    if (i.has("disturbance_rms")) s.disturbance_rms = i["disturbance_rms"].number_in(0, 0.5);
+    if (s.night_vtec_tecu > s.day_vtec_tecu)
+      (i.has("night_vtec_tecu") ? i["night_vtec_tecu"] : i).fail(
+          fmt::format("night_vtec_tecu {} must not exceed day_vtec_tecu {}", s.night_vtec_tecu, s.day_vtec_tecu));
+  }
+  if (f.has("troposphere")) {
+    const Field t = f["troposphere"];
+    t.allow_only({"model", "pressure_hpa", "temperature_c", "relative_humidity", "wet_random_walk_m_per_sqrt_h", "mapping"});
+    TroposphereTruthSpec& s = e.troposphere;
+    if (t.has("model")) s.model = parse_choice(t["model"], kTropoModels);
+    if (t.has("pressure_hpa")) s.pressure_hpa = t["pressure_hpa"].number_in(500, 1100);
+    if (t.has("temperature_c")) s.temperature_c = t["temperature_c"].number_in(-60, 50);
+    if (t.has("relative_humidity")) s.relative_humidity = t["relative_humidity"].number_in(0, 1);
+    if (t.has("wet_random_walk_m_per_sqrt_h"))
+      s.wet_random_walk_m_per_sqrt_h = t["wet_random_walk_m_per_sqrt_h"].number_in(0, 0.2);
+    if (t.has("mapping")) s.mapping = parse_choice(t["mapping"], kTropoMappings);
+  }
+  if (f.has("orbit_clock")) {
+    const Field o = f["orbit_clock"];
+    o.allow_only({"radial_m", "along_m", "cross_m", "clock_m", "correlation_time_s"});
+    OrbitClockErrorSpec& s = e.orbit_clock;
+    if (o.has("radial_m")) s.radial_m = o["radial_m"].number_in(0, 100);
+    if (o.has("along_m")) s.along_m = o["along_m"].number_in(0, 100);
+    if (o.has("cross_m")) s.cross_m = o["cross_m"].number_in(0, 100);
+    if (o.has("clock_m")) s.clock_m = o["clock_m"].number_in(0, 100);
+    if (o.has("correlation_time_s")) s.correlation_time_s = o["correlation_time_s"].number_in(60, 1e6);
+  }
+  if (f.has("antenna")) {
+    const Field a = f["antenna"];
+    a.allow_only({"pattern", "gain_10deg_db", "gain_horizon_db"});
+    AntennaSpec& s = e.antenna;
+    if (a.has("pattern")) s.pattern = parse_choice(a["pattern"], kAntennaPatterns);
+    if (a.has("gain_10deg_db")) s.gain_10deg_db = a["gain_10deg_db"].number_in(-30, 0);
+    if (a.has("gain_horizon_db")) s.gain_horizon_db = a["gain_horizon_db"].number_in(-40, 0);
+    if (!(s.gain_horizon_db < s.gain_10deg_db && s.gain_10deg_db < 0.0))
+      (a.has("gain_10deg_db") ? a["gain_10deg_db"] : a).fail(
+          fmt::format("need gain_horizon_db < gain_10deg_db < 0, got {} and {}", s.gain_horizon_db, s.gain_10deg_db));
+  }
+  return e;
+}
+
 }  // namespace
 
 Scenario parse_scenario(const std::string& yaml_text, const std::string& origin, const std::string& base_dir,
@@ -288,7 +379,7 @@ Scenario parse_scenario(const std::string& yaml_text, const std::string& origin,
   if (!root.IsMap()) throw std::invalid_argument(origin + ": expected a scenario mapping at the top level");
   f.allow_only({"name", "start_time", "duration_s", "sample_rate_hz", "if_hz", "format", "adc", "nav_file",
                 "trajectory", "elevation_mask_deg", "prns", "max_satellites", "cn0", "receiver_clock", "ionosphere",
-                "troposphere", "seed", "jammers", "outages", "imu", "truth_rate_hz", "sat_truth_rate_hz"});
+                "troposphere", "errors", "seed", "jammers", "outages", "imu", "truth_rate_hz", "sat_truth_rate_hz"});
   Scenario s;
   s.source_path = origin;
   s.name = f.has("name") ? f["name"].text() : std::filesystem::path(origin).stem().string();
@@ -329,6 +420,7 @@ Scenario parse_scenario(const std::string& yaml_text, const std::string& origin,
   if (f.has("receiver_clock")) s.clock = parse_clock(f["receiver_clock"]);
   if (f.has("ionosphere")) s.ionosphere = f["ionosphere"].boolean();
   if (f.has("troposphere")) s.troposphere = f["troposphere"].boolean();
+  if (f.has("errors")) s.errors = parse_errors(f["errors"]);
   if (f.has("seed")) s.seed = static_cast<std::uint64_t>(f["seed"].integer_in(0, (1LL << 53)));
   if (f.has("jammers")) {
     const Field j = f["jammers"];
@@ -439,6 +531,34 @@ std::string scenario_to_yaml(const Scenario& s) {
       << "h_minus2" << YAML::Value << s.clock.h_minus2 << YAML::EndMap;
   out << YAML::Key << "ionosphere" << YAML::Value << s.ionosphere;
   out << YAML::Key << "troposphere" << YAML::Value << s.troposphere;
+  {
+    // Every effective value, so the file reproduces the run even if a preset changes later.
+    const ErrorSpec& e = s.errors;
+    out << YAML::Key << "errors" << YAML::Value << YAML::BeginMap;
+    out << YAML::Key << "preset" << YAML::Value << e.preset;
+    out << YAML::Key << "ionosphere" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "model"
+        << YAML::Value << choice_name(kIonoModels, e.ionosphere.model) << YAML::Key << "vtec_scale" << YAML::Value
+        << e.ionosphere.vtec_scale << YAML::Key << "day_vtec_tecu" << YAML::Value << e.ionosphere.day_vtec_tecu
+        << YAML::Key << "night_vtec_tecu" << YAML::Value << e.ionosphere.night_vtec_tecu << YAML::Key
+        << "shell_height_km" << YAML::Value << e.ionosphere.shell_height_m / 1000.0 << YAML::Key << "disturbance_rms"
+        << YAML::Value << e.ionosphere.disturbance_rms << YAML::EndMap;
+    out << YAML::Key << "troposphere" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "model"
+        << YAML::Value << choice_name(kTropoModels, e.troposphere.model) << YAML::Key << "pressure_hpa" << YAML::Value
+        << e.troposphere.pressure_hpa << YAML::Key << "temperature_c" << YAML::Value << e.troposphere.temperature_c
+        << YAML::Key << "relative_humidity" << YAML::Value << e.troposphere.relative_humidity << YAML::Key
+        << "wet_random_walk_m_per_sqrt_h" << YAML::Value << e.troposphere.wet_random_walk_m_per_sqrt_h << YAML::Key
+        << "mapping" << YAML::Value << choice_name(kTropoMappings, e.troposphere.mapping) << YAML::EndMap;
+    out << YAML::Key << "orbit_clock" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "radial_m"
+        << YAML::Value << e.orbit_clock.radial_m << YAML::Key << "along_m" << YAML::Value << e.orbit_clock.along_m
+        << YAML::Key << "cross_m" << YAML::Value << e.orbit_clock.cross_m << YAML::Key << "clock_m" << YAML::Value
+        << e.orbit_clock.clock_m << YAML::Key << "correlation_time_s" << YAML::Value
+        << e.orbit_clock.correlation_time_s << YAML::EndMap;
+    out << YAML::Key << "antenna" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "pattern"
+        << YAML::Value << choice_name(kAntennaPatterns, e.antenna.pattern) << YAML::Key << "gain_10deg_db"
+        << YAML::Value << e.antenna.gain_10deg_db << YAML::Key << "gain_horizon_db" << YAML::Value
+        << e.antenna.gain_horizon_db << YAML::EndMap;
+    out << YAML::EndMap;
+  }
   out << YAML::Key << "seed" << YAML::Value << s.seed;
   if (!s.jammers.empty()) {
     out << YAML::Key << "jammers" << YAML::Value << YAML::BeginSeq;

@@ -11,6 +11,7 @@
 
 #include "ins/gps_time.hpp"
 #include "ins/wgs84.hpp"
+#include "signals/error_presets.hpp"
 #include "signals/jammer.hpp"
 #include "signals/sample_format.hpp"
 
@@ -85,8 +86,9 @@ struct Scenario {
   int max_satellites = 12;
   Cn0Spec cn0{};
   ReceiverClockSpec clock{};
-  bool ionosphere = true;
-  bool troposphere = true;
+  bool ionosphere = true;   ///< false: no ionospheric delay in the signal at all
+  bool troposphere = true;  ///< false: no tropospheric delay in the signal at all
+  ErrorSpec errors{};       ///< how the truth differs from the receiver's models (preset none: it does not)
   std::uint64_t seed = 1;
   std::vector<JammerConfig> jammers;
   std::vector<OutageSpec> outages;

@@ -177,6 +177,139 @@ TEST(IfSynthesizer, TruthPseudorangesAreConsistent) {
   EXPECT_TRUE(std::filesystem::exists(dir / "scenario.yaml"));
 }
 
+/// sat_truth.csv as columns by header name.
+std::map<std::string, std::vector<double>> read_columns(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> names;
+  std::stringstream header(line);
+  for (std::string name; std::getline(header, name, ',');) names.push_back(name);
+  std::map<std::string, std::vector<double>> cols;
+  while (std::getline(in, line)) {
+    std::stringstream row(line);
+    std::string cell;
+    for (std::size_t i = 0; i < names.size() && std::getline(row, cell, ','); ++i) cols[names[i]].push_back(std::stod(cell));
+  }
+  return cols;
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+/// short_scenario with the default scenario's text plus `extra` YAML.
+Scenario short_scenario_with(const std::string& extra, double duration_s) {
+  const std::string path = kRoot + "/data/scenarios/default.yaml";
+  Scenario sc = parse_scenario(read_text(path) + extra, path, kRoot + "/data/scenarios", kRoot);
+  const Scenario plain = short_scenario(duration_s, SampleFormat::ibyte, 2);
+  sc.duration_s = plain.duration_s;
+  sc.sample_rate_hz = plain.sample_rate_hz;
+  sc.format = plain.format;
+  sc.adc = plain.adc;
+  sc.max_satellites = plain.max_satellites;
+  sc.truth_rate_hz = plain.truth_rate_hz;
+  sc.sat_truth_rate_hz = plain.sat_truth_rate_hz;
+  validate_scenario(sc);
+  return sc;
+}
+
+TEST(IfSynthesizer, ErrorPresetNoneIsTheScenarioWithoutErrors) {
+  const Scenario without = short_scenario(0.15, SampleFormat::ibyte, 2);
+  const Scenario with_none = short_scenario_with("errors: {preset: none}\n", 0.15);
+  ASSERT_EQ(without.errors, with_none.errors);
+  const NavData nav = read_rinex_nav(without.nav_file);
+  const auto a = fresh_dir("errors_absent"), b = fresh_dir("errors_none");
+  SynthesisOptions opt;
+  IfSynthesizer(without, nav).run(a.string(), opt);
+  IfSynthesizer(with_none, nav).run(b.string(), opt);
+  EXPECT_EQ(read_bytes(a / if_file_name(without.format)), read_bytes(b / if_file_name(without.format)));
+  EXPECT_EQ(read_bytes(a / "truth.csv"), read_bytes(b / "truth.csv"));
+  EXPECT_EQ(read_bytes(a / "sat_truth.csv"), read_bytes(b / "sat_truth.csv"));
+  // Every error column says "no error": the receiver's models are the truth.
+  auto cols = read_columns(b / "sat_truth.csv");
+  ASSERT_GT(cols["prn"].size(), 10u);
+  for (std::size_t i = 0; i < cols["prn"].size(); ++i) {
+    EXPECT_EQ(cols["orbit_m"][i], 0.0);
+    EXPECT_EQ(cols["sat_clock_error_m"][i], 0.0);
+    EXPECT_EQ(cols["antenna_gain_db"][i], 0.0);
+    EXPECT_EQ(cols["iono_broadcast_m"][i], cols["iono_m"][i]);
+    EXPECT_EQ(cols["tropo_model_m"][i], cols["tropo_m"][i]);
+  }
+}
+
+TEST(IfSynthesizer, OpenSkyErrorsAreInTheSignalAndTheTruth) {
+  const Scenario sc = short_scenario_with("errors: {preset: open-sky}\n", 0.2);
+  const NavData nav = read_rinex_nav(sc.nav_file);
+  const auto a = fresh_dir("open_sky_1"), b = fresh_dir("open_sky_3"), plain = fresh_dir("open_sky_plain");
+  SynthesisOptions one, three;
+  three.threads = 3;
+  IfSynthesizer(sc, nav).run(a.string(), one);
+  IfSynthesizer(sc, nav).run(b.string(), three);
+  // Whatever the thread count, the same bytes.
+  const auto if_a = read_bytes(a / if_file_name(sc.format));
+  EXPECT_EQ(if_a, read_bytes(b / if_file_name(sc.format)));
+  EXPECT_EQ(read_bytes(a / "sat_truth.csv"), read_bytes(b / "sat_truth.csv"));
+  // The world differs from the receiver's models, so the signal differs from preset none.
+  IfSynthesizer(short_scenario(0.2, SampleFormat::ibyte, 2), nav).run(plain.string(), one);
+  EXPECT_NE(if_a, read_bytes(plain / if_file_name(sc.format)));
+  EXPECT_EQ(read_bytes(a / "truth.csv"), read_bytes(plain / "truth.csv"));  // the receiver did not move
+
+  auto cols = read_columns(a / "sat_truth.csv");
+  const std::size_t n = cols["prn"].size();
+  ASSERT_GT(n, 10u);
+  const double c = gps::kSpeedOfLight_mps;
+  double orbit2 = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = cols["t_s"][i];
+    // Pseudorange = broadcast range + orbit error + c b - (broadcast clock + clock error) + I + T.
+    const double bias_m = c * (1.5e-4 + 0.5e-6 * t);
+    EXPECT_NEAR(cols["pseudorange_m"][i] - (cols["range_m"][i] + cols["orbit_m"][i] + bias_m - cols["sat_clock_m"][i] -
+                                            cols["sat_clock_error_m"][i] + cols["iono_m"][i] + cols["tropo_m"][i]),
+                0.0, 0.01 + c * 2e-9);  // printed to 0.1 mm; the TCXO's noise over 0.2 s is below 2 ns
+    EXPECT_NE(cols["iono_m"][i], cols["iono_broadcast_m"][i]);
+    EXPECT_GT(cols["tropo_m"][i] - cols["tropo_model_m"][i], 0.03);  // humid summer air
+    EXPECT_LT(cols["antenna_gain_db"][i], 0.0);
+    EXPECT_GT(cols["antenna_gain_db"][i], -6.0);  // satellites above the 10 deg mask
+    EXPECT_NE(cols["sat_clock_error_m"][i], 0.0);
+    orbit2 += cols["orbit_m"][i] * cols["orbit_m"][i];
+  }
+  EXPECT_GT(std::sqrt(orbit2 / static_cast<double>(n)), 0.05);
+  EXPECT_LT(std::sqrt(orbit2 / static_cast<double>(n)), 1.5);
+  // The antenna gain is in the C/N0 (elevation model 40..48 dB-Hz before it).
+  auto plain_cols = read_columns(plain / "sat_truth.csv");
+  for (std::size_t i = 0; i < n; ++i)
+    EXPECT_NEAR(cols["cn0_dbhz"][i], plain_cols["cn0_dbhz"][i] + cols["antenna_gain_db"][i], 0.011);
+
+  // Another seed: other orbit, clock and atmosphere errors.
+  Scenario other = sc;
+  other.seed = 2;
+  const auto d = fresh_dir("open_sky_seed2");
+  IfSynthesizer(other, nav).run(d.string(), one);
+  auto other_cols = read_columns(d / "sat_truth.csv");
+  EXPECT_NE(other_cols["orbit_m"], cols["orbit_m"]);
+  EXPECT_NE(other_cols["sat_clock_error_m"], cols["sat_clock_error_m"]);
+  EXPECT_NE(other_cols["iono_m"], cols["iono_m"]);
+  EXPECT_EQ(other_cols["iono_broadcast_m"], cols["iono_broadcast_m"]);
+}
+
+TEST(IfSynthesizer, AtmosphereSwitchesStillRemoveTheTrueDelay) {
+  Scenario sc = short_scenario_with("errors: {preset: open-sky}\n", 0.05);
+  sc.ionosphere = false;
+  sc.troposphere = false;
+  const auto dir = fresh_dir("open_sky_no_atmosphere");
+  IfSynthesizer(sc, read_rinex_nav(sc.nav_file)).run(dir.string(), SynthesisOptions{});
+  auto cols = read_columns(dir / "sat_truth.csv");
+  ASSERT_GT(cols["prn"].size(), 4u);
+  for (std::size_t i = 0; i < cols["prn"].size(); ++i) {
+    EXPECT_EQ(cols["iono_m"][i], 0.0);
+    EXPECT_EQ(cols["tropo_m"][i], 0.0);
+    EXPECT_GT(cols["iono_broadcast_m"][i], 0.3);  // what the receiver will still remove
+    EXPECT_GT(cols["tropo_model_m"][i], 2.0);
+  }
+}
+
 TEST(IfSynthesizer, UnwritableOutputFolderIsAnErrorAndLeavesNothing) {
   const Scenario sc = short_scenario(0.01, SampleFormat::ibyte, 2);
   const NavData nav = read_rinex_nav(sc.nav_file);

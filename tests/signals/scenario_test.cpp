@@ -113,6 +113,89 @@ TEST(Scenario, BadInputNamesTheField) {
   expect_error("", {"test.yaml"});
 }
 
+TEST(Scenario, ErrorsDefaultToNoneAndPresetsFillEveryField) {
+  EXPECT_EQ(parse(kMinimal).errors, error_preset("none"));
+  EXPECT_EQ(parse(std::string(kMinimal) + "errors: {preset: none}\n").errors, error_preset("none"));
+  const ErrorSpec none = error_preset("none");
+  EXPECT_EQ(none.ionosphere.model, IonosphereTruthSpec::Model::klobuchar);
+  EXPECT_EQ(none.ionosphere.vtec_scale, 1.0);
+  EXPECT_EQ(none.troposphere.model, TroposphereTruthSpec::Model::saastamoinen_standard);
+  EXPECT_FALSE(none.orbit_clock.any());
+  EXPECT_EQ(none.antenna.pattern, AntennaSpec::Pattern::isotropic);
+  for (const std::string& name : error_preset_names()) {
+    const Scenario s = parse(std::string(kMinimal) + "errors: {preset: " + name + "}\n");
+    EXPECT_EQ(s.errors, error_preset(name)) << name;
+    EXPECT_EQ(s.errors.preset, name);
+  }
+  const ErrorSpec open = error_preset("open-sky");
+  EXPECT_EQ(open.ionosphere.model, IonosphereTruthSpec::Model::thin_shell);
+  EXPECT_EQ(open.troposphere.model, TroposphereTruthSpec::Model::site);
+  EXPECT_TRUE(open.orbit_clock.any());
+  EXPECT_EQ(open.antenna.pattern, AntennaSpec::Pattern::patch);
+}
+
+TEST(Scenario, ExplicitErrorFieldsOverrideThePreset) {
+  const Scenario s = parse(std::string(kMinimal) + R"(errors:
+  preset: open-sky
+  ionosphere: {vtec_scale: 1.5, shell_height_km: 350}
+  troposphere: {mapping: black-eisner, temperature_c: -5.5}
+  orbit_clock: {clock_m: 0}
+  antenna: {pattern: isotropic}
+)");
+  ErrorSpec expected = error_preset("open-sky");
+  expected.ionosphere.vtec_scale = 1.5;
+  expected.ionosphere.shell_height_m = 350e3;
+  expected.troposphere.mapping = TroposphereTruthSpec::Mapping::black_eisner;
+  expected.troposphere.temperature_c = -5.5;
+  expected.orbit_clock.clock_m = 0.0;
+  expected.antenna.pattern = AntennaSpec::Pattern::isotropic;
+  EXPECT_EQ(s.errors, expected);
+  // Without a preset the overrides apply to none.
+  const Scenario n = parse(std::string(kMinimal) + "errors: {orbit_clock: {radial_m: 0.4}}\n");
+  EXPECT_EQ(n.errors.preset, "none");
+  EXPECT_EQ(n.errors.orbit_clock.radial_m, 0.4);
+  EXPECT_EQ(n.errors.ionosphere, error_preset("none").ionosphere);
+}
+
+TEST(Scenario, ErrorSettingsRoundTripThroughYaml) {
+  for (const std::string& extra :
+       {std::string(""), std::string("errors: {preset: urban}\n"),
+        std::string("errors:\n  preset: suburban\n  ionosphere: {model: klobuchar, vtec_scale: 0.7, day_vtec_tecu: 33.3, "
+                    "night_vtec_tecu: 2.5, shell_height_km: 425.5, disturbance_rms: 0.07}\n  troposphere: {model: site, "
+                    "pressure_hpa: 998.4, temperature_c: 31.7, relative_humidity: 0.91, wet_random_walk_m_per_sqrt_h: "
+                    "0.021, mapping: black-eisner}\n  orbit_clock: {radial_m: 0.25, along_m: 1.3, cross_m: 0.45, "
+                    "clock_m: 0.65, correlation_time_s: 5400}\n  antenna: {pattern: patch, gain_10deg_db: -6.5, "
+                    "gain_horizon_db: -12.25}\n")}) {
+    const Scenario s = parse(std::string(kMinimal) + extra);
+    const std::string yaml = scenario_to_yaml(s);
+    EXPECT_NE(yaml.find("errors:"), std::string::npos);
+    const Scenario back = parse(yaml);
+    EXPECT_EQ(back.errors, s.errors) << yaml;
+    EXPECT_EQ(scenario_to_yaml(back), yaml);
+  }
+}
+
+TEST(Scenario, BadErrorSettingsNameTheField) {
+  const std::string m = kMinimal;
+  expect_error(m + "errors: {preset: jungle}\n", {"test.yaml:3", "errors.preset", "open-sky"});
+  expect_error(m + "errors: {presets: none}\n", {"errors.presets", "unknown field"});
+  expect_error(m + "errors:\n  ionosphere: {modle: klobuchar}\n", {"test.yaml:4", "errors.ionosphere.modle", "unknown field"});
+  expect_error(m + "errors: {ionosphere: {model: iri}}\n", {"errors.ionosphere.model", "thin-shell"});
+  expect_error(m + "errors: {ionosphere: {vtec_scale: -1}}\n", {"errors.ionosphere.vtec_scale", "out of range"});
+  expect_error(m + "errors: {ionosphere: {night_vtec_tecu: 80}}\n", {"errors.ionosphere.night_vtec_tecu", "day_vtec_tecu"});
+  expect_error(m + "errors: {ionosphere: {shell_height_km: 50}}\n", {"errors.ionosphere.shell_height_km", "out of range"});
+  expect_error(m + "errors: {troposphere: {relative_humidity: 1.5}}\n", {"errors.troposphere.relative_humidity", "out of range"});
+  expect_error(m + "errors: {troposphere: {mapping: gmf}}\n", {"errors.troposphere.mapping", "niell"});
+  expect_error(m + "errors: {troposphere: {pressure: 1000}}\n", {"errors.troposphere.pressure", "unknown field"});
+  expect_error(m + "errors: {orbit_clock: {radial_m: -0.1}}\n", {"errors.orbit_clock.radial_m", "out of range"});
+  expect_error(m + "errors: {orbit_clock: {correlation_time_s: 1}}\n", {"errors.orbit_clock.correlation_time_s"});
+  expect_error(m + "errors: {orbit_clock: {sisre_m: 1}}\n", {"errors.orbit_clock.sisre_m", "unknown field"});
+  expect_error(m + "errors: {antenna: {pattern: helix}}\n", {"errors.antenna.pattern", "patch"});
+  expect_error(m + "errors: {antenna: {gain_10deg_db: -12}}\n", {"errors.antenna.gain_10deg_db", "gain_horizon_db"});
+  expect_error(m + "errors: {antenna: {gain_10deg_db: 3}}\n", {"errors.antenna.gain_10deg_db", "out of range"});
+  expect_error(m + "errors: open-sky\n", {"errors", "mapping"});
+}
+
 TEST(Scenario, MissingFileIsReported) {
   EXPECT_THROW(load_scenario("/nonexistent/scenario.yaml"), std::invalid_argument);
 }
