@@ -1,6 +1,7 @@
 #include "signals/scenario.hpp"
 
 #include "ins/imu_model.hpp"
+#include "signals/multipath_presets.hpp"
 
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
@@ -274,6 +275,56 @@ std::vector<OutageSpec> parse_outages(const Field& f) {
   return out;
 }
 
+/// multipath: an environment name (shorthand), or {model | environment, parameters}. An
+/// environment starts from multipath_for_environment() and the keys given override it;
+/// parameters of the other model are rejected, so a misplaced key is not ignored.
+MultipathSpec parse_multipath(const Field& f) {
+  MultipathSpec spec;
+  auto from_environment = [](const Field& e) {
+    try {
+      return multipath_for_environment(e.text());
+    } catch (const std::invalid_argument& err) {
+      e.fail(err.what());
+    }
+  };
+  if (f.is_scalar()) return from_environment(f);  // shorthand: multipath: urban
+  f.allow_only({"model", "environment", "antenna_height_m", "reflection_coefficient", "below_horizon_gain_db", "echoes",
+                "echo_power_db", "echo_rician_k", "mean_excess_delay_m", "echo_lifetime_s", "blocked_probability",
+                "mean_blocked_s", "blocked_attenuation_db"});
+  if (f.has("model") && f.has("environment")) f.fail("give either 'model' or 'environment', not both");
+  if (f.has("environment")) spec = from_environment(f["environment"]);
+  if (f.has("model")) {
+    try {
+      spec.model = parse_multipath_model(f["model"].text());
+    } catch (const std::invalid_argument& e) {
+      f["model"].fail(e.what());
+    }
+  }
+  const bool ground = spec.model == MultipathSpec::Model::ground;
+  const bool land = spec.model == MultipathSpec::Model::land_mobile;
+  auto only_for = [&](std::initializer_list<const char*> keys, bool applies, const char* model) {
+    for (const char* k : keys)
+      if (f.has(k) && !applies)
+        f[k].fail(fmt::format("only for model '{}' (this one is '{}')", model, to_string(spec.model)));
+  };
+  only_for({"antenna_height_m", "reflection_coefficient", "below_horizon_gain_db"}, ground, "ground");
+  only_for({"echoes", "echo_power_db", "echo_rician_k", "mean_excess_delay_m", "echo_lifetime_s", "blocked_probability",
+            "mean_blocked_s", "blocked_attenuation_db"},
+           land, "land-mobile");
+  if (f.has("antenna_height_m")) spec.antenna_height_m = f["antenna_height_m"].number_in(0, 100);
+  if (f.has("reflection_coefficient")) spec.reflection_coefficient = f["reflection_coefficient"].number_in(0, 1);
+  if (f.has("below_horizon_gain_db")) spec.below_horizon_gain_db = f["below_horizon_gain_db"].number_in(-60, 0);
+  if (f.has("echoes")) spec.echoes = static_cast<int>(f["echoes"].integer_in(0, MultipathSpec::kMaxEchoes));
+  if (f.has("echo_power_db")) spec.echo_power_db = f["echo_power_db"].number_in(-60, 10);
+  if (f.has("echo_rician_k")) spec.echo_rician_k = f["echo_rician_k"].number_in(0, 1000);
+  if (f.has("mean_excess_delay_m")) spec.mean_excess_delay_m = f["mean_excess_delay_m"].number_in(0.1, 3000);
+  if (f.has("echo_lifetime_s")) spec.echo_lifetime_s = f["echo_lifetime_s"].number_in(0.01, 1e5);
+  if (f.has("blocked_probability")) spec.blocked_probability = f["blocked_probability"].number_in(0, 0.95);
+  if (f.has("mean_blocked_s")) spec.mean_blocked_s = f["mean_blocked_s"].number_in(0.01, 1e5);
+  if (f.has("blocked_attenuation_db")) spec.blocked_attenuation_db = f["blocked_attenuation_db"].number_in(0, 100);
+  return spec;
+}
+
 }  // namespace
 
 Scenario parse_scenario(const std::string& yaml_text, const std::string& origin, const std::string& base_dir,
@@ -288,7 +339,7 @@ Scenario parse_scenario(const std::string& yaml_text, const std::string& origin,
   if (!root.IsMap()) throw std::invalid_argument(origin + ": expected a scenario mapping at the top level");
   f.allow_only({"name", "start_time", "duration_s", "sample_rate_hz", "if_hz", "format", "adc", "nav_file",
                 "trajectory", "elevation_mask_deg", "prns", "max_satellites", "cn0", "receiver_clock", "ionosphere",
-                "troposphere", "seed", "jammers", "outages", "imu", "truth_rate_hz", "sat_truth_rate_hz"});
+                "troposphere", "seed", "jammers", "outages", "imu", "multipath", "truth_rate_hz", "sat_truth_rate_hz"});
   Scenario s;
   s.source_path = origin;
   s.name = f.has("name") ? f["name"].text() : std::filesystem::path(origin).stem().string();
@@ -337,6 +388,7 @@ Scenario parse_scenario(const std::string& yaml_text, const std::string& origin,
   }
   if (f.has("outages")) s.outages = parse_outages(f["outages"]);
   if (f.has("imu")) s.imu = parse_imu(f["imu"], base_dir, search_root);
+  if (f.has("multipath")) s.multipath = parse_multipath(f["multipath"]);
   if (f.has("truth_rate_hz")) s.truth_rate_hz = f["truth_rate_hz"].number_in(0.1, 1000);
   if (f.has("sat_truth_rate_hz")) s.sat_truth_rate_hz = f["sat_truth_rate_hz"].number_in(0.1, 1000);
   try {
@@ -467,6 +519,24 @@ std::string scenario_to_yaml(const Scenario& s) {
         << s.imu.grade << YAML::Key << "grades_file" << YAML::Value << s.imu.grades_file << YAML::Key << "rate_hz"
         << YAML::Value << s.imu.rate_hz << YAML::Key << "lever_arm_m" << YAML::Value << YAML::Flow << YAML::BeginSeq
         << s.imu.lever_arm_m[0] << s.imu.lever_arm_m[1] << s.imu.lever_arm_m[2] << YAML::EndSeq << YAML::EndMap;
+  }
+  if (s.multipath.model != MultipathSpec::Model::none) {
+    const MultipathSpec& m = s.multipath;
+    out << YAML::Key << "multipath" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "model"
+        << YAML::Value << std::string(to_string(m.model));
+    if (m.model == MultipathSpec::Model::ground) {
+      out << YAML::Key << "antenna_height_m" << YAML::Value << m.antenna_height_m << YAML::Key
+          << "reflection_coefficient" << YAML::Value << m.reflection_coefficient << YAML::Key
+          << "below_horizon_gain_db" << YAML::Value << m.below_horizon_gain_db;
+    } else {
+      out << YAML::Key << "echoes" << YAML::Value << m.echoes << YAML::Key << "echo_power_db" << YAML::Value
+          << m.echo_power_db << YAML::Key << "echo_rician_k" << YAML::Value << m.echo_rician_k << YAML::Key
+          << "mean_excess_delay_m" << YAML::Value << m.mean_excess_delay_m << YAML::Key << "echo_lifetime_s"
+          << YAML::Value << m.echo_lifetime_s << YAML::Key << "blocked_probability" << YAML::Value
+          << m.blocked_probability << YAML::Key << "mean_blocked_s" << YAML::Value << m.mean_blocked_s << YAML::Key
+          << "blocked_attenuation_db" << YAML::Value << m.blocked_attenuation_db;
+    }
+    out << YAML::EndMap;
   }
   out << YAML::Key << "truth_rate_hz" << YAML::Value << s.truth_rate_hz;
   out << YAML::Key << "sat_truth_rate_hz" << YAML::Value << s.sat_truth_rate_hz;

@@ -12,6 +12,7 @@
 #include "ins/gps_time.hpp"
 #include "ins/wgs84.hpp"
 #include "signals/jammer.hpp"
+#include "signals/multipath_spec.hpp"
 #include "signals/sample_format.hpp"
 
 namespace deepnav {
@@ -91,6 +92,7 @@ struct Scenario {
   std::vector<JammerConfig> jammers;
   std::vector<OutageSpec> outages;
   ImuSpec imu{};
+  MultipathSpec multipath{};         ///< echoes and blockage (default: none, the direct signal only)
   double truth_rate_hz = 100.0;      ///< receiver truth rows per second
   double sat_truth_rate_hz = 10.0;   ///< per-satellite truth rows per second
 };

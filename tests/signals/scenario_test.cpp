@@ -5,6 +5,8 @@
 #include <cmath>
 #include <string>
 
+#include "signals/multipath_presets.hpp"
+
 namespace deepnav {
 namespace {
 
@@ -111,6 +113,64 @@ TEST(Scenario, BadInputNamesTheField) {
   expect_error(std::string(kMinimal) + "imu: {lever_arm_m: [1, 2]}\n", {"imu.lever_arm_m"});
   expect_error("start_time: [unclosed\n", {"test.yaml"});
   expect_error("", {"test.yaml"});
+}
+
+TEST(Scenario, MultipathSectionParsesAndRoundTrips) {
+  EXPECT_EQ(parse(kMinimal).multipath.model, MultipathSpec::Model::none);
+  EXPECT_EQ(parse(std::string(kMinimal) + "multipath: {model: none}\n").multipath.model, MultipathSpec::Model::none);
+  const Scenario g = parse(std::string(kMinimal) +
+                           "multipath: {model: ground, antenna_height_m: 2, reflection_coefficient: 0.4, "
+                           "below_horizon_gain_db: -12}\n");
+  EXPECT_EQ(g.multipath.model, MultipathSpec::Model::ground);
+  EXPECT_EQ(g.multipath.antenna_height_m, 2.0);
+  EXPECT_EQ(g.multipath.reflection_coefficient, 0.4);
+  EXPECT_EQ(g.multipath.below_horizon_gain_db, -12.0);
+  const Scenario g_back = parse(scenario_to_yaml(g));
+  EXPECT_EQ(g_back.multipath.model, MultipathSpec::Model::ground);
+  EXPECT_EQ(g_back.multipath.antenna_height_m, 2.0);
+  EXPECT_EQ(g_back.multipath.below_horizon_gain_db, -12.0);
+
+  const Scenario l = parse(std::string(kMinimal) +
+                           "multipath:\n  model: land-mobile\n  echoes: 4\n  echo_power_db: -8\n  echo_rician_k: 2\n"
+                           "  mean_excess_delay_m: 40\n  echo_lifetime_s: 3\n  blocked_probability: 0.3\n"
+                           "  mean_blocked_s: 1.5\n  blocked_attenuation_db: 22\n");
+  const Scenario l_back = parse(scenario_to_yaml(l));
+  for (const Scenario* s : {&l, &l_back}) {
+    const MultipathSpec& m = s->multipath;
+    EXPECT_EQ(m.model, MultipathSpec::Model::land_mobile);
+    EXPECT_EQ(m.echoes, 4);
+    EXPECT_EQ(m.echo_power_db, -8.0);
+    EXPECT_EQ(m.echo_rician_k, 2.0);
+    EXPECT_EQ(m.mean_excess_delay_m, 40.0);
+    EXPECT_EQ(m.echo_lifetime_s, 3.0);
+    EXPECT_EQ(m.blocked_probability, 0.3);
+    EXPECT_EQ(m.mean_blocked_s, 1.5);
+    EXPECT_EQ(m.blocked_attenuation_db, 22.0);
+  }
+  // An environment, as shorthand or as the base that the keys given override.
+  EXPECT_EQ(parse(std::string(kMinimal) + "multipath: urban\n").multipath.echoes, multipath_for_environment("urban").echoes);
+  const Scenario e = parse(std::string(kMinimal) + "multipath: {environment: suburban, blocked_probability: 0.5}\n");
+  EXPECT_EQ(e.multipath.model, MultipathSpec::Model::land_mobile);
+  EXPECT_EQ(e.multipath.blocked_probability, 0.5);
+  EXPECT_EQ(e.multipath.echo_power_db, multipath_for_environment("suburban").echo_power_db);
+  EXPECT_EQ(parse(std::string(kMinimal) + "multipath: open-sky\n").multipath.model, MultipathSpec::Model::ground);
+  EXPECT_EQ(scenario_to_yaml(parse(kMinimal)).find("multipath:"), std::string::npos);
+}
+
+TEST(Scenario, BadMultipathNamesTheField) {
+  expect_error(std::string(kMinimal) + "multipath: {model: rain}\n", {"test.yaml:3", "multipath.model", "land-mobile"});
+  expect_error(std::string(kMinimal) + "multipath: downtown\n", {"multipath", "urban"});
+  expect_error(std::string(kMinimal) + "multipath: {model: ground, echoes: 3}\n", {"multipath.echoes", "land-mobile"});
+  expect_error(std::string(kMinimal) + "multipath: {model: land-mobile, antenna_height_m: 3}\n",
+               {"multipath.antenna_height_m", "ground"});
+  expect_error(std::string(kMinimal) + "multipath: {model: none, echoes: 2}\n", {"multipath.echoes"});
+  expect_error(std::string(kMinimal) + "multipath: {model: land-mobile, echoes: 9}\n", {"multipath.echoes", "out of range"});
+  expect_error(std::string(kMinimal) + "multipath: {model: land-mobile, blocked_probability: 1.2}\n",
+               {"multipath.blocked_probability", "out of range"});
+  expect_error(std::string(kMinimal) + "multipath: {model: ground, reflection_coefficient: 1.5}\n",
+               {"multipath.reflection_coefficient"});
+  expect_error(std::string(kMinimal) + "multipath: {model: ground, height_m: 3}\n", {"multipath.height_m", "unknown field"});
+  expect_error(std::string(kMinimal) + "multipath: {model: ground, environment: urban}\n", {"multipath", "not both"});
 }
 
 TEST(Scenario, MissingFileIsReported) {
