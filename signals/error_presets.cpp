@@ -1,5 +1,7 @@
 #include "signals/error_presets.hpp"
 
+#include "signals/multipath_presets.hpp"
+
 #include <stdexcept>
 
 namespace deepnav {
@@ -77,13 +79,14 @@ ErrorSpec error_preset(const std::string& name) {
     e.antenna.pattern = AntennaSpec::Pattern::isotropic;
     return e;
   }
-  if (name == "open-sky") return open_sky();
   // The atmosphere, the broadcast errors and the antenna do not depend on the surroundings:
-  // suburban and urban share open-sky's values here. What makes them differ (multipath,
-  // blockage) is not part of this error world yet.
-  if (name == "suburban" || name == "urban") {
+  // suburban and urban share open-sky's values; their multipath and blockage differ
+  // (multipath_presets.cpp: a weak ground reflection in open sky, a land-mobile channel
+  // with more blockage and stronger echoes towards the city).
+  if (name == "open-sky" || name == "suburban" || name == "urban") {
     ErrorSpec e = open_sky();
     e.preset = name;
+    e.multipath = multipath_for_environment(name);
     return e;
   }
   std::string list;

@@ -1,13 +1,14 @@
 #pragma once
 // The error world of a scenario: how the truth the synthesizer uses differs from the
 // broadcast models the receiver removes (ionosphere, troposphere, orbit and clock) and the
-// receiver antenna's gain pattern. A preset fills every field; explicit scenario fields
+// receiver antenna's gain pattern, and the multipath and blockage around it. A preset fills every field; explicit scenario fields
 // override it. Values and their sources: error_presets.cpp.
 #include <string>
 #include <vector>
 
 #include "signals/antenna_pattern.hpp"
 #include "signals/ionosphere_truth.hpp"
+#include "signals/multipath_spec.hpp"
 #include "signals/orbit_clock_error.hpp"
 #include "signals/troposphere_truth.hpp"
 
@@ -19,6 +20,7 @@ struct ErrorSpec {
   TroposphereTruthSpec troposphere{};
   OrbitClockErrorSpec orbit_clock{};
   AntennaSpec antenna{};
+  MultipathSpec multipath{};  ///< echoes and blockage (none: the direct signal only)
 
   bool operator==(const ErrorSpec&) const = default;
 };

@@ -23,7 +23,9 @@
 #include "signals/front_end.hpp"
 #include "signals/if_file_writer.hpp"
 #include "signals/gps_constants.hpp"
+#include "signals/line_of_sight.hpp"
 #include "signals/lnav_message.hpp"
+#include "signals/multipath_channel.hpp"
 #include "signals/receiver_clock_model.hpp"
 #include "signals/satellite_selection.hpp"
 #include "signals/satellite_signal_kernel.hpp"
@@ -36,6 +38,9 @@ namespace {
 constexpr int kEpochsPerChunk = 100;  // 100 ms of samples per parallel chunk
 constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 constexpr std::int64_t kMsPerWeek = 604800000;
+constexpr double kChip_m = gps::kSpeedOfLight_mps / gps::kCodeRate_cps;
+/// sat_truth.csv's multipath_m is the error of an ideal E-L DLL with this (the receiver's default) spacing.
+constexpr double kTruthDllSpacing_chips = 0.5;
 
 /// The LNAV data-bit signs (+1/-1) a satellite transmits over a span of its own time,
 /// indexed by the absolute 1 ms code period (counted from the GPS time origin).
@@ -75,6 +80,7 @@ struct BoundaryState {
   ReceiverInstant rx;
   TrajectoryState traj;
   std::vector<SatelliteInstant> sats;
+  std::vector<PathSet> paths;  ///< per satellite; empty without a multipath model
 };
 
 double ramp_offset_db(const Cn0Spec& spec, double t_s) {
@@ -116,6 +122,7 @@ struct IfSynthesizer::Impl {
   double ref_frac_s = 0.0;         ///< start time minus ref_ms_abs (below 1 ms)
   GpsTime ref_time{};              ///< the reference epoch as a GpsTime
   std::unique_ptr<ErrorWorld> world;  ///< the truth models the signal follows
+  std::unique_ptr<MultipathChannel> multipath;  ///< null for model none: no extra work at all
 
   Impl(Scenario s, NavData n) : sc(std::move(s)), nav(std::move(n)) {
     samples_per_epoch = std::llround(sc.sample_rate_hz / 1000.0);
@@ -129,6 +136,22 @@ struct IfSynthesizer::Impl {
                                          sc.start_time, sc.duration_s,
                                          wgs84::ecef_to_llh(trajectory->at(0.0).r_ecef_m));
     choose_satellites();
+    if (sc.errors.multipath.model != MultipathSpec::Model::none) make_multipath();
+  }
+
+  /// The channel over the whole run; the land-mobile model reads each satellite's
+  /// elevation and the antenna's speed along the trajectory (receiver time since the start).
+  void make_multipath() {
+    std::vector<int> prns;
+    for (const auto& run : runs) prns.push_back(run.eph.prn);
+    auto state_at = [this](double t_s) { return trajectory->at(std::clamp(t_s, 0.0, trajectory->duration_s())); };
+    auto elevation = [&](std::size_t sat, double t_s) {
+      const TrajectoryState st = state_at(t_s);
+      const LineOfSight los = line_of_sight(runs[sat].eph, sc.start_time.plus_seconds(t_s), st.r_ecef_m, st.v_ecef_mps);
+      return look_angles(st.r_ecef_m, los.r_sat_ecef_m).elevation_rad;
+    };
+    auto speed = [&](double t_s) { return state_at(t_s).v_ned_mps.norm(); };
+    multipath = std::make_unique<MultipathChannel>(sc.errors.multipath, sc.seed, prns, sc.duration_s, elevation, speed);
   }
 
   std::unique_ptr<Trajectory> make_trajectory() const {
@@ -232,37 +255,77 @@ struct IfSynthesizer::Impl {
     b.rx = receiver_at(k, clock, bias0_s, b.traj);
     b.sats.reserve(runs.size());
     for (const auto& run : runs) b.sats.push_back(evaluate_satellite(run.eph, nav.iono, *world, b.rx, sc.if_hz));
+    if (multipath) {
+      b.paths.reserve(runs.size());
+      const double t_s = static_cast<double>(k) * 1e-3;
+      for (std::size_t s = 0; s < runs.size(); ++s) b.paths.push_back(multipath->paths(s, t_s, b.sats[s].elevation_rad));
+    }
     return b;
   }
 
-  /// Adds every satellite's signal for epoch k (between boundaries a and b) into i/q.
+  /// Adds one path of satellite s over an epoch of n samples whose code and carrier phases
+  /// go linearly from (code_a, carrier_a) to (code_b, carrier_b): segments split where the
+  /// code period (and possibly the data bit) changes, each with that period's bit.
+  void add_path(std::size_t s, int n, double code_a, double code_b, double carrier_a, double carrier_b, float amp,
+                float* i_out, float* q_out, float* scratch) const {
+    const double code_step = (code_b - code_a) / n;
+    const double carrier_step = (carrier_b - carrier_a) / n;
+    int first = 0;
+    while (first < n) {
+      const double chips = code_a + first * code_step;
+      const double period = std::floor(chips / gps::kCodeLength_chips);
+      const double next_edge = (period + 1.0) * gps::kCodeLength_chips;
+      const int last = std::min(n, static_cast<int>(std::ceil((next_edge - code_a) / code_step)));
+      const int count = std::max(1, last - first);
+      const auto ms = ref_ms_abs + static_cast<std::int64_t>(period);
+      SignalSegment seg;
+      seg.carrier_phase_cycles = carrier_a + first * carrier_step;
+      seg.carrier_step_cycles = carrier_step;
+      seg.code_phase_chips = std::clamp(chips - period * gps::kCodeLength_chips, 0.0, 1022.999999);
+      seg.code_step_chips = code_step;
+      seg.amplitude = amp * static_cast<float>(runs[s].bits->sign_at_ms(ms));
+      add_satellite_segment(i_out + first, q_out + first, count, seg, *runs[s].code, scratch);
+      first += count;
+    }
+  }
+
+  /// Adds every satellite's signal for epoch k (between boundaries a and b) into i/q: the
+  /// direct path, then (with a multipath model) each echo as a delayed, scaled and
+  /// phase-rotated replica with the data bits of its own, delayed, timing.
   void synthesize_epoch(std::int64_t k, const BoundaryState& a, const BoundaryState& b, float* i_out, float* q_out,
                         float* scratch) const {
+    constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
     const int n = static_cast<int>(samples_per_epoch);
     const double t_s = static_cast<double>(k) * 1e-3;
     for (std::size_t s = 0; s < runs.size(); ++s) {
       const SatelliteInstant& sa = a.sats[s];
+      const SatelliteInstant& sb = b.sats[s];
       const float amp = amplitude(s, sa, t_s);
       if (amp == 0.0f) continue;
-      const double code_step = (b.sats[s].code_chips - sa.code_chips) / n;
-      const double carrier_step = (b.sats[s].carrier_cycles - sa.carrier_cycles) / n;
-      // Split the epoch where the code period (and possibly the data bit) changes.
-      int first = 0;
-      while (first < n) {
-        const double chips = sa.code_chips + first * code_step;
-        const double period = std::floor(chips / gps::kCodeLength_chips);
-        const double next_edge = (period + 1.0) * gps::kCodeLength_chips;
-        const int last = std::min(n, static_cast<int>(std::ceil((next_edge - sa.code_chips) / code_step)));
-        const int count = std::max(1, last - first);
-        const auto ms = ref_ms_abs + static_cast<std::int64_t>(period);
-        SignalSegment seg;
-        seg.carrier_phase_cycles = sa.carrier_cycles + first * carrier_step;
-        seg.carrier_step_cycles = carrier_step;
-        seg.code_phase_chips = std::clamp(chips - period * gps::kCodeLength_chips, 0.0, 1022.999999);
-        seg.code_step_chips = code_step;
-        seg.amplitude = amp * static_cast<float>(runs[s].bits->sign_at_ms(ms));
-        add_satellite_segment(i_out + first, q_out + first, count, seg, *runs[s].code, scratch);
-        first += count;
+      if (!multipath) {
+        add_path(s, n, sa.code_chips, sb.code_chips, sa.carrier_cycles, sb.carrier_cycles, amp, i_out, q_out, scratch);
+        continue;
+      }
+      // The path set at the epoch's start holds for the epoch; an echo that is still the
+      // same reflector at its end has its delay and phase interpolated across it (its
+      // excess code and carrier rates), a new one keeps the start's values.
+      const PathSet& pa = a.paths[s];
+      const PathSet& pb = b.paths[s];
+      const float direct = amp * static_cast<float>(pa.direct_gain);
+      if (direct != 0.0f)
+        add_path(s, n, sa.code_chips, sb.code_chips, sa.carrier_cycles, sb.carrier_cycles, direct, i_out, q_out, scratch);
+      for (int e = 0; e < pa.echo_count; ++e) {
+        const EchoPath& ea = pa.echoes[static_cast<std::size_t>(e)];
+        const float echo_amp = amp * static_cast<float>(ea.amplitude);
+        if (echo_amp == 0.0f) continue;
+        EchoPath eb = ea;
+        if (e < pb.echo_count && pb.echoes[static_cast<std::size_t>(e)].id == ea.id) eb = pb.echoes[static_cast<std::size_t>(e)];
+        // Unwrapped phase change over the epoch: well below half a cycle per millisecond.
+        double dphi = eb.carrier_phase_rad - ea.carrier_phase_rad;
+        dphi -= kTwoPi * std::round(dphi / kTwoPi);
+        add_path(s, n, sa.code_chips - ea.excess_delay_m / kChip_m, sb.code_chips - eb.excess_delay_m / kChip_m,
+                 sa.carrier_cycles + ea.carrier_phase_rad / kTwoPi,
+                 sb.carrier_cycles + (ea.carrier_phase_rad + dphi) / kTwoPi, echo_amp, i_out, q_out, scratch);
       }
     }
   }
@@ -302,7 +365,7 @@ void write_sat_truth_header(TextOutputFile& f) {
   f.write(
       "t_s,prn,code_phase_chips,doppler_hz,carrier_phase_cycles,cn0_dbhz,elevation_deg,azimuth_deg,pseudorange_m,"
       "range_m,range_rate_mps,iono_m,tropo_m,sat_clock_m,transmitting,iono_broadcast_m,tropo_model_m,orbit_m,"
-      "sat_clock_error_m,antenna_gain_db\n");
+      "sat_clock_error_m,antenna_gain_db,multipath_m,los_gain_db,echoes\n");
 }
 
 }  // namespace
@@ -441,15 +504,26 @@ SynthesisSummary IfSynthesizer::run(const std::string& out_dir, const SynthesisO
             const SatelliteInstant& si = b.sats[s];
             const double t_s = static_cast<double>(k) * 1e-3;
             const bool on = m.amplitude(s, si, t_s) > 0.0f;
+            // Multipath truth: the pseudorange error an ideal wide (0.5 chip) E-L DLL would
+            // have on the path set, the direct path's gain, and the number of echoes.
+            double multipath_m = 0.0, los_gain_db = 0.0;
+            int echoes = 0;
+            if (m.multipath) {
+              const PathSet& p = b.paths[s];
+              multipath_m = ideal_dll_multipath_error_chips(p, kTruthDllSpacing_chips) * kChip_m;
+              los_gain_db = p.direct_gain > 0.0 ? 20.0 * std::log10(p.direct_gain) : -300.0;
+              echoes = p.echo_count;
+            }
             sat_truth->write(fmt::format("{:.3f},{},{:.6f},{:.4f},{:.4f},{:.2f},{:.4f},{:.4f},{:.4f},{:.4f},{:.5f},{:.4f},{:.4f},{:.4f},{},"
-                                         "{:.4f},{:.4f},{:.4f},{:.4f},{:.3f}\n",
+                                         "{:.4f},{:.4f},{:.4f},{:.4f},{:.3f},{:.4f},{:.2f},{}\n",
                                          t_s, m.runs[s].eph.prn,
                                          si.code_chips - std::floor(si.code_chips / 1023.0) * 1023.0, si.doppler_hz,
                                          m.sc.if_hz * b.rx.t_rcv_rel_s - si.carrier_cycles,
                                          m.cn0_dbhz(s, si, t_s), si.elevation_rad * kRadToDeg,
                                          si.azimuth_rad * kRadToDeg, si.pseudorange_m, si.range_m, si.range_rate_mps,
                                          si.iono_m, si.tropo_m, si.sat_clock_m, on ? 1 : 0, si.iono_broadcast_m,
-                                         si.tropo_model_m, si.orbit_m, si.sat_clock_error_m, si.antenna_gain_db));
+                                         si.tropo_model_m, si.orbit_m, si.sat_clock_error_m, si.antenna_gain_db,
+                                         multipath_m, los_gain_db, echoes));
           }
         }
       }

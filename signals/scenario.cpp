@@ -1,6 +1,7 @@
 #include "signals/scenario.hpp"
 
 #include "ins/imu_model.hpp"
+#include "signals/multipath_presets.hpp"
 
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
@@ -274,6 +275,56 @@ std::vector<OutageSpec> parse_outages(const Field& f) {
   return out;
 }
 
+/// multipath: an environment name (shorthand), or {model | environment, parameters}. An
+/// environment starts from multipath_for_environment() and the keys given override it;
+/// parameters of the other model are rejected, so a misplaced key is not ignored.
+MultipathSpec parse_multipath(const Field& f) {
+  MultipathSpec spec;
+  auto from_environment = [](const Field& e) {
+    try {
+      return multipath_for_environment(e.text());
+    } catch (const std::invalid_argument& err) {
+      e.fail(err.what());
+    }
+  };
+  if (f.is_scalar()) return from_environment(f);  // shorthand: multipath: urban
+  f.allow_only({"model", "environment", "antenna_height_m", "reflection_coefficient", "below_horizon_gain_db", "echoes",
+                "echo_power_db", "echo_rician_k", "mean_excess_delay_m", "echo_lifetime_s", "blocked_probability",
+                "mean_blocked_s", "blocked_attenuation_db"});
+  if (f.has("model") && f.has("environment")) f.fail("give either 'model' or 'environment', not both");
+  if (f.has("environment")) spec = from_environment(f["environment"]);
+  if (f.has("model")) {
+    try {
+      spec.model = parse_multipath_model(f["model"].text());
+    } catch (const std::invalid_argument& e) {
+      f["model"].fail(e.what());
+    }
+  }
+  const bool ground = spec.model == MultipathSpec::Model::ground;
+  const bool land = spec.model == MultipathSpec::Model::land_mobile;
+  auto only_for = [&](std::initializer_list<const char*> keys, bool applies, const char* model) {
+    for (const char* k : keys)
+      if (f.has(k) && !applies)
+        f[k].fail(fmt::format("only for model '{}' (this one is '{}')", model, to_string(spec.model)));
+  };
+  only_for({"antenna_height_m", "reflection_coefficient", "below_horizon_gain_db"}, ground, "ground");
+  only_for({"echoes", "echo_power_db", "echo_rician_k", "mean_excess_delay_m", "echo_lifetime_s", "blocked_probability",
+            "mean_blocked_s", "blocked_attenuation_db"},
+           land, "land-mobile");
+  if (f.has("antenna_height_m")) spec.antenna_height_m = f["antenna_height_m"].number_in(0, 100);
+  if (f.has("reflection_coefficient")) spec.reflection_coefficient = f["reflection_coefficient"].number_in(0, 1);
+  if (f.has("below_horizon_gain_db")) spec.below_horizon_gain_db = f["below_horizon_gain_db"].number_in(-60, 0);
+  if (f.has("echoes")) spec.echoes = static_cast<int>(f["echoes"].integer_in(0, MultipathSpec::kMaxEchoes));
+  if (f.has("echo_power_db")) spec.echo_power_db = f["echo_power_db"].number_in(-60, 10);
+  if (f.has("echo_rician_k")) spec.echo_rician_k = f["echo_rician_k"].number_in(0, 1000);
+  if (f.has("mean_excess_delay_m")) spec.mean_excess_delay_m = f["mean_excess_delay_m"].number_in(0.1, 3000);
+  if (f.has("echo_lifetime_s")) spec.echo_lifetime_s = f["echo_lifetime_s"].number_in(0.01, 1e5);
+  if (f.has("blocked_probability")) spec.blocked_probability = f["blocked_probability"].number_in(0, 0.95);
+  if (f.has("mean_blocked_s")) spec.mean_blocked_s = f["mean_blocked_s"].number_in(0.01, 1e5);
+  if (f.has("blocked_attenuation_db")) spec.blocked_attenuation_db = f["blocked_attenuation_db"].number_in(0, 100);
+  return spec;
+}
+
 /// Reads `text` as one of `names` (the enum value at the same position).
 template <typename Enum>
 Enum parse_choice(const Field& f, std::initializer_list<std::pair<const char*, Enum>> names) {
@@ -303,10 +354,10 @@ const char* choice_name(std::initializer_list<std::pair<const char*, Enum>> name
   return "?";
 }
 
-/// errors: {preset, ionosphere, troposphere, orbit_clock, antenna}: the preset's values,
-/// then every field given explicitly.
+/// errors: {preset, ionosphere, troposphere, orbit_clock, antenna, multipath}: the preset's
+/// values, then every field given explicitly.
 ErrorSpec parse_errors(const Field& f) {
-  f.allow_only({"preset", "ionosphere", "troposphere", "orbit_clock", "antenna"});
+  f.allow_only({"preset", "ionosphere", "troposphere", "orbit_clock", "antenna", "multipath"});
   ErrorSpec e;
   if (f.has("preset")) {
     try {
@@ -362,6 +413,7 @@ ErrorSpec parse_errors(const Field& f) {
       (a.has("gain_10deg_db") ? a["gain_10deg_db"] : a).fail(
           fmt::format("need gain_horizon_db < gain_10deg_db < 0, got {} and {}", s.gain_horizon_db, s.gain_10deg_db));
   }
+  if (f.has("multipath")) e.multipath = parse_multipath(f["multipath"]);
   return e;
 }
 
@@ -557,6 +609,24 @@ std::string scenario_to_yaml(const Scenario& s) {
         << YAML::Value << choice_name(kAntennaPatterns, e.antenna.pattern) << YAML::Key << "gain_10deg_db"
         << YAML::Value << e.antenna.gain_10deg_db << YAML::Key << "gain_horizon_db" << YAML::Value
         << e.antenna.gain_horizon_db << YAML::EndMap;
+    {
+      const MultipathSpec& m = e.multipath;
+      out << YAML::Key << "multipath" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "model"
+          << YAML::Value << std::string(to_string(m.model));
+      if (m.model == MultipathSpec::Model::ground) {
+        out << YAML::Key << "antenna_height_m" << YAML::Value << m.antenna_height_m << YAML::Key
+            << "reflection_coefficient" << YAML::Value << m.reflection_coefficient << YAML::Key
+            << "below_horizon_gain_db" << YAML::Value << m.below_horizon_gain_db;
+      } else if (m.model == MultipathSpec::Model::land_mobile) {
+        out << YAML::Key << "echoes" << YAML::Value << m.echoes << YAML::Key << "echo_power_db" << YAML::Value
+            << m.echo_power_db << YAML::Key << "echo_rician_k" << YAML::Value << m.echo_rician_k << YAML::Key
+            << "mean_excess_delay_m" << YAML::Value << m.mean_excess_delay_m << YAML::Key << "echo_lifetime_s"
+            << YAML::Value << m.echo_lifetime_s << YAML::Key << "blocked_probability" << YAML::Value
+            << m.blocked_probability << YAML::Key << "mean_blocked_s" << YAML::Value << m.mean_blocked_s << YAML::Key
+            << "blocked_attenuation_db" << YAML::Value << m.blocked_attenuation_db;
+      }
+      out << YAML::EndMap;
+    }
     out << YAML::EndMap;
   }
   out << YAML::Key << "seed" << YAML::Value << s.seed;

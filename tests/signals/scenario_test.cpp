@@ -5,6 +5,8 @@
 #include <cmath>
 #include <string>
 
+#include "signals/multipath_presets.hpp"
+
 namespace deepnav {
 namespace {
 
@@ -194,6 +196,64 @@ TEST(Scenario, BadErrorSettingsNameTheField) {
   expect_error(m + "errors: {antenna: {gain_10deg_db: -12}}\n", {"errors.antenna.gain_10deg_db", "gain_horizon_db"});
   expect_error(m + "errors: {antenna: {gain_10deg_db: 3}}\n", {"errors.antenna.gain_10deg_db", "out of range"});
   expect_error(m + "errors: open-sky\n", {"errors", "mapping"});
+}
+
+TEST(Scenario, MultipathParsesAndRoundTrips) {
+  EXPECT_EQ(parse(kMinimal).errors.multipath.model, MultipathSpec::Model::none);
+  EXPECT_EQ(parse(std::string(kMinimal) + "errors: {multipath: {model: none}}\n").errors.multipath.model, MultipathSpec::Model::none);
+  const Scenario g = parse(std::string(kMinimal) +
+                           "errors: {multipath: {model: ground, antenna_height_m: 2, reflection_coefficient: 0.4, "
+                           "below_horizon_gain_db: -12}}\n");
+  EXPECT_EQ(g.errors.multipath.model, MultipathSpec::Model::ground);
+  EXPECT_EQ(g.errors.multipath.antenna_height_m, 2.0);
+  EXPECT_EQ(g.errors.multipath.reflection_coefficient, 0.4);
+  EXPECT_EQ(g.errors.multipath.below_horizon_gain_db, -12.0);
+  const Scenario g_back = parse(scenario_to_yaml(g));
+  EXPECT_EQ(g_back.errors.multipath.model, MultipathSpec::Model::ground);
+  EXPECT_EQ(g_back.errors.multipath.antenna_height_m, 2.0);
+  EXPECT_EQ(g_back.errors.multipath.below_horizon_gain_db, -12.0);
+
+  const Scenario l = parse(std::string(kMinimal) +
+                           "errors:\n  multipath:\n    model: land-mobile\n    echoes: 4\n    echo_power_db: -8\n    echo_rician_k: 2\n"
+                           "    mean_excess_delay_m: 40\n    echo_lifetime_s: 3\n    blocked_probability: 0.3\n"
+                           "    mean_blocked_s: 1.5\n    blocked_attenuation_db: 22\n");
+  const Scenario l_back = parse(scenario_to_yaml(l));
+  for (const Scenario* s : {&l, &l_back}) {
+    const MultipathSpec& m = s->errors.multipath;
+    EXPECT_EQ(m.model, MultipathSpec::Model::land_mobile);
+    EXPECT_EQ(m.echoes, 4);
+    EXPECT_EQ(m.echo_power_db, -8.0);
+    EXPECT_EQ(m.echo_rician_k, 2.0);
+    EXPECT_EQ(m.mean_excess_delay_m, 40.0);
+    EXPECT_EQ(m.echo_lifetime_s, 3.0);
+    EXPECT_EQ(m.blocked_probability, 0.3);
+    EXPECT_EQ(m.mean_blocked_s, 1.5);
+    EXPECT_EQ(m.blocked_attenuation_db, 22.0);
+  }
+  // An environment, as shorthand or as the base that the keys given override.
+  EXPECT_EQ(parse(std::string(kMinimal) + "errors: {multipath: urban}\n").errors.multipath.echoes, multipath_for_environment("urban").echoes);
+  const Scenario e = parse(std::string(kMinimal) + "errors: {multipath: {environment: suburban, blocked_probability: 0.5}}\n");
+  EXPECT_EQ(e.errors.multipath.model, MultipathSpec::Model::land_mobile);
+  EXPECT_EQ(e.errors.multipath.blocked_probability, 0.5);
+  EXPECT_EQ(e.errors.multipath.echo_power_db, multipath_for_environment("suburban").echo_power_db);
+  EXPECT_EQ(parse(std::string(kMinimal) + "errors: {multipath: open-sky}\n").errors.multipath.model, MultipathSpec::Model::ground);
+  EXPECT_NE(scenario_to_yaml(parse(kMinimal)).find("multipath: {model: none}"), std::string::npos);
+}
+
+TEST(Scenario, BadMultipathNamesTheField) {
+  expect_error(std::string(kMinimal) + "errors: {multipath: {model: rain}}\n", {"test.yaml:3", "multipath.model", "land-mobile"});
+  expect_error(std::string(kMinimal) + "errors: {multipath: downtown}\n", {"multipath", "urban"});
+  expect_error(std::string(kMinimal) + "errors: {multipath: {model: ground, echoes: 3}}\n", {"multipath.echoes", "land-mobile"});
+  expect_error(std::string(kMinimal) + "errors: {multipath: {model: land-mobile, antenna_height_m: 3}}\n",
+               {"multipath.antenna_height_m", "ground"});
+  expect_error(std::string(kMinimal) + "errors: {multipath: {model: none, echoes: 2}}\n", {"multipath.echoes"});
+  expect_error(std::string(kMinimal) + "errors: {multipath: {model: land-mobile, echoes: 9}}\n", {"multipath.echoes", "out of range"});
+  expect_error(std::string(kMinimal) + "errors: {multipath: {model: land-mobile, blocked_probability: 1.2}}\n",
+               {"multipath.blocked_probability", "out of range"});
+  expect_error(std::string(kMinimal) + "errors: {multipath: {model: ground, reflection_coefficient: 1.5}}\n",
+               {"multipath.reflection_coefficient"});
+  expect_error(std::string(kMinimal) + "errors: {multipath: {model: ground, height_m: 3}}\n", {"multipath.height_m", "unknown field"});
+  expect_error(std::string(kMinimal) + "errors: {multipath: {model: ground, environment: urban}}\n", {"multipath", "not both"});
 }
 
 TEST(Scenario, MissingFileIsReported) {
