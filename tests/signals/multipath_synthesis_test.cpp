@@ -70,16 +70,17 @@ std::vector<Row> read_rows(const std::filesystem::path& p) {
   std::ifstream in(p);
   std::string line;
   std::getline(in, line);
-  EXPECT_NE(line.find(",transmitting,multipath_m,los_gain_db,echoes"), std::string::npos) << line;
+  EXPECT_NE(line.find(",antenna_gain_db,multipath_m,los_gain_db,echoes"), std::string::npos) << line;
   std::vector<Row> rows;
   while (std::getline(in, line)) {
     std::replace(line.begin(), line.end(), ',', ' ');
     std::istringstream s(line);
     Row r;
-    double cn0, az, pr, range, rr, iono, tropo, clk;
+    double cn0, az, pr, range, rr, iono, tropo, clk, iono_model, tropo_model, orbit, clk_error, antenna;
     int on;
     s >> r.t_s >> r.prn >> r.code_phase_chips >> r.doppler_hz >> r.carrier_phase_cycles >> cn0 >> r.elevation_deg >> az >>
-        pr >> range >> rr >> iono >> tropo >> clk >> on >> r.multipath_m >> r.los_gain_db >> r.echoes;
+        pr >> range >> rr >> iono >> tropo >> clk >> on >> iono_model >> tropo_model >> orbit >> clk_error >> antenna >>
+        r.multipath_m >> r.los_gain_db >> r.echoes;
     rows.push_back(r);
   }
   return rows;
