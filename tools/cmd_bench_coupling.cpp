@@ -17,6 +17,7 @@
 
 #include "signals/rinex_nav.hpp"
 #include "tools/aided_scenario_run.hpp"
+#include "tools/atmosphere_options.hpp"
 #include "tools/bench_report.hpp"
 #include "tools/command_registry.hpp"
 #include "tools/progress.hpp"
@@ -50,6 +51,7 @@ struct CouplingOptions {
   std::string work_dir, json_path, csv_path, plot_path;
   unsigned jobs = 1;
   std::uint64_t seed = 300;
+  AtmosphereModels atmosphere;  ///< the receiver's (the scenario decides what is synthesized)
 };
 
 /// Paper 003's 1-sigma position errors at 150 s (m, x/y/z), where the paper states them.
@@ -87,7 +89,8 @@ UnitResult run_unit(const CouplingOptions& o, const std::string& trajectory, int
   UnitResult u{trajectory, run, {}};
   // Aircraft turns ramp the Doppler by tens of Hz/s: third-order PLL for them.
   const int pll_order = trajectory.rfind("air", 0) == 0 ? 3 : 2;
-  for (const auto& m : o.modes) u.by_mode[m] = run_aided_scenario(sc, s, aiding::parse_nav_mode(m), pll_order);
+  for (const auto& m : o.modes)
+    u.by_mode[m] = run_aided_scenario(sc, s, aiding::parse_nav_mode(m), pll_order, o.atmosphere);
   std::filesystem::remove_all(dir);
   return u;
 }
@@ -222,6 +225,7 @@ const bool registered = register_command([](CommandParents& parents) {
   cmd->add_option("--csv", o->csv_path, "Per-epoch errors of every run");
   cmd->add_option("--plot", o->plot_path, "PNG of error over time for the circle cases (needs --csv)");
   cmd->add_option("--json", o->json_path, "Write the figures as JSON to this file");
+  add_atmosphere_options(*cmd, o->atmosphere);
   cmd->callback([o] { run_coupling(*o); });
 });
 
