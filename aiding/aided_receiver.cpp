@@ -217,7 +217,8 @@ struct AidedReceiver::Impl : ExternalChannelControl {
       RangeMeasurement m;
       m.prn = o.prn;
       m.time_offset_s = dt;
-      m.geometry = predict_range(*eph, *ep.t_rx, bias, nav->antenna_ecef_at(ep.t_s), nav->antenna_velocity_ecef_mps(), iono);
+      m.geometry = predict_range(*eph, *ep.t_rx, bias, nav->antenna_ecef_at(ep.t_s), nav->antenna_velocity_ecef_mps(), iono,
+                                 rx.atmosphere());
       if (m.geometry.elevation_rad < cfg.receiver.pvt.elevation_mask_rad) continue;
       m.pseudorange_m = o.pseudorange_m;
       const RangeErrorModel& errors = cfg.receiver.pvt.range_errors;
@@ -232,7 +233,7 @@ struct AidedReceiver::Impl : ExternalChannelControl {
       m.rate_time_offset_s = t_rate - nav->time_s();
       m.rate_geometry = predict_range(*eph, ep.t_rx->plus_seconds(o.doppler_offset_s),
                                       bias + nav->clock_drift_mps() * o.doppler_offset_s, nav->antenna_ecef_at(t_rate),
-                                      nav->antenna_velocity_ecef_at(t_rate), iono);
+                                      nav->antenna_velocity_ecef_at(t_rate), iono, rx.atmosphere());
       (cfg.fault_exclusion && faults.excluded(o.prn) ? watched : ms).push_back(m);
     }
     last_tight_satellites = static_cast<int>(ms.size());

@@ -68,7 +68,8 @@ std::optional<UltraTightTracker::SamplePrediction> UltraTightTracker::predict_at
   p.offset_s = t_s - nav.time_s();
   p.clock_bias_m = nav.clock_bias_m() + nav.clock_drift_mps() * p.offset_s;
   p.antenna_velocity_ecef_mps = nav.antenna_velocity_ecef_at(t_s);
-  p.range = predict_range(eph, *t_rx, p.clock_bias_m, nav.antenna_ecef_at(t_s), p.antenna_velocity_ecef_mps, rx_.iono());
+  p.range = predict_range(eph, *t_rx, p.clock_bias_m, nav.antenna_ecef_at(t_s), p.antenna_velocity_ecef_mps, rx_.iono(),
+                          rx_.atmosphere());
   return p;
 }
 

@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
+
 #include "ins/frames.hpp"
-#include "signals/atmosphere.hpp"
+#include "receiver/raim.hpp"
 #include "signals/gps_constants.hpp"
 
 namespace deepnav {
@@ -14,54 +16,80 @@ namespace {
 
 constexpr double c = gps::kSpeedOfLight_mps;
 
-/// Chi-square quantile for `dof` degrees of freedom at upper-tail probability p (Wilson-Hilferty).
-double chi2_quantile(int dof, double p) {
-  // Normal quantile by bisection on the complementary error function.
-  double lo = 0.0, hi = 10.0;
-  for (int i = 0; i < 100; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (0.5 * std::erfc(mid / std::sqrt(2.0)) > p ? lo : hi) = mid;
-  }
-  const double z = 0.5 * (lo + hi);
-  const double k = dof;
-  const double a = 1.0 - 2.0 / (9.0 * k) + z * std::sqrt(2.0 / (9.0 * k));
-  return k * a * a * a;
-}
-
 struct SatGeometry {
   Eigen::Vector3d r, v;
   double clock_m, drift_mps;
 };
 
+/// One least-squares fix with what the RAIM test needs of it: the design matrix and the
+/// weights of the last iteration and the post-fit residuals, rows in used_prns' order.
+struct Fit {
+  PvtSolution sol;
+  Eigen::MatrixXd H;
+  Eigen::VectorXd w, residuals_m;
+};
+
+Fit solve_once(const GpsTime& t_rx, const std::vector<PseudorangeObservation>& obs,
+               const std::map<int, Ephemeris>& ephemerides, const IonoParameters& iono, const PvtConfig& cfg,
+               const AtmosphereModels& atmosphere, const Eigen::Vector4d& seed);
+
+std::string prn_list(const std::vector<int>& prns) {
+  std::string s;
+  for (int prn : prns) s += (s.empty() ? "" : ", ") + std::to_string(prn);
+  return s;
+}
+
 }  // namespace
+
+std::string to_string(RaimStatus status) {
+  switch (status) {
+    case RaimStatus::unavailable: return "unavailable";
+    case RaimStatus::passed: return "passed";
+    case RaimStatus::excluded: return "excluded";
+    case RaimStatus::failed: return "failed";
+  }
+  return "?";
+}
 
 PvtSolution PvtSolver::solve(const GpsTime& t_rx, const std::vector<PseudorangeObservation>& obs,
                              const std::map<int, Ephemeris>& ephemerides, const IonoParameters& iono) {
   std::vector<PseudorangeObservation> use = obs;
   std::vector<int> excluded;
-  PvtSolution sol;
+  Fit fit;
   while (true) {
-    sol = solve_once(t_rx, use, ephemerides, iono);
-    if (!sol.valid) break;
-    const int n = static_cast<int>(sol.used_prns.size());
-    if (n < 6) break;
-    // Residual test: weighted sum of squares against the chi-square bound.
-    double sse = 0.0, worst = 0.0;
-    int worst_prn = 0;
-    for (const auto& o : use) {
-      const auto it = sol.residuals_m.find(o.prn);
-      if (it == sol.residuals_m.end()) continue;
-      const double w = it->second * it->second / cfg_.range_errors.pseudorange_variance_m2(sol.elevation_rad.at(o.prn), o.cn0_dbhz);
-      sse += w;
-      if (w > worst) {
-        worst = w;
-        worst_prn = o.prn;
-      }
+    fit = solve_once(t_rx, use, ephemerides, iono, cfg_, atmosphere_, seed_);
+    PvtSolution& sol = fit.sol;
+    const auto n = static_cast<int>(sol.used_prns.size());
+    if (!sol.valid || n < 5) {
+      sol.raim = RaimStatus::unavailable;
+      break;
     }
-    if (sse <= chi2_quantile(n - 4, cfg_.chi2_probability)) break;
+    const ResidualTest test = residual_test(fit.H, fit.w, fit.residuals_m, cfg_.raim_false_alarm_probability);
+    sol.raim_statistic = test.statistic;
+    sol.raim_threshold = test.threshold;
+    if (!test.fault_detected) {
+      sol.raim = excluded.empty() ? RaimStatus::passed : RaimStatus::excluded;
+      break;
+    }
+    // Exclude only while the test can still run on the rest (5 satellites or more).
+    const bool exclusions_left = static_cast<int>(excluded.size()) < cfg_.raim_max_exclusions;
+    if (!exclusions_left || n - 1 < 5) {
+      sol.raim = RaimStatus::failed;
+      sol.valid = false;
+      const std::string why =
+          !exclusions_left ? fmt::format("{} exclusion(s) allowed{}", cfg_.raim_max_exclusions,
+                                         excluded.empty() ? "" : ", excluded PRN " + prn_list(excluded))
+                           : std::string("too few satellites to exclude one and test again");
+      sol.reason = fmt::format("RAIM: fault detected (weighted residuals {:.1f} > {:.1f} with {} satellites) and not "
+                               "excluded ({}): fix not published",
+                               test.statistic, test.threshold, n, why);
+      break;
+    }
+    const int worst_prn = sol.used_prns[static_cast<std::size_t>(test.worst_row)];
     excluded.push_back(worst_prn);
     use.erase(std::remove_if(use.begin(), use.end(), [&](const auto& o) { return o.prn == worst_prn; }), use.end());
   }
+  PvtSolution sol = std::move(fit.sol);
   sol.excluded_prns = excluded;
   if (sol.valid) {
     seed_.head<3>() = sol.r_ecef_m;
@@ -70,15 +98,19 @@ PvtSolution PvtSolver::solve(const GpsTime& t_rx, const std::vector<PseudorangeO
   return sol;
 }
 
-PvtSolution PvtSolver::solve_once(const GpsTime& t_rx, const std::vector<PseudorangeObservation>& obs,
-                                  const std::map<int, Ephemeris>& ephemerides, const IonoParameters& iono) const {
-  PvtSolution sol;
+namespace {
+
+Fit solve_once(const GpsTime& t_rx, const std::vector<PseudorangeObservation>& obs,
+               const std::map<int, Ephemeris>& ephemerides, const IonoParameters& iono, const PvtConfig& cfg,
+               const AtmosphereModels& atmosphere, const Eigen::Vector4d& seed) {
+  Fit fit;
+  PvtSolution& sol = fit.sol;
   sol.t = t_rx;
-  Eigen::Vector4d x = seed_;
+  Eigen::Vector4d x = seed;
   std::vector<const PseudorangeObservation*> used;
   std::vector<SatGeometry> geo;
-  Eigen::MatrixXd H;
-  Eigen::VectorXd W;
+  Eigen::MatrixXd& H = fit.H;
+  Eigen::VectorXd& W = fit.w;
   for (int iter = 0; iter < 10; ++iter) {
     used.clear();
     geo.clear();
@@ -104,13 +136,13 @@ PvtSolution PvtSolver::solve_once(const GpsTime& t_rx, const std::vector<Pseudor
         const LookAngles la = look_angles(llh, x.head<3>(), g.r);
         el = la.elevation_rad;
         az = la.azimuth_rad;
-        if (el < cfg_.elevation_mask_rad) continue;
-        if (cfg_.ionosphere && iono.valid) corr += c * klobuchar_delay_s(iono, llh.lat_rad, llh.lon_rad, az, el, t_rx.sow);
-        if (cfg_.troposphere) corr += troposphere_delay_m(llh.lat_rad, llh.height_m, el);
+        if (el < cfg.elevation_mask_rad) continue;
+        corr += atmosphere.ionosphere_delay_m(iono, llh.lat_rad, llh.lon_rad, az, el, t_rx.sow);
+        corr += atmosphere.troposphere_delay_m(llh.lat_rad, llh.height_m, el);
       }
       rows.emplace_back(-d.x() / range, -d.y() / range, -d.z() / range, 1.0);
       resid.push_back(o.pseudorange_m - (range + x(3) - g.clock_m + corr));
-      weights.push_back(1.0 / cfg_.range_errors.pseudorange_variance_m2(el, o.cn0_dbhz));
+      weights.push_back(1.0 / cfg.range_errors.pseudorange_variance_m2(el, o.cn0_dbhz));
       sol.elevation_rad[o.prn] = el;
       sol.azimuth_rad[o.prn] = az;
       used.push_back(&o);
@@ -118,7 +150,7 @@ PvtSolution PvtSolver::solve_once(const GpsTime& t_rx, const std::vector<Pseudor
     }
     if (used.size() < 4) {
       sol.reason = "fewer than 4 usable satellites (" + std::to_string(used.size()) + ")";
-      return sol;
+      return fit;
     }
     const auto n = static_cast<Eigen::Index>(used.size());
     H.resize(n, 4);
@@ -141,6 +173,7 @@ PvtSolution PvtSolver::solve_once(const GpsTime& t_rx, const std::vector<Pseudor
   sol.llh = wgs84::ecef_to_llh(sol.r_ecef_m);
   const auto n = static_cast<Eigen::Index>(used.size());
   Eigen::VectorXd rr(n);
+  fit.residuals_m.resize(n);
   for (Eigen::Index i = 0; i < n; ++i) {
     const auto& o = *used[static_cast<std::size_t>(i)];
     const auto& g = geo[static_cast<std::size_t>(i)];
@@ -149,12 +182,13 @@ PvtSolution PvtSolver::solve_once(const GpsTime& t_rx, const std::vector<Pseudor
     // Pseudorange residual with the final state (atmosphere as in the last iteration).
     const double el = sol.elevation_rad[o.prn];
     double corr = 0.0;
-    if (cfg_.ionosphere && iono.valid) {
+    if (atmosphere.ionosphere == IonosphereModel::klobuchar && iono.valid) {
       const LookAngles la = look_angles(sol.llh, sol.r_ecef_m, g.r);
-      corr += c * klobuchar_delay_s(iono, sol.llh.lat_rad, sol.llh.lon_rad, la.azimuth_rad, el, t_rx.sow);
+      corr += atmosphere.ionosphere_delay_m(iono, sol.llh.lat_rad, sol.llh.lon_rad, la.azimuth_rad, el, t_rx.sow);
     }
-    if (cfg_.troposphere) corr += troposphere_delay_m(sol.llh.lat_rad, sol.llh.height_m, el);
-    sol.residuals_m[o.prn] = o.pseudorange_m - (d.norm() + sol.clock_bias_m - g.clock_m + corr);
+    corr += atmosphere.troposphere_delay_m(sol.llh.lat_rad, sol.llh.height_m, el);
+    fit.residuals_m(i) = o.pseudorange_m - (d.norm() + sol.clock_bias_m - g.clock_m + corr);
+    sol.residuals_m[o.prn] = fit.residuals_m(i);
     // Range rate from Doppler: -lambda fd = u.(v_sat - v) + c (drift_rx - drift_sat).
     rr(i) = -gps::kL1Wavelength_m * o.doppler_hz - d.normalized().dot(g.v) + g.drift_mps;
   }
@@ -173,7 +207,8 @@ PvtSolution PvtSolver::solve_once(const GpsTime& t_rx, const std::vector<Pseudor
   sol.dops.tdop = std::sqrt(Q(3, 3));
   sol.valid = std::isfinite(sol.r_ecef_m.norm()) && sol.r_ecef_m.norm() > 6.0e6 && sol.r_ecef_m.norm() < 7.0e6;
   if (!sol.valid) sol.reason = "solution did not converge to the Earth's surface";
-  return sol;
+  return fit;
 }
 
+}  // namespace
 }  // namespace deepnav

@@ -15,15 +15,14 @@ struct Atmosphere {
 };
 
 Atmosphere atmosphere_at(const Eigen::Vector3d& r_rx_ecef_m, const Eigen::Vector3d& r_sat_ecef_m,
-                         const IonoParameters& iono, bool troposphere, double sow) {
+                         const IonoParameters& iono, const AtmosphereModels& models, double sow) {
   Atmosphere a;
   const wgs84::Llh llh = wgs84::ecef_to_llh(r_rx_ecef_m);
   const LookAngles la = look_angles(llh, r_rx_ecef_m, r_sat_ecef_m);
   a.elevation_rad = la.elevation_rad;
   a.azimuth_rad = la.azimuth_rad;
-  if (iono.valid)
-    a.iono_m = wgs84::kSpeedOfLight_mps * klobuchar_delay_s(iono, llh.lat_rad, llh.lon_rad, la.azimuth_rad, la.elevation_rad, sow);
-  if (troposphere && la.elevation_rad > 0.0) a.tropo_m = troposphere_delay_m(llh.lat_rad, llh.height_m, la.elevation_rad);
+  a.iono_m = models.ionosphere_delay_m(iono, llh.lat_rad, llh.lon_rad, la.azimuth_rad, la.elevation_rad, sow);
+  if (la.elevation_rad > 0.0) a.tropo_m = models.troposphere_delay_m(llh.lat_rad, llh.height_m, la.elevation_rad);
   return a;
 }
 
@@ -31,7 +30,7 @@ Atmosphere atmosphere_at(const Eigen::Vector3d& r_rx_ecef_m, const Eigen::Vector
 
 RangePrediction predict_range(const Ephemeris& eph, const GpsTime& t_rx, double clock_bias_m,
                               const Eigen::Vector3d& r_rx_ecef_m, const Eigen::Vector3d& v_rx_ecef_mps,
-                              const IonoParameters& iono, bool troposphere) {
+                              const IonoParameters& iono, const AtmosphereModels& models) {
   constexpr double c = wgs84::kSpeedOfLight_mps;
   RangePrediction p;
   // True receive time, then two fixed-point passes on the flight time (converges to
@@ -56,7 +55,7 @@ RangePrediction predict_range(const Ephemeris& eph, const GpsTime& t_rx, double 
   const Eigen::Vector3d z_cross_r(-p.r_sat_ecef_m.y(), p.r_sat_ecef_m.x(), 0.0);
   p.light_time_factor =
       1.0 / (1.0 + (p.los_ecef.dot(p.v_sat_ecef_mps) + wgs84::kEarthRate_radps * p.los_ecef.dot(z_cross_r)) / c);
-  const Atmosphere now = atmosphere_at(r_rx_ecef_m, p.r_sat_ecef_m, iono, troposphere, t_rx.sow);
+  const Atmosphere now = atmosphere_at(r_rx_ecef_m, p.r_sat_ecef_m, iono, models, t_rx.sow);
   p.elevation_rad = now.elevation_rad;
   p.azimuth_rad = now.azimuth_rad;
   p.atmosphere_m = now.iono_m + now.tropo_m;
@@ -64,9 +63,9 @@ RangePrediction predict_range(const Ephemeris& eph, const GpsTime& t_rx, double 
   // is advanced by the ionosphere as much as the code is delayed.
   constexpr double h = 0.5;
   const Atmosphere before = atmosphere_at(r_rx_ecef_m - h * v_rx_ecef_mps, p.r_sat_ecef_m - h * p.v_sat_ecef_mps, iono,
-                                          troposphere, t_rx.sow - h);
+                                          models, t_rx.sow - h);
   const Atmosphere after = atmosphere_at(r_rx_ecef_m + h * v_rx_ecef_mps, p.r_sat_ecef_m + h * p.v_sat_ecef_mps, iono,
-                                         troposphere, t_rx.sow + h);
+                                         models, t_rx.sow + h);
   p.carrier_atmosphere_rate_mps = ((after.tropo_m - after.iono_m) - (before.tropo_m - before.iono_m)) / (2.0 * h);
   p.troposphere_mapping = troposphere_mapping(now.elevation_rad);
   p.troposphere_mapping_rate_per_s =

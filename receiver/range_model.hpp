@@ -3,7 +3,8 @@
 // velocity and clock: what a tightly coupled filter compares with the measurements and
 // what an ultra-tight receiver steers its NCOs by. The same corrections as the PVT
 // solution: satellite clock with relativity and TGD, orbit at the transmit time, Earth
-// rotation during the flight, Klobuchar ionosphere and Saastamoinen troposphere.
+// rotation during the flight, and the receiver's atmosphere models (AtmosphereModels:
+// Klobuchar ionosphere and Saastamoinen troposphere by default).
 //
 // The rate is the rate of the carrier the receiver tracks, against its own clock (what
 // -lambda * Doppler measures), to a small fraction of a millimetre per second:
@@ -19,6 +20,7 @@
 #include <optional>
 
 #include "ins/gps_time.hpp"
+#include "receiver/atmosphere_models.hpp"
 #include "signals/ephemeris.hpp"
 #include "signals/gps_constants.hpp"
 #include "signals/iono_utc.hpp"
@@ -58,9 +60,11 @@ struct RangePrediction {
 
 /// Prediction at receiver time t_rx (receiver clock corrected by `clock_bias_m`) for a
 /// receiver at r_rx moving with v_rx (the velocity only moves the atmosphere's rate).
-/// `iono` may be invalid (no ionosphere applied).
+/// `models`: the receiver's choice (ScalarReceiver::atmosphere(), the same the PVT
+/// applies); `iono` is used only with the Klobuchar model and may be invalid (no
+/// ionosphere applied).
 RangePrediction predict_range(const Ephemeris& eph, const GpsTime& t_rx, double clock_bias_m,
                               const Eigen::Vector3d& r_rx_ecef_m, const Eigen::Vector3d& v_rx_ecef_mps,
-                              const IonoParameters& iono, bool troposphere = true);
+                              const IonoParameters& iono, const AtmosphereModels& models = {});
 
 }  // namespace deepnav

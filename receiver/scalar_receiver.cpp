@@ -77,7 +77,8 @@ struct ScalarReceiver::Impl {
   }
   std::optional<NavData> assisted;
 
-  Impl(ReceiverConfig c, SampleSource& s) : cfg(std::move(c)), src(s), fs(s.sample_rate_hz()), pvt(cfg.pvt) {
+  Impl(ReceiverConfig c, SampleSource& s)
+      : cfg(std::move(c)), src(s), fs(s.sample_rate_hz()), pvt(cfg.pvt, cfg.atmosphere) {
     cfg.acquisition.sample_rate_hz = fs;
     cfg.acquisition.if_hz = src.intermediate_frequency_hz();
     cfg.tracking.sample_rate_hz = fs;
@@ -361,6 +362,7 @@ double ScalarReceiver::clock_steps_s() const { return impl_->clock_steps_s; }
 
 std::map<int, Ephemeris> ScalarReceiver::ephemerides() const { return impl_->ephs; }
 IonoParameters ScalarReceiver::iono() const { return impl_->iono; }
+const AtmosphereModels& ScalarReceiver::atmosphere() const { return impl_->cfg.atmosphere; }
 UtcParameters ScalarReceiver::utc() const { return impl_->utc; }
 std::vector<int> ScalarReceiver::acquired_prns() const { return impl_->acquired; }
 

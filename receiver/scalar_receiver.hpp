@@ -35,6 +35,10 @@ struct ReceiverConfig {
   LoopBandwidths pull_in{15.0, 10.0, 1.0, 0.5};
   LoopBandwidths tracking_loops{10.0, 0.0, 0.5, 0.5};
   PvtConfig pvt;
+  /// The atmosphere models of every range the receiver or an aided filter predicts: the
+  /// PVT solution reads them from here, and so do tight coupling and ultra-tight steering
+  /// (through atmosphere()).
+  AtmosphereModels atmosphere;
 };
 
 /// Length of the carrier-phase window an observation's Doppler is averaged over.
@@ -126,6 +130,9 @@ class ScalarReceiver {
   /// Ephemerides, ionosphere and UTC decoded so far.
   std::map<int, Ephemeris> ephemerides() const;
   IonoParameters iono() const;
+  /// The atmosphere models in use (ReceiverConfig::atmosphere): predict ranges with these
+  /// and iono() so that they agree with the receiver's own PVT.
+  const AtmosphereModels& atmosphere() const;
   UtcParameters utc() const;
   std::vector<int> acquired_prns() const;
   /// Per PRN, over every channel that tracked it (dropped ones included).

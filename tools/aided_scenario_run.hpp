@@ -40,8 +40,9 @@ FileSampleSourceOptions synthesized_source(const Scenario& scenario, const Synth
 /// Runs `mode` (scalar included) on a synthesized scenario with assisted ephemerides and
 /// ionosphere from the scenario's navigation file.
 /// `pll_order` 3 suits high dynamics (aircraft turns): it follows a Doppler ramp
-/// without a steady-state phase error.
+/// without a steady-state phase error. `atmosphere`: the receiver's models (turn one off
+/// for a scenario synthesized without that delay).
 AidedRunResult run_aided_scenario(const Scenario& scenario, const SynthesisSummary& synthesis, aiding::NavMode mode,
-                                  int pll_order = 2);
+                                  int pll_order = 2, const AtmosphereModels& atmosphere = {});
 
 }  // namespace deepnav::cli

@@ -17,6 +17,7 @@
 #include "receiver/truth_file.hpp"
 #include "signals/rinex_nav.hpp"
 #include "signals/text_output_file.hpp"
+#include "tools/atmosphere_options.hpp"
 #include "tools/command_registry.hpp"
 #include "tools/progress.hpp"
 #include "tools/sample_source_factory.hpp"
@@ -322,6 +323,7 @@ const bool registered = register_command([](CommandParents& parents) {
   cmd->add_option("--iono-from", o->assist_nav,
                   "RINEX navigation file whose ionosphere parameters are used until the broadcast ones are decoded")
       ->check(CLI::ExistingFile);
+  add_atmosphere_options(*cmd, o->receiver.atmosphere);
   cmd->add_option("--ephemeris-from", o->assist_ephemeris,
                   "RINEX navigation file whose ephemerides are used until the broadcast ones are decoded (assisted start)")
       ->check(CLI::ExistingFile);
