@@ -10,6 +10,7 @@
 
 #include "aiding_test_fixture.hpp"
 #include "ins/gps_time.hpp"
+#include "aiding/satellite_fault_monitor.hpp"
 #include "signals/rinex_nav.hpp"
 
 namespace deepnav::aiding {
@@ -165,6 +166,73 @@ TEST(AidedNavigator, TightCouplingKeepsEstimatingWithThreeSatellites) {
   EXPECT_NEAR(nav.clock_drift_mps(), tr.clock_drift_mps, 0.1);
   // With three satellites the filter still runs on: the error grows only slowly.
   EXPECT_LT(worst_three_m, 5.0);
+}
+
+
+/// Tight coupling on the land circle with a pseudorange step of `step_m` on the first
+/// satellite from t = 60 s, the rows fed through the per-satellite fault monitor as the
+/// aided receiver does (or not): when the monitor excluded it, and the worst horizontal
+/// error after the step.
+struct StepOutcome {
+  double excluded_after_s = -1.0;
+  double worst_h_m = 0.0;
+  bool healthy = false;
+};
+
+StepOutcome run_tight_step(double step_m, bool monitor) {
+  const SimulatedRun run("land-circle", "tactical", 120.0, 100.0, 13);
+  TightRun tr;
+  const auto sats = tr.visible(run.trajectory->at(0.0).r_ecef_m);
+  AidedNavigator nav(run.perturbed_start({2.0, -2.0, 3.0}, {0.1, 0.1, -0.1}, {0.1 * kDeg, 0.1 * kDeg, 1.0 * kDeg}),
+                     tr.clock_bias0_m, tr.clock_drift_mps, testing::navigator_config(run.imu_model), InitialUncertainty{});
+  SatelliteFaultMonitor faults;
+  std::mt19937_64 rng(31);
+  std::normal_distribution<double> n01;
+  StepOutcome out;
+  double next = 1.0;
+  const int faulty = sats.front()->prn;
+  for (const ImuSample& s : run.imu) {
+    nav.propagate(s);
+    if (std::abs(s.t_s - next) > 1e-6) continue;
+    next += 1.0;
+    const TrajectoryState truth = run.trajectory->at(s.t_s);
+    const GpsTime t_rx = tr.t0.plus_seconds(s.t_s);
+    const double b = tr.clock_bias0_m + tr.clock_drift_mps * s.t_s;
+    std::vector<RangeMeasurement> used, watched;
+    for (const Ephemeris* e : sats) {
+      const RangePrediction actual = predict_range(*e, t_rx, b, truth.r_ecef_m, truth.v_ecef_mps, tr.nav_data.iono);
+      RangeMeasurement m;
+      m.prn = e->prn;
+      m.geometry = predict_range(*e, t_rx, nav.clock_bias_m(), nav.antenna_ecef_m(), nav.antenna_velocity_ecef_mps(),
+                                 tr.nav_data.iono);
+      m.pseudorange_m = actual.pseudorange_m(b) + 1.0 * n01(rng) + (e->prn == faulty && s.t_s >= 60.0 ? step_m : 0.0);
+      m.pseudorange_sigma_m = 1.0;
+      m.rate_mps = actual.pseudorange_rate_mps(truth.v_ecef_mps, tr.clock_drift_mps) + 0.05 * n01(rng);
+      m.rate_sigma_mps = 0.05;
+      (monitor && faults.excluded(e->prn) ? watched : used).push_back(m);
+    }
+    std::vector<SatelliteInnovation> rows;
+    nav.update_ranges(used, monitor ? &rows : nullptr, watched);
+    faults.add(s.t_s, rows);
+    if (out.excluded_after_s < 0.0 && faults.excluded(faulty)) out.excluded_after_s = s.t_s - 60.0;
+    if (s.t_s >= 60.0) out.worst_h_m = std::max(out.worst_h_m, testing::antenna_error_ned(nav, *run.trajectory).head<2>().norm());
+  }
+  out.healthy = nav.healthy();
+  return out;
+}
+
+TEST(AidedNavigator, TightCouplingExcludesASatelliteWithAStepAndStaysWithinBounds) {
+  // 30 m on a 1 m row: the gate turns each row away; the monitor takes the satellite out.
+  const StepOutcome big = run_tight_step(30.0, true);
+  EXPECT_TRUE(big.healthy);
+  EXPECT_GE(big.excluded_after_s, 0.0);
+  EXPECT_LE(big.excluded_after_s, 3.0) << "excluded within a few epochs";
+  EXPECT_LT(big.worst_h_m, 2.0);
+  // 4.5 m (4.5 sigma): under the gate, every row would pull the solution.
+  const StepOutcome small = run_tight_step(4.5, true), unwatched = run_tight_step(4.5, false);
+  EXPECT_GE(small.excluded_after_s, 0.0);
+  EXPECT_LE(small.excluded_after_s, 10.0);
+  EXPECT_LT(small.worst_h_m, unwatched.worst_h_m) << "excluding it beats letting it through the gate";
 }
 
 TEST(ErrorStateKalman, GatesOutliersAndNonFiniteMeasurementsWithoutLosingHealth) {
