@@ -116,6 +116,26 @@ struct TightRun {
   GpsTime t0 = gps_time_from_calendar(CalendarTime{2022, 1, 1, 2, 0, 0.0});
   double clock_bias0_m = 3000.0, clock_drift_mps = 90.0;  // 10 us and 0.3 ppm
 
+  /// Satellite `e` measured from the truth at t_s (pseudorange and rate noise in sigmas
+  /// given, plus `pseudorange_fault_m`), predicted from the navigator's own state.
+  RangeMeasurement measure(const Ephemeris& e, const AidedNavigator& nav, const TrajectoryState& truth, double t_s,
+                           double pseudorange_sigma_m, double rate_sigma_mps, std::mt19937_64& rng,
+                           double pseudorange_fault_m = 0.0) const {
+    std::normal_distribution<double> n01;
+    const GpsTime t_rx = t0.plus_seconds(t_s);
+    const double b = clock_bias0_m + clock_drift_mps * t_s;
+    const RangePrediction actual = predict_range(e, t_rx, b, truth.r_ecef_m, truth.v_ecef_mps, nav_data.iono);
+    RangeMeasurement m;
+    m.prn = e.prn;
+    m.geometry = predict_range(e, t_rx, nav.clock_bias_m(), nav.antenna_ecef_m(), nav.antenna_velocity_ecef_mps(),
+                               nav_data.iono);
+    m.pseudorange_m = actual.pseudorange_m(b) + pseudorange_sigma_m * n01(rng) + pseudorange_fault_m;
+    m.pseudorange_sigma_m = pseudorange_sigma_m;
+    m.rate_mps = actual.pseudorange_rate_mps(truth.v_ecef_mps, clock_drift_mps) + rate_sigma_mps * n01(rng);
+    m.rate_sigma_mps = rate_sigma_mps;
+    return m;
+  }
+
   std::vector<const Ephemeris*> visible(const Eigen::Vector3d& r_ecef) const {
     std::vector<const Ephemeris*> out;
     for (int prn = 1; prn <= 32; ++prn) {
@@ -136,28 +156,15 @@ TEST(AidedNavigator, TightCouplingKeepsEstimatingWithThreeSatellites) {
                      tr.clock_bias0_m + 20.0, tr.clock_drift_mps - 0.5, testing::navigator_config(run.imu_model),
                      InitialUncertainty{});
   std::mt19937_64 rng(21);
-  std::normal_distribution<double> n01;
   double next = 1.0, worst_three_m = 0.0;
   for (const ImuSample& s : run.imu) {
     nav.propagate(s);
     if (std::abs(s.t_s - next) > 1e-6) continue;
     next += 1.0;
     const TrajectoryState truth = run.trajectory->at(s.t_s);
-    const GpsTime t_rx = tr.t0.plus_seconds(s.t_s);
-    const double b = tr.clock_bias0_m + tr.clock_drift_mps * s.t_s;
     const std::size_t used = s.t_s < 120.0 ? sats.size() : 3;  // only three for the last minute
     std::vector<RangeMeasurement> ms;
-    for (std::size_t k = 0; k < used; ++k) {
-      const RangePrediction actual = predict_range(*sats[k], t_rx, b, truth.r_ecef_m, truth.v_ecef_mps, tr.nav_data.iono);
-      RangeMeasurement m;
-      m.geometry = predict_range(*sats[k], t_rx, nav.clock_bias_m(), nav.antenna_ecef_m(), nav.antenna_velocity_ecef_mps(),
-                                 tr.nav_data.iono);
-      m.pseudorange_m = actual.pseudorange_m(b) + 3.0 * n01(rng);
-      m.pseudorange_sigma_m = 3.0;
-      m.rate_mps = actual.pseudorange_rate_mps(truth.v_ecef_mps, tr.clock_drift_mps) + 0.05 * n01(rng);
-      m.rate_sigma_mps = 0.05;
-      ms.push_back(m);
-    }
+    for (std::size_t k = 0; k < used; ++k) ms.push_back(tr.measure(*sats[k], nav, truth, s.t_s, 3.0, 0.05, rng));
     nav.update_ranges(ms);
     const double h = testing::antenna_error_ned(nav, *run.trajectory).head<2>().norm();
     if (s.t_s >= 120.0) worst_three_m = std::max(worst_three_m, h);
@@ -187,7 +194,6 @@ StepOutcome run_tight_step(double step_m, bool monitor) {
                      tr.clock_bias0_m, tr.clock_drift_mps, testing::navigator_config(run.imu_model), InitialUncertainty{});
   SatelliteFaultMonitor faults;
   std::mt19937_64 rng(31);
-  std::normal_distribution<double> n01;
   StepOutcome out;
   double next = 1.0;
   const int faulty = sats.front()->prn;
@@ -196,20 +202,10 @@ StepOutcome run_tight_step(double step_m, bool monitor) {
     if (std::abs(s.t_s - next) > 1e-6) continue;
     next += 1.0;
     const TrajectoryState truth = run.trajectory->at(s.t_s);
-    const GpsTime t_rx = tr.t0.plus_seconds(s.t_s);
-    const double b = tr.clock_bias0_m + tr.clock_drift_mps * s.t_s;
     std::vector<RangeMeasurement> used, watched;
     for (const Ephemeris* e : sats) {
-      const RangePrediction actual = predict_range(*e, t_rx, b, truth.r_ecef_m, truth.v_ecef_mps, tr.nav_data.iono);
-      RangeMeasurement m;
-      m.prn = e->prn;
-      m.geometry = predict_range(*e, t_rx, nav.clock_bias_m(), nav.antenna_ecef_m(), nav.antenna_velocity_ecef_mps(),
-                                 tr.nav_data.iono);
-      m.pseudorange_m = actual.pseudorange_m(b) + 1.0 * n01(rng) + (e->prn == faulty && s.t_s >= 60.0 ? step_m : 0.0);
-      m.pseudorange_sigma_m = 1.0;
-      m.rate_mps = actual.pseudorange_rate_mps(truth.v_ecef_mps, tr.clock_drift_mps) + 0.05 * n01(rng);
-      m.rate_sigma_mps = 0.05;
-      (monitor && faults.excluded(e->prn) ? watched : used).push_back(m);
+      const double fault_m = e->prn == faulty && s.t_s >= 60.0 ? step_m : 0.0;
+      (monitor && faults.excluded(e->prn) ? watched : used).push_back(tr.measure(*e, nav, truth, s.t_s, 1.0, 0.05, rng, fault_m));
     }
     std::vector<SatelliteInnovation> rows;
     nav.update_ranges(used, monitor ? &rows : nullptr, watched);
