@@ -173,7 +173,7 @@ void run_sweep(const SweepOptions& o) {
   std::fflush(stdout);
   const int failed = run_parallel(work, out.string(), o.jobs);
   BenchReport report = write_jam_report(load_jam_points(out.string()), out.string());
-  report.add_note("out", out.string());
+  report.add_note("out", source_relative(out.string()));
   report.emit(o.json_path);
   if (!o.no_plots && run_plot_script("plot_jam.py", out.string())) spdlog::info("plots written to {}", out.string());
   if (failed > 0) throw UserError(fmt::format("{} point(s) failed to run; rerun the same command to retry them", failed));
