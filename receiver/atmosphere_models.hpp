@@ -1,6 +1,6 @@
 #pragma once
 // Which atmosphere models the receiver applies to its ranges: the one choice that the
-// PVT solution, the tight filter's predicted ranges and the ultra-tight NCO steering all
+// PVT solution, the tight filter's predicted ranges and the ultra-tight NCO commands all
 // read, so that they never disagree on the delays.
 //
 // The defaults (Klobuchar with the broadcast or assisted parameters, Saastamoinen with a

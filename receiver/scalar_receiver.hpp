@@ -36,7 +36,7 @@ struct ReceiverConfig {
   LoopBandwidths tracking_loops{10.0, 0.0, 0.5, 0.5};
   PvtConfig pvt;
   /// The atmosphere models of every range the receiver or an aided filter predicts: the
-  /// PVT solution reads them from here, and so do tight coupling and ultra-tight steering
+  /// PVT solution reads them from here, and so do tight coupling and the ultra-tight NCO commands
   /// (through atmosphere()).
   AtmosphereModels atmosphere;
 };
