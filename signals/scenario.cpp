@@ -1,4 +1,5 @@
 #include "signals/scenario.hpp"
+#include "signals/data_path.hpp"
 
 #include "ins/imu_model.hpp"
 #include "signals/multipath_presets.hpp"
@@ -97,16 +98,6 @@ class Field {
   std::string path_;
   const std::string* origin_;
 };
-
-std::string resolve_path(const std::string& path, const std::string& base_dir, const std::string& search_root) {
-  namespace fs = std::filesystem;
-  if (fs::path(path).is_absolute()) return path;
-  const fs::path from_base = fs::path(base_dir) / path;
-  if (fs::exists(from_base) || search_root.empty()) return from_base.lexically_normal().string();
-  const fs::path from_root = fs::path(search_root) / path;
-  if (fs::exists(from_root)) return from_root.lexically_normal().string();
-  return from_base.lexically_normal().string();  // the existence check names this one
-}
 
 /// start_time: "YYYY-MM-DDThh:mm:ss" (GPS time scale) or {week: W, sow: S}.
 GpsTime parse_start_time(const Field& f) {

@@ -19,16 +19,17 @@ FileSampleSourceOptions synthesized_source(const Scenario& sc, const SynthesisSu
   return o;
 }
 
-AidedRunResult run_aided_scenario(const Scenario& sc, const SynthesisSummary& s, aiding::NavMode mode, int pll_order,
-                                  const AtmosphereModels& atmosphere) {
+AidedRunResult run_aided_scenario(const Scenario& sc, const SynthesisSummary& s, aiding::NavMode mode,
+                                  const AidedRunSettings& settings) {
   const auto start = std::chrono::steady_clock::now();
   FileSampleSource source(synthesized_source(sc, s));
   aiding::AidedReceiverConfig cfg;
   cfg.mode = mode;
   cfg.receiver.reference_week = sc.start_time.week;
-  cfg.receiver.pull_in.pll_order = pll_order;
-  cfg.receiver.tracking_loops.pll_order = pll_order;
-  cfg.receiver.atmosphere = atmosphere;
+  cfg.receiver.pull_in.pll_order = settings.pll_order;
+  cfg.receiver.tracking_loops.pll_order = settings.pll_order;
+  cfg.receiver.atmosphere = settings.atmosphere;
+  cfg.troposphere.enabled = settings.filter_troposphere;
   cfg.imu = load_imu_grade(sc.imu.grades_file, sc.imu.grade).model;
   cfg.lever_arm_imu_to_antenna_b_m = -Eigen::Vector3d(sc.imu.lever_arm_m[0], sc.imu.lever_arm_m[1], sc.imu.lever_arm_m[2]);
   aiding::AidedReceiver rx(cfg, source, read_imu_csv(s.imu_path), sc.duration_s);

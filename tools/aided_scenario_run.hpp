@@ -37,12 +37,20 @@ struct AidedRunResult {
 /// How to read the IF file the synthesizer wrote for `scenario`.
 FileSampleSourceOptions synthesized_source(const Scenario& scenario, const SynthesisSummary& synthesis);
 
+/// What a benchmark may change in the receiver and the aided filter for one run.
+struct AidedRunSettings {
+  /// 3 suits high dynamics (aircraft turns): it follows a Doppler ramp without a
+  /// steady-state phase error.
+  int pll_order = 2;
+  /// The receiver's models (turn one off for a scenario synthesized without that delay).
+  AtmosphereModels atmosphere;
+  /// Tight and ultra-tight: the zenith troposphere residual state (an 18th state).
+  bool filter_troposphere = false;
+};
+
 /// Runs `mode` (scalar included) on a synthesized scenario with assisted ephemerides and
 /// ionosphere from the scenario's navigation file.
-/// `pll_order` 3 suits high dynamics (aircraft turns): it follows a Doppler ramp
-/// without a steady-state phase error. `atmosphere`: the receiver's models (turn one off
-/// for a scenario synthesized without that delay).
 AidedRunResult run_aided_scenario(const Scenario& scenario, const SynthesisSummary& synthesis, aiding::NavMode mode,
-                                  int pll_order = 2, const AtmosphereModels& atmosphere = {});
+                                  const AidedRunSettings& settings = {});
 
 }  // namespace deepnav::cli

@@ -69,6 +69,7 @@ struct CouplingOptions {
   unsigned jobs = 1;
   std::uint64_t seed = 300;
   bool list_commands = false;
+  bool filter_troposphere = false;  ///< tight/ultra: the zenith troposphere residual state
   AtmosphereModels atmosphere;  ///< the receiver's (the scenario decides what is synthesized)
 };
 
@@ -92,12 +93,15 @@ fs::path point_path(const CouplingOptions& o, const std::string& trajectory, int
 /// What a point's figures depend on besides (trajectory, run): a finished point made with
 /// other settings must not be mixed into this table.
 nlohmann::json point_settings(const CouplingOptions& o, const std::string& trajectory, int run) {
-  return {{"trajectory", trajectory},     {"run", run},
+  nlohmann::json s = {{"trajectory", trajectory},     {"run", run},
           {"seed", o.seed + 1000 * static_cast<std::uint64_t>(run) + seed_index(trajectory)},
           {"errors", o.errors},           {"duration_s", o.duration_s},
           {"imu_grade", o.imu_grade},     {"scenario", source_relative(o.base_scenario)},
           {"receiver_ionosphere", to_string(o.atmosphere.ionosphere)},
           {"receiver_troposphere", to_string(o.atmosphere.troposphere)}};
+  // Only when set, so points made before the option existed still match.
+  if (o.filter_troposphere) s["filter_troposphere"] = true;
+  return s;
 }
 
 /// One point: the trajectory synthesized in the chosen error world, every mode run on it.
@@ -118,10 +122,13 @@ nlohmann::json run_point(const CouplingOptions& o, const std::string& trajectory
   so.threads = 1;
   const SynthesisSummary s = IfSynthesizer(sc, read_rinex_nav(sc.nav_file)).run(dir, so);
   // Aircraft turns ramp the Doppler by tens of Hz/s: third-order PLL for them.
-  const int pll_order = trajectory.rfind("air", 0) == 0 ? 3 : 2;
+  AidedRunSettings run_settings;
+  run_settings.pll_order = trajectory.rfind("air", 0) == 0 ? 3 : 2;
+  run_settings.atmosphere = o.atmosphere;
+  run_settings.filter_troposphere = o.filter_troposphere;
   nlohmann::json point = settings;
   for (const auto& m : o.modes) {
-    const AidedRunResult r = run_aided_scenario(sc, s, aiding::parse_nav_mode(m), pll_order, o.atmosphere);
+    const AidedRunResult r = run_aided_scenario(sc, s, aiding::parse_nav_mode(m), run_settings);
     nlohmann::json epochs = nlohmann::json::array();
     for (const auto& e : r.epochs)
       epochs.push_back({e.t_s, aiding::to_string(e.mode), e.valid, e.error_ned_m(0), e.error_ned_m(1), e.error_ned_m(2),
@@ -239,13 +246,15 @@ void write_csv(const std::string& path, const std::vector<nlohmann::json>& point
 std::vector<std::string> point_command(const CouplingOptions& o, const std::string& trajectory, int run) {
   std::string modes;
   for (const auto& m : o.modes) modes += (modes.empty() ? "" : ",") + m;
-  return {self_executable(), "bench",      "coupling",          "--trajectories",
+  std::vector<std::string> cmd{self_executable(), "bench",      "coupling",          "--trajectories",
           trajectory,        "--first-run", std::to_string(run), "--runs",
           "1",               "--modes",     modes,               "--errors",
           o.errors,          "--duration",  fmt::format("{}", o.duration_s), "--imu-grade",
           o.imu_grade,       "--scenario",  o.base_scenario,     "--seed",
           std::to_string(o.seed), "--ionosphere", to_string(o.atmosphere.ionosphere), "--troposphere",
           to_string(o.atmosphere.troposphere), "--out", o.out_dir};
+  if (o.filter_troposphere) cmd.push_back("--filter-troposphere");
+  return cmd;
 }
 
 void run_missing_points(const CouplingOptions& o, const std::vector<std::pair<std::string, int>>& todo) {
@@ -360,6 +369,10 @@ void run_coupling(CouplingOptions o) {
   report.add_note("runs", o.runs);
   report.add_note("errors", o.errors);
   report.add_note("imu_grade", o.imu_grade);
+  report.add_note("scenario", source_relative(o.base_scenario));
+  report.add_note("receiver_models", fmt::format("ionosphere {}, troposphere {}{}", to_string(o.atmosphere.ionosphere),
+                                                 to_string(o.atmosphere.troposphere),
+                                                 o.filter_troposphere ? ", zenith troposphere state" : ""));
   report.add_note("scoring", fmt::format("n/e/d_at: north/east/down 1-sigma over runs at t = {} s (RMS across runs); "
                                          "rms_h/rms_3d: each run's RMS over every epoch from {} s to {} s, mean and "
                                          "standard deviation over the runs",
@@ -393,6 +406,8 @@ const bool registered = register_command([](CommandParents& parents) {
   cmd->add_option("--seed", o->seed, "Base seed")->capture_default_str();
   cmd->add_option("--jobs", o->jobs, "Scenarios run at once")->capture_default_str();
   cmd->add_option("--out", o->out_dir, "Folder of finished points (points/*.json): a rerun resumes from it");
+  cmd->add_flag("--filter-troposphere", o->filter_troposphere,
+                 "Tight and ultra-tight: estimate a zenith troposphere residual (an 18th state)");
   cmd->add_flag("--list-commands", o->list_commands, "Print one command per unfinished point and stop");
   cmd->add_option("--work-dir", o->work_dir, "Where the (deleted) IF files are written");
   cmd->add_option("--csv", o->csv_path, "Per-epoch errors of every run");

@@ -15,12 +15,14 @@
 #include "receiver/track_writers.hpp"
 #include "receiver/scalar_receiver.hpp"
 #include "receiver/truth_file.hpp"
+#include "signals/data_path.hpp"
 #include "signals/rinex_nav.hpp"
 #include "signals/text_output_file.hpp"
 #include "tools/atmosphere_options.hpp"
 #include "tools/command_registry.hpp"
 #include "tools/progress.hpp"
 #include "tools/sample_source_factory.hpp"
+#include "tools/yaml_config.hpp"
 #include "aiding/aided_receiver.hpp"
 #include "ins/imu_file.hpp"
 #include "ins/imu_model.hpp"
@@ -44,6 +46,7 @@ struct RunOptions {
   std::vector<double> imu_lever_arm_m{0.0, 0.0, 0.0};
   bool filter_troposphere = false;
   bool fault_exclusion = true;
+  bool print_config = false;
 };
 
 /// Error statistics of one quantity.
@@ -82,7 +85,8 @@ aiding::AidedReceiverConfig aided_config(const RunOptions& o, aiding::NavMode mo
   c.mode = mode;
   c.receiver = o.receiver;
   try {
-    c.imu = load_imu_grade(o.imu_grades_file, o.imu_grade).model;
+    // The default (data/imu_grades.yaml) is the project's file from any working directory.
+    c.imu = load_imu_grade(resolve_path(o.imu_grades_file, ".", DEEPNAV_SOURCE_DIR), o.imu_grade).model;
   } catch (const std::runtime_error& e) {
     throw UserError(e.what());
   }
@@ -332,16 +336,20 @@ const bool registered = register_command([](CommandParents& parents) {
       ->capture_default_str();
   cmd->add_option("--imu", o->imu_path, "IMU CSV file (increments or rates, see README) for the aided modes")->check(CLI::ExistingFile);
   cmd->add_option("--imu-grade", o->imu_grade, "The IMU's grade in --imu-grades-file (its noise and bias figures)")->capture_default_str();
-  cmd->add_option("--imu-grades-file", o->imu_grades_file, "IMU grades YAML file")->capture_default_str();
+  cmd->add_option("--imu-grades-file", o->imu_grades_file, "IMU grades YAML file (relative: from here, else the project's data/)")->capture_default_str();
   cmd->add_flag("--filter-troposphere,!--no-filter-troposphere", o->filter_troposphere,
                "Tight/ultra: estimate a zenith troposphere residual (an 18th filter state)");
   cmd->add_flag("--fault-exclusion,!--no-fault-exclusion", o->fault_exclusion,
                 "Tight/ultra: exclude a satellite whose pseudorange innovations disagree with the filter")
-      ->capture_default_str();
+      ->default_str("true");  // flags capture no default: --print-config reads this one
   cmd->add_option("--imu-lever-arm", o->imu_lever_arm_m, "IMU position from the antenna, body axes x y z (m), as a scenario's imu.lever_arm_m")
       ->expected(3);
   cmd->add_option("--week", o->receiver.reference_week, "GPS week near the data (resolves the 10-bit week; default: today)");
-  cmd->callback([o] { run_receiver(*o); });
+  add_print_config(*cmd, o->print_config);
+  cmd->callback([o, cmd] {
+    if (o->print_config) return fmt::print("{}", effective_config(*cmd));
+    run_receiver(*o);
+  });
 });
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "tools/command_registry.hpp"
+#include "tools/yaml_config.hpp"
 
 namespace deepnav::cli {
 std::vector<CommandRegistrar>& command_registry() {
@@ -24,9 +25,7 @@ int main(int argc, char** argv) {
 
   CLI::App app{"deepnav: software GPS L1 C/A receiver with ultra-tight INS aiding"};
   app.require_subcommand(1);
-  // Any option of any subcommand may also come from a TOML/INI file, e.g. a [run] section
-  // with input = "...", fs = 4092000 (command-line values win).
-  app.set_config("--config", "", "Read options from a TOML/INI file ([subcommand] sections)");
+  add_yaml_config(app);
   app.add_flag_callback("-v,--verbose", [] { spdlog::set_level(spdlog::level::debug); }, "Log debug messages to stderr");
   app.add_flag_callback("-q,--quiet", [] { spdlog::set_level(spdlog::level::warn); }, "Log only warnings and errors");
   CLI::App* bench = app.add_subcommand("bench", "Benchmarks: each prints a table, and writes JSON with --json FILE");
