@@ -4,6 +4,7 @@
 
 #include "ins/frames.hpp"
 #include "ins/imu_file.hpp"
+#include "aiding/navigation_session.hpp"
 #include "receiver/file_sample_source.hpp"
 #include "receiver/truth_file.hpp"
 #include "signals/rinex_nav.hpp"
@@ -19,56 +20,80 @@ FileSampleSourceOptions synthesized_source(const Scenario& sc, const SynthesisSu
   return o;
 }
 
+namespace {
+
+aiding::NavMode mode_named(std::string_view name) {
+  for (aiding::NavMode m : {aiding::NavMode::scalar, aiding::NavMode::loose, aiding::NavMode::tight, aiding::NavMode::ultra,
+                            aiding::NavMode::coast})
+    if (name == aiding::to_string(m)) return m;
+  throw std::logic_error("no navigation mode is named '" + std::string(name) + "'");
+}
+
+/// Scores every epoch of a run against the synthesizer's truth.
+class TruthScoring : public ProductSink {
+ public:
+  TruthScoring(const TruthFile& truth, double lost_cn0_dbhz, AidedRunResult& result)
+      : truth_(truth), lost_cn0_dbhz_(lost_cn0_dbhz), result_(result) {}
+
+  void on_epoch(const NavigationEpoch& n) override {
+    EpochError e;
+    e.t_s = n.receiver.t_s;
+    e.mode = mode_named(n.mode);
+    const bool aided = n.from_filter && e.mode != aiding::NavMode::scalar;
+    const PvtSolution& p = aided ? n.solution : n.receiver.pvt;
+    e.valid = aided || p.valid;
+    if (aided && result_.first_aided_s < 0.0) result_.first_aided_s = e.t_s;
+    e.gnss_measurements = n.gnss_measurements;
+    const auto t = truth_.at(e.t_s);
+    e.valid = e.valid && t.has_value();  // an epoch past the truth's end cannot be scored
+    if (e.valid) {
+      e.error_ned_m = ned_offset_m(t->r_ecef_m, p.r_ecef_m);
+      e.velocity_error_mps = (p.v_ecef_mps - t->v_ecef_mps).norm();
+    }
+    result_.epochs.push_back(e);
+  }
+
+  void on_correlation(const CorrelatorEpoch& e, const ChannelSnapshot& ch) override {
+    if (ch.cn0_dbhz >= lost_cn0_dbhz_) result_.tracked_s[e.prn] += e.integration_s;
+  }
+
+ private:
+  const TruthFile& truth_;
+  double lost_cn0_dbhz_;
+  AidedRunResult& result_;
+};
+
+}  // namespace
+
 AidedRunResult run_aided_scenario(const Scenario& sc, const SynthesisSummary& s, aiding::NavMode mode,
                                   const AidedRunSettings& settings) {
   const auto start = std::chrono::steady_clock::now();
   FileSampleSource source(synthesized_source(sc, s));
-  aiding::AidedReceiverConfig cfg;
-  cfg.mode = mode;
-  cfg.receiver.reference_week = sc.start_time.week;
-  cfg.receiver.pull_in.pll_order = settings.pll_order;
-  cfg.receiver.tracking_loops.pll_order = settings.pll_order;
-  cfg.receiver.atmosphere = settings.atmosphere;
-  cfg.troposphere.enabled = settings.filter_troposphere;
-  cfg.imu = load_imu_grade(sc.imu.grades_file, sc.imu.grade).model;
-  cfg.lever_arm_imu_to_antenna_b_m = -Eigen::Vector3d(sc.imu.lever_arm_m[0], sc.imu.lever_arm_m[1], sc.imu.lever_arm_m[2]);
-  aiding::AidedReceiver rx(cfg, source, read_imu_csv(s.imu_path), sc.duration_s);
-  const NavData nav = read_rinex_nav(sc.nav_file);
-  rx.receiver().set_assisted_iono(nav.iono);
-  rx.receiver().set_assisted_ephemerides(nav);
+  aiding::NavigationSessionConfig cfg;
+  aiding::AidedReceiverConfig& nav = cfg.navigator;
+  nav.mode = mode;
+  nav.receiver.reference_week = sc.start_time.week;
+  nav.receiver.pull_in.pll_order = settings.pll_order;
+  nav.receiver.tracking_loops.pll_order = settings.pll_order;
+  nav.receiver.atmosphere = settings.atmosphere;
+  nav.troposphere.enabled = settings.filter_troposphere;
+  nav.imu = load_imu_grade(sc.imu.grades_file, sc.imu.grade).model;
+  nav.lever_arm_imu_to_antenna_b_m = -Eigen::Vector3d(sc.imu.lever_arm_m[0], sc.imu.lever_arm_m[1], sc.imu.lever_arm_m[2]);
+  const NavData nav_data = read_rinex_nav(sc.nav_file);
+  cfg.assisted_iono = nav_data.iono;
+  cfg.assisted_ephemerides = nav_data;
+  std::optional<ImuLog> imu;
+  if (mode != aiding::NavMode::scalar) imu = read_imu_csv(s.imu_path);
+  aiding::NavigationSession session(cfg, source, std::move(imu), sc.duration_s);
   const TruthFile truth(s.truth_path);
   AidedRunResult result;
-  const double lost_dbhz = cfg.receiver.tracking.lost_cn0_dbhz;
-  rx.run(
-      [&](const aiding::AidedEpoch& a) {
-        EpochError e;
-        e.t_s = a.receiver.t_s;
-        e.mode = a.mode;
-        const bool aided = a.valid && a.mode != aiding::NavMode::scalar;
-        const Eigen::Vector3d r = aided ? a.r_ecef_m : a.receiver.pvt.r_ecef_m;
-        const Eigen::Vector3d v = aided ? a.v_ecef_mps : a.receiver.pvt.v_ecef_mps;
-        e.valid = aided || a.receiver.pvt.valid;
-        if (aided && result.first_aided_s < 0.0) result.first_aided_s = e.t_s;
-        switch (a.mode) {
-          case aiding::NavMode::ultra: e.gnss_measurements = a.measuring_channels; break;
-          case aiding::NavMode::tight: e.gnss_measurements = static_cast<int>(a.receiver.observations.size()); break;
-          case aiding::NavMode::coast: e.gnss_measurements = 0; break;
-          default: e.gnss_measurements = a.receiver.pvt.valid ? static_cast<int>(a.receiver.pvt.used_prns.size()) : 0;
-        }
-        const auto t = truth.at(e.t_s);
-        e.valid = e.valid && t.has_value();  // an epoch past the truth's end cannot be scored
-        if (e.valid) {
-          e.error_ned_m = ned_offset_m(t->r_ecef_m, r);
-          e.velocity_error_mps = (v - t->v_ecef_mps).norm();
-        }
-        result.epochs.push_back(e);
-      },
-      [&](const CorrelatorEpoch& e, const ChannelSnapshot& ch) {
-        if (ch.cn0_dbhz >= lost_dbhz) result.tracked_s[e.prn] += e.integration_s;
-      });
-  result.mode_changes = rx.mode_changes();
-  result.satellite_exclusions = rx.satellite_exclusions();
-  result.filter_restarts = rx.filter_restarts();
+  TruthScoring scoring(truth, nav.receiver.tracking.lost_cn0_dbhz, result);
+  session.run({&scoring});
+  if (const aiding::AidedReceiver* aided = session.aided()) {
+    result.mode_changes = aided->mode_changes();
+    result.satellite_exclusions = aided->satellite_exclusions();
+    result.filter_restarts = aided->filter_restarts();
+  }
   result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

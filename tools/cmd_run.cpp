@@ -5,15 +5,10 @@
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
-#include "ins/frames.hpp"
-#include "receiver/file_sample_source.hpp"
-#include "receiver/mitigation_sample_source.hpp"
-#include "receiver/nmea_writer.hpp"
-#include "receiver/rinex_obs_writer.hpp"
-#include "receiver/track_writers.hpp"
-#include "receiver/scalar_receiver.hpp"
+#include "receiver/mitigation_config.hpp"
+#include "receiver/products/file_products.hpp"
+#include "receiver/products/run_statistics.hpp"
 #include "receiver/truth_file.hpp"
 #include "signals/data_path.hpp"
 #include "signals/rinex_nav.hpp"
@@ -23,14 +18,13 @@
 #include "tools/progress.hpp"
 #include "tools/sample_source_factory.hpp"
 #include "tools/yaml_config.hpp"
-#include "aiding/aided_receiver.hpp"
+#include "aiding/navigation_session.hpp"
 #include "ins/imu_file.hpp"
 #include "ins/imu_model.hpp"
 
 namespace deepnav::cli {
 namespace {
 
-constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 
 struct RunOptions {
   std::string input, format = "ibyte", out_dir, truth_path, assist_nav;
@@ -47,22 +41,6 @@ struct RunOptions {
   bool filter_troposphere = false;
   bool fault_exclusion = true;
   bool print_config = false;
-};
-
-/// Error statistics of one quantity.
-struct Stats {
-  std::vector<double> v;
-  nlohmann::json json() const {
-    if (v.empty()) return nullptr;
-    std::vector<double> s = v;
-    std::sort(s.begin(), s.end());
-    double sum2 = 0.0;
-    for (double x : s) sum2 += x * x;
-    return {{"rms", std::sqrt(sum2 / static_cast<double>(s.size()))},
-            {"p95", s[static_cast<std::size_t>(0.95 * static_cast<double>(s.size() - 1))]},
-            {"max", s.back()},
-            {"count", s.size()}};
-  }
 };
 
 aiding::NavMode parse_mode(const RunOptions& o) {
@@ -97,152 +75,52 @@ aiding::AidedReceiverConfig aided_config(const RunOptions& o, aiding::NavMode mo
   return c;
 }
 
-/// The aided solution in the receiver's PVT form (DOPs and satellites from the receiver's own).
-PvtSolution aided_solution(const aiding::AidedEpoch& a) {
-  PvtSolution p = a.receiver.pvt;
-  p.valid = true;
-  if (a.receiver.t_rx) p.t = *a.receiver.t_rx;
-  p.r_ecef_m = a.r_ecef_m;
-  p.v_ecef_mps = a.v_ecef_mps;
-  p.llh = a.llh;
-  p.clock_bias_m = a.clock_bias_m;
-  p.clock_drift_mps = a.clock_drift_mps;
-  return p;
-}
-
-void run_receiver(RunOptions o) {
-  std::optional<TruthFile> truth;
-  try {
-    if (!o.truth_path.empty()) truth.emplace(o.truth_path);
-  } catch (const std::runtime_error& e) {
-    throw UserError(e.what());
-  }
-  // A file or a tcp:// / udp:// stream; Ctrl-C ends the source, so the products below are still written.
-  StopOnSignals stop_signals;
-  OpenedSource opened = open_sample_source({o.input, o.format, o.fs_hz, o.if_hz, o.skip_s, o.inverted, o.raw,
-                                            o.reconnect_timeout_s, &stop_signals.flag()});
-  const std::unique_ptr<SampleSource>& source = opened.source;
-  std::error_code ec;
-  std::filesystem::create_directories(o.out_dir, ec);
-  if (ec) throw UserError("cannot create output folder '" + o.out_dir + "': " + ec.message());
-  const auto path = [&](const char* name) { return (std::filesystem::path(o.out_dir) / name).string(); };
-
-  TextOutputFile pvt_csv(path("pvt.csv"));
-  pvt_csv.write(
-      "t_s,gps_week,gps_sow,valid,x_ecef_m,y_ecef_m,z_ecef_m,lat_deg,lon_deg,height_m,vn_mps,ve_mps,vd_mps,"
-      "clock_bias_m,clock_drift_mps,satellites,gdop,pdop,hdop,vdop,excluded,mode,filter_satellites\n");
-  TextOutputFile tracking_csv(path("tracking.csv"));
-  tracking_csv.write("first_sample,prn,state,integration_s,i_prompt,q_prompt,i_early,q_early,i_late,q_late,doppler_hz,code_rate_cps,cn0_dbhz\n");
-
-  MitigationConfig mitigation;
-  mitigation.mode = parse_mitigation_mode(o.mitigation);
-  MitigationSampleSource mitigated(*source, mitigation);  // --mitigation none: samples pass untouched
+/// The session's configuration from the options (assistance files read here).
+aiding::NavigationSessionConfig session_config(RunOptions& o, aiding::NavMode mode) {
   o.receiver.pull_in.pll_order = o.receiver.tracking_loops.pll_order = o.pll_order;
-  const aiding::NavMode mode = parse_mode(o);
-  std::unique_ptr<aiding::AidedReceiver> aided;
-  std::unique_ptr<ScalarReceiver> scalar;
-  if (mode != aiding::NavMode::scalar) {
-    aided = std::make_unique<aiding::AidedReceiver>(aided_config(o, mode), mitigated, read_imu(o), opened.duration_s);
+  aiding::NavigationSessionConfig c;
+  if (mode == aiding::NavMode::scalar) {
+    c.navigator.mode = mode;
+    c.navigator.receiver = o.receiver;
   } else {
-    scalar = std::make_unique<ScalarReceiver>(o.receiver, mitigated);
+    c.navigator = aided_config(o, mode);
   }
-  ScalarReceiver& receiver = aided ? aided->receiver() : *scalar;
+  c.mitigation.mode = parse_mitigation_mode(o.mitigation);
   try {
     // Both assistance options usually name the same file: read it once.
     std::optional<NavData> iono_nav;
     if (!o.assist_nav.empty()) {
       iono_nav = read_rinex_nav(o.assist_nav);
-      receiver.set_assisted_iono(iono_nav->iono);
+      c.assisted_iono = iono_nav->iono;
     }
     if (!o.assist_ephemeris.empty())
-      receiver.set_assisted_ephemerides(o.assist_ephemeris == o.assist_nav ? *iono_nav : read_rinex_nav(o.assist_ephemeris));
+      c.assisted_ephemerides = o.assist_ephemeris == o.assist_nav ? *iono_nav : read_rinex_nav(o.assist_ephemeris);
   } catch (const std::runtime_error& e) {
     throw UserError(e.what());
   }
-  const double total_s = opened.duration_s.value_or(0.0);
-  ProgressLine progress("run", total_s);
-  std::optional<double> first_fix_s;
-  int fixes = 0, epochs = 0;
-  Stats horizontal, vertical, speed_error;
-  Stats pdop, sats;
-  std::vector<ReceiverEpoch> all_epochs;
-  std::vector<PvtSolution> fix_list;
-  std::string nmea;
-  const auto leap_seconds = [&] { return receiver.utc().valid ? receiver.utc().delta_t_ls : 18; };
-  std::map<std::string, double> mode_seconds;
-  const double epoch_s = 1.0 / o.receiver.observation_rate_hz;
-  const auto on_epoch = [&](const ReceiverEpoch& ep, const aiding::AidedEpoch* a) {
-        ++epochs;
-        all_epochs.push_back(ep);
-        if (a) mode_seconds[aiding::to_string(a->mode)] += epoch_s;
-        const PvtSolution p = a && a->valid ? aided_solution(*a) : ep.pvt;
-        if (!p.valid) return;
-        fix_list.push_back(p);
-        std::map<int, double> cn0;
-        for (const auto& ob : ep.observations) cn0[ob.prn] = ob.cn0_dbhz;
-        nmea += nmea_sentences(p, cn0, leap_seconds());
-        ++fixes;
-        if (!first_fix_s) first_fix_s = ep.t_s;
-        const Eigen::Vector3d v_ned = C_e_n(p.llh.lat_rad, p.llh.lon_rad) * p.v_ecef_mps;
-        std::string excluded;
-        for (int prn : p.excluded_prns) excluded += (excluded.empty() ? "" : " ") + std::to_string(prn);
-        pvt_csv.write(fmt::format("{:.3f},{},{:.6f},1,{:.4f},{:.4f},{:.4f},{:.9f},{:.9f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{},{:.2f},{:.2f},{:.2f},{:.2f},{},{},{}\n",
-                                  ep.t_s, p.t.week, p.t.sow, p.r_ecef_m.x(), p.r_ecef_m.y(), p.r_ecef_m.z(),
-                                  p.llh.lat_rad * kRadToDeg, p.llh.lon_rad * kRadToDeg, p.llh.height_m, v_ned.x(),
-                                  v_ned.y(), v_ned.z(), p.clock_bias_m, p.clock_drift_mps, p.used_prns.size(),
-                                  p.dops.gdop, p.dops.pdop, p.dops.hdop, p.dops.vdop, excluded,
-                                  a ? aiding::to_string(a->mode) : "scalar",
-                                  a ? a->filter_satellites : static_cast<int>(p.used_prns.size())));
-        pdop.v.push_back(p.dops.pdop);
-        sats.v.push_back(static_cast<double>(p.used_prns.size()));
-        if (truth) {
-          if (const auto t = truth->at(ep.t_s)) {
-            const Eigen::Vector3d d = C_e_n(p.llh.lat_rad, p.llh.lon_rad) * (p.r_ecef_m - t->r_ecef_m);
-            horizontal.v.push_back(d.head<2>().norm());
-            vertical.v.push_back(std::abs(d.z()));
-            speed_error.v.push_back((p.v_ecef_mps - t->v_ecef_mps).norm());
-          }
-        }
-  };
-  const auto on_correlation = [&](const CorrelatorEpoch& e, const ChannelSnapshot& ch) {
-        tracking_csv.write(fmt::format("{},{},{},{:.3f},{:.1f},{:.1f},{:.1f},{:.1f},{:.1f},{:.1f},{:.3f},{:.4f},{:.1f}\n",
-                                       e.first_sample, e.prn, static_cast<int>(ch.state), e.integration_s,
-                                       e.prompt.real(), e.prompt.imag(), e.early.real(), e.early.imag(),
-                                       e.late.real(), e.late.imag(), e.carrier_doppler_hz, e.code_rate_cps, ch.cn0_dbhz));
-  };
-  const auto on_progress = [&](double t) {
-    if (total_s > 0.0) progress.update(t / total_s);  // a stream's length is not known
-  };
-  if (aided) {
-    aided->run([&](const aiding::AidedEpoch& a) { on_epoch(a.receiver, &a); }, on_correlation, on_progress);
-  } else {
-    receiver.run([&](const ReceiverEpoch& ep) { on_epoch(ep, nullptr); }, on_correlation, on_progress);
-  }
-  progress.finish();
+  return c;
+}
 
-  NavData nav;
-  for (const auto& [prn, eph] : receiver.ephemerides()) nav.ephemerides.push_back(eph);
-  nav.iono = receiver.iono();
-  nav.utc = receiver.utc();
-  std::ostringstream rinex;
-  write_rinex3_nav(rinex, nav, "deepnav");
-  TextOutputFile nav_file(path("nav.rnx"));
-  nav_file.write(rinex.str());
-
-  nlohmann::json summary = {{"input", o.input},
-                            {"duration_s", opened.duration_s ? total_s : static_cast<double>(source->next_sample_index()) / source->sample_rate_hz()},
-                            {"epochs", epochs},
-                            {"fixes", fixes},
-                            {"time_to_first_fix_s", first_fix_s ? nlohmann::json(*first_fix_s) : nlohmann::json(nullptr)},
-                            {"acquired_prns", receiver.acquired_prns()},
-                            {"ephemerides", nav.ephemerides.size()},
-                            {"satellites_used", sats.json()},
-                            {"pdop", pdop.json()}};
-  if (truth) {
+nlohmann::json run_summary(const RunOptions& o, const OpenedSource& opened, aiding::NavigationSession& session,
+                           const RunStatistics& stats, bool scored) {
+  ScalarReceiver& receiver = session.receiver();
+  const SampleSource& source = *opened.source;
+  nlohmann::json summary = {
+      {"input", o.input},
+      {"duration_s", opened.duration_s ? *opened.duration_s
+                                       : static_cast<double>(source.next_sample_index()) / source.sample_rate_hz()},
+      {"epochs", stats.epochs()},
+      {"fixes", stats.fixes()},
+      {"time_to_first_fix_s", stats.first_fix_s() ? nlohmann::json(*stats.first_fix_s()) : nlohmann::json(nullptr)},
+      {"acquired_prns", receiver.acquired_prns()},
+      {"ephemerides", receiver.ephemerides().size()},
+      {"satellites_used", stats.satellites().json()},
+      {"pdop", stats.pdop().json()}};
+  if (scored) {
     summary["truth"] = o.truth_path;
-    summary["horizontal_error_m"] = horizontal.json();
-    summary["vertical_error_m"] = vertical.json();
-    summary["velocity_error_mps"] = speed_error.json();
+    summary["horizontal_error_m"] = stats.horizontal_error_m().json();
+    summary["vertical_error_m"] = stats.vertical_error_m().json();
+    summary["velocity_error_mps"] = stats.velocity_error_mps().json();
   }
   // Navigation data per satellite: a channel tracked for a whole frame without an
   // ephemeris points at corrupted navigation bits (or a wrong --week / spectrum sense).
@@ -256,47 +134,77 @@ void run_receiver(RunOptions o) {
   }
   summary["navigation"] = navigation;
   summary["mode"] = o.mode;
-  if (aided) {
+  if (const aiding::AidedReceiver* aided = session.aided()) {
     nlohmann::json changes = nlohmann::json::array();
     for (const auto& c : aided->mode_changes())
       changes.push_back({{"t_s", c.t_s}, {"from", aiding::to_string(c.from)}, {"to", aiding::to_string(c.to)}, {"reason", c.reason}});
     summary["mode_changes"] = changes;
-    summary["seconds_in_mode"] = mode_seconds;
+    summary["seconds_in_mode"] = session.seconds_in_mode();
     summary["ins_start"] = aided->ins_start_method();
     summary["filter_restarts"] = aided->filter_restarts();
     summary["satellite_exclusions"] = aided->satellite_exclusions();
   }
   summary["interrupted"] = opened.interrupted();
   if (opened.is_stream) summary["stream"] = opened.report();
-  RinexObsHeader obs_header;
-  obs_header.interval_s = 1.0 / o.receiver.observation_rate_hz;
-  if (!fix_list.empty()) obs_header.approx_position_ecef_m = fix_list.front().r_ecef_m;
-  TextOutputFile obs_file(path("obs.rnx"));
-  obs_file.write(rinex3_observation_file(obs_header, all_epochs));
-  TextOutputFile nmea_file(path("fixes.nmea"));
-  nmea_file.write(nmea);
-  TextOutputFile kml_file(path("track.kml"));
-  kml_file.write(kml_track(fix_list, std::filesystem::path(o.input).filename().string()));
-  TextOutputFile gpx_file(path("track.gpx"));
-  gpx_file.write(gpx_track(fix_list, std::filesystem::path(o.input).filename().string(), leap_seconds()));
-  TextOutputFile summary_file(path("summary.json"));
-  summary_file.write(summary.dump(2) + "\n");
-  pvt_csv.commit();
-  tracking_csv.commit();
-  nav_file.commit();
-  obs_file.commit();
-  nmea_file.commit();
-  kml_file.commit();
-  gpx_file.commit();
-  summary_file.commit();
-  fmt::print("{} fixes in {} epochs; first fix at {} s; satellites acquired: {}\n", fixes, epochs,
-             first_fix_s ? fmt::format("{:.1f}", *first_fix_s) : std::string("-"), receiver.acquired_prns().size());
-  if (truth && !horizontal.v.empty()) {
-    const auto h = horizontal.json(), v = vertical.json(), s = speed_error.json();
-    fmt::print("error vs truth: horizontal RMS {:.2f} m, vertical RMS {:.2f} m, velocity RMS {:.3f} m/s\n",
-               h["rms"].get<double>(), v["rms"].get<double>(), s["rms"].get<double>());
+  return summary;
+}
+
+/// summary.json, written once the run has ended (the figures are the whole run's).
+class SummarySink : public ProductSink {
+ public:
+  SummarySink(const std::string& path, std::function<nlohmann::json()> summary) : file_(path), summary_(std::move(summary)) {}
+  void finish(const ScalarReceiver&) override {
+    file_.write(summary_().dump(2) + "\n");
+    file_.commit();
   }
-  if (opened.interrupted()) spdlog::warn("interrupted: products written up to sample {}", source->next_sample_index());
+
+ private:
+  TextOutputFile file_;
+  std::function<nlohmann::json()> summary_;
+};
+
+void run_receiver(RunOptions o) {
+  std::optional<TruthFile> truth;
+  try {
+    if (!o.truth_path.empty()) truth.emplace(o.truth_path);
+  } catch (const std::runtime_error& e) {
+    throw UserError(e.what());
+  }
+  // A file or a tcp:// / udp:// stream; Ctrl-C ends the source, so the products are still written.
+  StopOnSignals stop_signals;
+  OpenedSource opened = open_sample_source({o.input, o.format, o.fs_hz, o.if_hz, o.skip_s, o.inverted, o.raw,
+                                            o.reconnect_timeout_s, &stop_signals.flag()});
+  std::error_code ec;
+  std::filesystem::create_directories(o.out_dir, ec);
+  if (ec) throw UserError("cannot create output folder '" + o.out_dir + "': " + ec.message());
+
+  const aiding::NavMode mode = parse_mode(o);
+  std::optional<ImuLog> imu;
+  if (mode != aiding::NavMode::scalar) imu = read_imu(o);
+  std::vector<std::unique_ptr<ProductSink>> products =
+      file_products(o.out_dir, std::filesystem::path(o.input).filename().string(), 1.0 / o.receiver.observation_rate_hz);
+  aiding::NavigationSession session(session_config(o, mode), *opened.source, std::move(imu), opened.duration_s);
+  RunStatistics stats(truth ? &*truth : nullptr);
+  SummarySink summary((std::filesystem::path(o.out_dir) / "summary.json").string(),
+                      [&] { return run_summary(o, opened, session, stats, truth.has_value()); });
+  std::vector<ProductSink*> sinks{&stats};
+  for (const auto& p : products) sinks.push_back(p.get());
+  sinks.push_back(&summary);
+
+  const double total_s = opened.duration_s.value_or(0.0);
+  ProgressLine progress("run", total_s);
+  session.run(sinks, [&](double t) {
+    if (total_s > 0.0) progress.update(t / total_s);  // a stream's length is not known
+  });
+  progress.finish();
+  fmt::print("{} fixes in {} epochs; first fix at {} s; satellites acquired: {}\n", stats.fixes(), stats.epochs(),
+             stats.first_fix_s() ? fmt::format("{:.1f}", *stats.first_fix_s()) : std::string("-"),
+             session.receiver().acquired_prns().size());
+  if (truth && !stats.horizontal_error_m().values.empty())
+    fmt::print("error vs truth: horizontal RMS {:.2f} m, vertical RMS {:.2f} m, velocity RMS {:.3f} m/s\n",
+               stats.horizontal_error_m().rms(), stats.vertical_error_m().rms(), stats.velocity_error_mps().rms());
+  if (opened.interrupted())
+    spdlog::warn("interrupted: products written up to sample {}", opened.source->next_sample_index());
   if (const auto failure = opened.failure()) throw UserError(*failure + " (products written up to there)");
 }
 

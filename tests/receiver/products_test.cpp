@@ -2,9 +2,9 @@
 
 #include <cmath>
 
-#include "receiver/nmea_writer.hpp"
-#include "receiver/rinex_obs_writer.hpp"
-#include "receiver/track_writers.hpp"
+#include "receiver/products/nmea_writer.hpp"
+#include "receiver/products/rinex_obs_writer.hpp"
+#include "receiver/products/track_writers.hpp"
 
 namespace deepnav {
 namespace {

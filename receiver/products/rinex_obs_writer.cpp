@@ -1,4 +1,4 @@
-#include "receiver/rinex_obs_writer.hpp"
+#include "receiver/products/rinex_obs_writer.hpp"
 
 #include <fmt/format.h>
 
@@ -24,7 +24,7 @@ std::string lli_marked(std::string field, bool lost_lock) {
 
 }  // namespace
 
-std::string rinex3_observation_file(const RinexObsHeader& h, const std::vector<ReceiverEpoch>& epochs) {
+std::string rinex3_observation_header(const RinexObsHeader& h, const std::optional<GpsTime>& first_observation) {
   std::string out;
   out += header_line(fmt::format("{:9.2f}{:11}{:<20}{:<20}", 3.04, "", "OBSERVATION DATA", "G (GPS)"), "RINEX VERSION / TYPE");
   out += header_line(fmt::format("{:<20}{:<20}{:<20}", h.program, "", ""), "PGM / RUN BY / DATE");
@@ -38,26 +38,38 @@ std::string rinex3_observation_file(const RinexObsHeader& h, const std::vector<R
   out += header_line(fmt::format("{:14.4f}{:14.4f}{:14.4f}", 0.0, 0.0, 0.0), "ANTENNA: DELTA H/E/N");
   out += header_line("G    4 C1C L1C D1C S1C", "SYS / # / OBS TYPES");
   out += header_line(fmt::format("{:10.3f}", h.interval_s), "INTERVAL");
-  for (const auto& e : epochs) {
-    if (!e.t_rx) continue;
-    const CalendarTime c = calendar_from_gps_time(*e.t_rx);
+  if (first_observation) {
+    const CalendarTime c = calendar_from_gps_time(*first_observation);
     out += header_line(fmt::format("{:6d}{:6d}{:6d}{:6d}{:6d}{:13.7f}     GPS", c.year, c.month, c.day, c.hour, c.minute, c.second),
                        "TIME OF FIRST OBS");
-    break;
   }
   out += header_line("", "END OF HEADER");
-  for (const auto& e : epochs) {
-    if (!e.t_rx || e.observations.empty()) continue;
-    const CalendarTime c = calendar_from_gps_time(*e.t_rx);
-    out += fmt::format("> {:04d} {:02d} {:02d} {:02d} {:02d}{:11.7f}  0{:3d}\n", c.year, c.month, c.day, c.hour, c.minute,
-                       c.second, e.observations.size());
-    for (const auto& o : e.observations) {
-      // RINEX phase grows with range: the negative of the accumulated Doppler.
-      out += fmt::format("G{:02d}{}{}{}{}\n", o.prn, obs_field(o.pseudorange_m, true),
-                         lli_marked(obs_field(-o.carrier_phase_cycles, true), o.after_gap), obs_field(o.doppler_hz, true),
-                         obs_field(o.cn0_dbhz, true));
-    }
+  return out;
+}
+
+std::string rinex3_observation_epoch(const ReceiverEpoch& e) {
+  if (!e.t_rx || e.observations.empty()) return "";
+  const CalendarTime c = calendar_from_gps_time(*e.t_rx);
+  std::string out = fmt::format("> {:04d} {:02d} {:02d} {:02d} {:02d}{:11.7f}  0{:3d}\n", c.year, c.month, c.day, c.hour,
+                                c.minute, c.second, e.observations.size());
+  for (const auto& o : e.observations) {
+    // RINEX phase grows with range: the negative of the accumulated Doppler.
+    out += fmt::format("G{:02d}{}{}{}{}\n", o.prn, obs_field(o.pseudorange_m, true),
+                       lli_marked(obs_field(-o.carrier_phase_cycles, true), o.after_gap), obs_field(o.doppler_hz, true),
+                       obs_field(o.cn0_dbhz, true));
   }
+  return out;
+}
+
+std::string rinex3_observation_file(const RinexObsHeader& h, const std::vector<ReceiverEpoch>& epochs) {
+  std::optional<GpsTime> first;
+  for (const auto& e : epochs)
+    if (e.t_rx) {
+      first = e.t_rx;
+      break;
+    }
+  std::string out = rinex3_observation_header(h, first);
+  for (const auto& e : epochs) out += rinex3_observation_epoch(e);
   return out;
 }
 

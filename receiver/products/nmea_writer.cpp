@@ -1,4 +1,4 @@
-#include "receiver/nmea_writer.hpp"
+#include "receiver/products/nmea_writer.hpp"
 
 #include <fmt/format.h>
 

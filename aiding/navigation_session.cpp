@@ -1,0 +1,78 @@
+#include "aiding/navigation_session.hpp"
+
+#include <stdexcept>
+
+#include "receiver/mitigation_sample_source.hpp"
+
+namespace deepnav::aiding {
+namespace {
+
+/// The aided solution in the receiver's PVT form (DOPs and satellites from the receiver's own).
+PvtSolution aided_solution(const AidedEpoch& a) {
+  PvtSolution p = a.receiver.pvt;
+  p.valid = true;
+  if (a.receiver.t_rx) p.t = *a.receiver.t_rx;
+  p.r_ecef_m = a.r_ecef_m;
+  p.v_ecef_mps = a.v_ecef_mps;
+  p.llh = a.llh;
+  p.clock_bias_m = a.clock_bias_m;
+  p.clock_drift_mps = a.clock_drift_mps;
+  return p;
+}
+
+int gnss_measurements(const AidedEpoch& a) {
+  switch (a.mode) {
+    case NavMode::ultra: return a.measuring_channels;
+    case NavMode::tight: return static_cast<int>(a.receiver.observations.size());
+    case NavMode::coast: return 0;
+    default: return a.receiver.pvt.valid ? static_cast<int>(a.receiver.pvt.used_prns.size()) : 0;
+  }
+}
+
+}  // namespace
+
+NavigationSession::NavigationSession(NavigationSessionConfig config, SampleSource& source, std::optional<ImuLog> imu,
+                                     std::optional<double> duration_s)
+    : config_(std::move(config)),
+      mitigated_(std::make_unique<MitigationSampleSource>(source, config_.mitigation)) {
+  if (config_.navigator.mode == NavMode::scalar) {
+    scalar_ = std::make_unique<ScalarReceiver>(config_.navigator.receiver, *mitigated_);
+  } else {
+    if (!imu) throw std::invalid_argument(std::string("mode ") + to_string(config_.navigator.mode) + " needs an IMU log");
+    aided_ = std::make_unique<AidedReceiver>(config_.navigator, *mitigated_, std::move(*imu), duration_s);
+  }
+  if (config_.assisted_iono) receiver().set_assisted_iono(*config_.assisted_iono);
+  if (config_.assisted_ephemerides) receiver().set_assisted_ephemerides(*config_.assisted_ephemerides);
+}
+
+NavigationSession::~NavigationSession() = default;
+
+ScalarReceiver& NavigationSession::receiver() { return aided_ ? aided_->receiver() : *scalar_; }
+
+void NavigationSession::hand_out(const ReceiverEpoch& ep, const AidedEpoch* a, const std::vector<ProductSink*>& sinks) {
+  if (a) seconds_in_mode_[to_string(a->mode)] += 1.0 / config_.navigator.receiver.observation_rate_hz;
+  const bool from_filter = a && a->valid;
+  const PvtSolution filtered = from_filter ? aided_solution(*a) : PvtSolution{};
+  const UtcParameters utc = receiver().utc();
+  const NavigationEpoch e{ep,
+                          from_filter ? filtered : ep.pvt,
+                          from_filter,
+                          a ? to_string(a->mode) : "scalar",
+                          a ? a->filter_satellites : static_cast<int>(ep.pvt.used_prns.size()),
+                          a ? gnss_measurements(*a) : (ep.pvt.valid ? static_cast<int>(ep.pvt.used_prns.size()) : 0),
+                          utc.valid ? utc.delta_t_ls : 18};
+  for (ProductSink* s : sinks) s->on_epoch(e);
+}
+
+void NavigationSession::run(const std::vector<ProductSink*>& sinks, const std::function<void(double)>& progress) {
+  const auto on_correlation = [&](const CorrelatorEpoch& e, const ChannelSnapshot& ch) {
+    for (ProductSink* s : sinks) s->on_correlation(e, ch);
+  };
+  if (aided_)
+    aided_->run([&](const AidedEpoch& a) { hand_out(a.receiver, &a, sinks); }, on_correlation, progress);
+  else
+    scalar_->run([&](const ReceiverEpoch& ep) { hand_out(ep, nullptr, sinks); }, on_correlation, progress);
+  for (ProductSink* s : sinks) s->finish(receiver());
+}
+
+}  // namespace deepnav::aiding

@@ -1,0 +1,129 @@
+#include "receiver/products/file_products.hpp"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <map>
+#include <sstream>
+
+#include "ins/frames.hpp"
+#include "receiver/products/nmea_writer.hpp"
+#include "receiver/products/track_writers.hpp"
+#include "signals/rinex_nav.hpp"
+
+namespace deepnav {
+namespace {
+constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+}
+
+PvtCsvSink::PvtCsvSink(const std::string& path) : file_(path) {
+  file_.write(
+      "t_s,gps_week,gps_sow,valid,x_ecef_m,y_ecef_m,z_ecef_m,lat_deg,lon_deg,height_m,vn_mps,ve_mps,vd_mps,"
+      "clock_bias_m,clock_drift_mps,satellites,gdop,pdop,hdop,vdop,excluded,mode,filter_satellites\n");
+}
+
+void PvtCsvSink::on_epoch(const NavigationEpoch& e) {
+  const PvtSolution& p = e.solution;
+  if (!p.valid) return;
+  const Eigen::Vector3d v_ned = C_e_n(p.llh.lat_rad, p.llh.lon_rad) * p.v_ecef_mps;
+  std::string excluded;
+  for (int prn : p.excluded_prns) {
+    if (!excluded.empty()) excluded += ' ';
+    excluded += std::to_string(prn);
+  }
+  file_.write(fmt::format(
+      "{:.3f},{},{:.6f},1,{:.4f},{:.4f},{:.4f},{:.9f},{:.9f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{},{:.2f},{:.2f},{:.2f},"
+      "{:.2f},{},{},{}\n",
+      e.receiver.t_s, p.t.week, p.t.sow, p.r_ecef_m.x(), p.r_ecef_m.y(), p.r_ecef_m.z(), p.llh.lat_rad * kRadToDeg,
+      p.llh.lon_rad * kRadToDeg, p.llh.height_m, v_ned.x(), v_ned.y(), v_ned.z(), p.clock_bias_m, p.clock_drift_mps,
+      p.used_prns.size(), p.dops.gdop, p.dops.pdop, p.dops.hdop, p.dops.vdop, excluded, e.mode, e.filter_satellites));
+}
+
+TrackingCsvSink::TrackingCsvSink(const std::string& path) : file_(path) {
+  file_.write(
+      "first_sample,prn,state,integration_s,i_prompt,q_prompt,i_early,q_early,i_late,q_late,doppler_hz,code_rate_cps,"
+      "cn0_dbhz\n");
+}
+
+void TrackingCsvSink::on_correlation(const CorrelatorEpoch& e, const ChannelSnapshot& ch) {
+  file_.write(fmt::format("{},{},{},{:.3f},{:.1f},{:.1f},{:.1f},{:.1f},{:.1f},{:.1f},{:.3f},{:.4f},{:.1f}\n", e.first_sample,
+                          e.prn, static_cast<int>(ch.state), e.integration_s, e.prompt.real(), e.prompt.imag(),
+                          e.early.real(), e.early.imag(), e.late.real(), e.late.imag(), e.carrier_doppler_hz,
+                          e.code_rate_cps, ch.cn0_dbhz));
+}
+
+void NmeaSink::on_epoch(const NavigationEpoch& e) {
+  if (!e.solution.valid) return;
+  std::map<int, double> cn0;
+  for (const auto& ob : e.receiver.observations) cn0[ob.prn] = ob.cn0_dbhz;
+  file_.write(nmea_sentences(e.solution, cn0, e.leap_seconds));
+}
+
+TrackSink::TrackSink(const std::string& kml_path, const std::string& gpx_path, const std::string& name)
+    : kml_(kml_path), gpx_(gpx_path) {
+  kml_.write(kml_header(name));
+  gpx_.write(gpx_header(name));
+}
+
+void TrackSink::on_epoch(const NavigationEpoch& e) {
+  leap_seconds_ = e.leap_seconds;
+  if (!e.solution.valid) return;
+  kml_.write(kml_point(e.solution));
+  gpx_.write(gpx_point(e.solution, e.leap_seconds));
+}
+
+void TrackSink::finish(const ScalarReceiver&) {
+  kml_.write(kml_footer());
+  gpx_.write(gpx_footer());
+  kml_.commit();
+  gpx_.commit();
+}
+
+RinexObsSink::RinexObsSink(const std::string& path, double interval_s) : file_(path) { header_.interval_s = interval_s; }
+
+void RinexObsSink::write_header(const Eigen::Vector3d& approx_position_ecef_m) {
+  header_.approx_position_ecef_m = approx_position_ecef_m;
+  file_.write(rinex3_observation_header(header_, first_observation_));
+  for (const ReceiverEpoch& held : held_) file_.write(rinex3_observation_epoch(held));
+  held_.clear();
+  held_.shrink_to_fit();
+  header_written_ = true;
+}
+
+void RinexObsSink::on_epoch(const NavigationEpoch& e) {
+  if (!first_observation_ && e.receiver.t_rx) first_observation_ = e.receiver.t_rx;
+  if (header_written_) return file_.write(rinex3_observation_epoch(e.receiver));
+  held_.push_back(e.receiver);
+  if (e.solution.valid) write_header(e.solution.r_ecef_m);
+}
+
+void RinexObsSink::finish(const ScalarReceiver&) {
+  if (!header_written_) write_header(Eigen::Vector3d::Zero());  // no fix: position unknown
+  file_.commit();
+}
+
+void RinexNavSink::finish(const ScalarReceiver& receiver) {
+  NavData nav;
+  for (const auto& [prn, eph] : receiver.ephemerides()) nav.ephemerides.push_back(eph);
+  nav.iono = receiver.iono();
+  nav.utc = receiver.utc();
+  std::ostringstream rinex;
+  write_rinex3_nav(rinex, nav, "deepnav");
+  file_.write(rinex.str());
+  file_.commit();
+}
+
+std::vector<std::unique_ptr<ProductSink>> file_products(const std::string& out_dir, const std::string& track_name,
+                                                        double observation_interval_s) {
+  const auto path = [&](const char* name) { return (std::filesystem::path(out_dir) / name).string(); };
+  std::vector<std::unique_ptr<ProductSink>> sinks;
+  sinks.push_back(std::make_unique<PvtCsvSink>(path("pvt.csv")));
+  sinks.push_back(std::make_unique<TrackingCsvSink>(path("tracking.csv")));
+  sinks.push_back(std::make_unique<RinexNavSink>(path("nav.rnx")));
+  sinks.push_back(std::make_unique<RinexObsSink>(path("obs.rnx"), observation_interval_s));
+  sinks.push_back(std::make_unique<NmeaSink>(path("fixes.nmea")));
+  sinks.push_back(std::make_unique<TrackSink>(path("track.kml"), path("track.gpx"), track_name));
+  return sinks;
+}
+
+}  // namespace deepnav

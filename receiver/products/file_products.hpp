@@ -1,0 +1,90 @@
+#pragma once
+// The receiver's file products, each a ProductSink writing as the run goes:
+//   pvt.csv       one row per fix (the run's solution, aided where it is)
+//   tracking.csv  one row per correlator integration of every channel
+//   fixes.nmea    GGA, RMC, GSA, GSV per fix
+//   track.kml, track.gpx
+//   obs.rnx       RINEX 3.04 observations (epochs before the first fix are held until it
+//                 gives the header's approximate position)
+//   nav.rnx       RINEX 3.04 navigation data the run decoded (written at the end)
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "receiver/products/product_sink.hpp"
+#include "receiver/products/rinex_obs_writer.hpp"
+#include "signals/text_output_file.hpp"
+
+namespace deepnav {
+
+class PvtCsvSink : public ProductSink {
+ public:
+  explicit PvtCsvSink(const std::string& path);
+  void on_epoch(const NavigationEpoch& e) override;
+  void finish(const ScalarReceiver&) override { file_.commit(); }
+
+ private:
+  TextOutputFile file_;
+};
+
+class TrackingCsvSink : public ProductSink {
+ public:
+  explicit TrackingCsvSink(const std::string& path);
+  void on_correlation(const CorrelatorEpoch& e, const ChannelSnapshot& ch) override;
+  void finish(const ScalarReceiver&) override { file_.commit(); }
+
+ private:
+  TextOutputFile file_;
+};
+
+class NmeaSink : public ProductSink {
+ public:
+  explicit NmeaSink(const std::string& path) : file_(path) {}
+  void on_epoch(const NavigationEpoch& e) override;
+  void finish(const ScalarReceiver&) override { file_.commit(); }
+
+ private:
+  TextOutputFile file_;
+};
+
+/// KML and GPX tracks; `name`: the track's name (the input's file name).
+class TrackSink : public ProductSink {
+ public:
+  TrackSink(const std::string& kml_path, const std::string& gpx_path, const std::string& name);
+  void on_epoch(const NavigationEpoch& e) override;
+  void finish(const ScalarReceiver&) override;
+
+ private:
+  TextOutputFile kml_, gpx_;
+  int leap_seconds_ = 18;
+};
+
+class RinexObsSink : public ProductSink {
+ public:
+  RinexObsSink(const std::string& path, double interval_s);
+  void on_epoch(const NavigationEpoch& e) override;
+  void finish(const ScalarReceiver&) override;
+
+ private:
+  void write_header(const Eigen::Vector3d& approx_position_ecef_m);
+  TextOutputFile file_;
+  RinexObsHeader header_;
+  bool header_written_ = false;
+  std::optional<GpsTime> first_observation_;
+  std::vector<ReceiverEpoch> held_;  ///< epochs before the first fix
+};
+
+class RinexNavSink : public ProductSink {
+ public:
+  explicit RinexNavSink(const std::string& path) : file_(path) {}
+  void finish(const ScalarReceiver& receiver) override;
+
+ private:
+  TextOutputFile file_;
+};
+
+/// All of the above in `out_dir`, named as listed.
+std::vector<std::unique_ptr<ProductSink>> file_products(const std::string& out_dir, const std::string& track_name,
+                                                        double observation_interval_s);
+
+}  // namespace deepnav

@@ -1,0 +1,37 @@
+#pragma once
+// What a run hands its products at each observation epoch, whatever navigates (the
+// receiver alone or an aided filter), and the interface of a product that takes it. Each
+// product writes as the run goes, to a file that takes its final name only in finish()
+// (text_output_file.hpp): memory stays flat with run length, and a run that fails leaves
+// no file that passes for complete.
+#include <string_view>
+
+#include "receiver/scalar_receiver.hpp"
+
+namespace deepnav {
+
+struct NavigationEpoch {
+  const ReceiverEpoch& receiver;  ///< observables and the receiver's own PVT
+  /// The solution the run reports: the aided filter's where it has one, else the PVT's.
+  const PvtSolution& solution;
+  bool from_filter = false;       ///< `solution` is the aided filter's
+  std::string_view mode;          ///< navigation mode at this epoch ("scalar", "loose", ...)
+  /// Satellites the solution's last update took (the PVT's in scalar mode).
+  int filter_satellites = 0;
+  /// Satellites whose measurements the solution used: the PVT's in scalar and loose mode,
+  /// observables in tight mode, discriminator measurements in ultra-tight mode.
+  int gnss_measurements = 0;
+  int leap_seconds = 18;          ///< GPS - UTC (broadcast once decoded)
+};
+
+class ProductSink {
+ public:
+  virtual ~ProductSink() = default;
+  virtual void on_epoch(const NavigationEpoch&) {}
+  /// Every completed integration of every channel.
+  virtual void on_correlation(const CorrelatorEpoch&, const ChannelSnapshot&) {}
+  /// The run has ended: write what is left and give the file its final name.
+  virtual void finish(const ScalarReceiver&) {}
+};
+
+}  // namespace deepnav
