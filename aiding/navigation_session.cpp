@@ -72,7 +72,11 @@ void NavigationSession::run(const std::vector<ProductSink*>& sinks, const std::f
     aided_->run([&](const AidedEpoch& a) { hand_out(a.receiver, &a, sinks); }, on_correlation, progress);
   else
     scalar_->run([&](const ReceiverEpoch& ep) { hand_out(ep, nullptr, sinks); }, on_correlation, progress);
-  for (ProductSink* s : sinks) s->finish(receiver());
+  NavData decoded;
+  for (const auto& [prn, eph] : receiver().ephemerides()) decoded.ephemerides.push_back(eph);
+  decoded.iono = receiver().iono();
+  decoded.utc = receiver().utc();
+  for (ProductSink* s : sinks) s->finish(decoded);
 }
 
 }  // namespace deepnav::aiding

@@ -153,7 +153,7 @@ nlohmann::json run_summary(const RunOptions& o, const OpenedSource& opened, aidi
 class SummarySink : public ProductSink {
  public:
   SummarySink(const std::string& path, std::function<nlohmann::json()> summary) : file_(path), summary_(std::move(summary)) {}
-  void finish(const ScalarReceiver&) override {
+  void finish(const NavData&) override {
     file_.write(summary_().dump(2) + "\n");
     file_.commit();
   }

@@ -72,7 +72,7 @@ void TrackSink::on_epoch(const NavigationEpoch& e) {
   gpx_.write(gpx_point(e.solution, e.leap_seconds));
 }
 
-void TrackSink::finish(const ScalarReceiver&) {
+void TrackSink::finish(const NavData&) {
   kml_.write(kml_footer());
   gpx_.write(gpx_footer());
   kml_.commit();
@@ -97,18 +97,14 @@ void RinexObsSink::on_epoch(const NavigationEpoch& e) {
   if (e.solution.valid) write_header(e.solution.r_ecef_m);
 }
 
-void RinexObsSink::finish(const ScalarReceiver&) {
+void RinexObsSink::finish(const NavData&) {
   if (!header_written_) write_header(Eigen::Vector3d::Zero());  // no fix: position unknown
   file_.commit();
 }
 
-void RinexNavSink::finish(const ScalarReceiver& receiver) {
-  NavData nav;
-  for (const auto& [prn, eph] : receiver.ephemerides()) nav.ephemerides.push_back(eph);
-  nav.iono = receiver.iono();
-  nav.utc = receiver.utc();
+void RinexNavSink::finish(const NavData& decoded) {
   std::ostringstream rinex;
-  write_rinex3_nav(rinex, nav, "deepnav");
+  write_rinex3_nav(rinex, decoded, "deepnav");
   file_.write(rinex.str());
   file_.commit();
 }

@@ -21,7 +21,7 @@ class PvtCsvSink : public ProductSink {
  public:
   explicit PvtCsvSink(const std::string& path);
   void on_epoch(const NavigationEpoch& e) override;
-  void finish(const ScalarReceiver&) override { file_.commit(); }
+  void finish(const NavData&) override { file_.commit(); }
 
  private:
   TextOutputFile file_;
@@ -31,7 +31,7 @@ class TrackingCsvSink : public ProductSink {
  public:
   explicit TrackingCsvSink(const std::string& path);
   void on_correlation(const CorrelatorEpoch& e, const ChannelSnapshot& ch) override;
-  void finish(const ScalarReceiver&) override { file_.commit(); }
+  void finish(const NavData&) override { file_.commit(); }
 
  private:
   TextOutputFile file_;
@@ -41,7 +41,7 @@ class NmeaSink : public ProductSink {
  public:
   explicit NmeaSink(const std::string& path) : file_(path) {}
   void on_epoch(const NavigationEpoch& e) override;
-  void finish(const ScalarReceiver&) override { file_.commit(); }
+  void finish(const NavData&) override { file_.commit(); }
 
  private:
   TextOutputFile file_;
@@ -52,7 +52,7 @@ class TrackSink : public ProductSink {
  public:
   TrackSink(const std::string& kml_path, const std::string& gpx_path, const std::string& name);
   void on_epoch(const NavigationEpoch& e) override;
-  void finish(const ScalarReceiver&) override;
+  void finish(const NavData&) override;
 
  private:
   TextOutputFile kml_, gpx_;
@@ -63,7 +63,7 @@ class RinexObsSink : public ProductSink {
  public:
   RinexObsSink(const std::string& path, double interval_s);
   void on_epoch(const NavigationEpoch& e) override;
-  void finish(const ScalarReceiver&) override;
+  void finish(const NavData&) override;
 
  private:
   void write_header(const Eigen::Vector3d& approx_position_ecef_m);
@@ -77,7 +77,7 @@ class RinexObsSink : public ProductSink {
 class RinexNavSink : public ProductSink {
  public:
   explicit RinexNavSink(const std::string& path) : file_(path) {}
-  void finish(const ScalarReceiver& receiver) override;
+  void finish(const NavData& decoded) override;
 
  private:
   TextOutputFile file_;

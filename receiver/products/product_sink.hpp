@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "receiver/scalar_receiver.hpp"
+#include "signals/rinex_nav.hpp"
 
 namespace deepnav {
 
@@ -31,7 +32,8 @@ class ProductSink {
   /// Every completed integration of every channel.
   virtual void on_correlation(const CorrelatorEpoch&, const ChannelSnapshot&) {}
   /// The run has ended: write what is left and give the file its final name.
-  virtual void finish(const ScalarReceiver&) {}
+  /// `decoded`: the navigation data the run ended with (ephemerides, ionosphere, UTC).
+  virtual void finish(const NavData& decoded) { (void)decoded; }
 };
 
 }  // namespace deepnav
