@@ -214,7 +214,7 @@ const bool registered = register_command([](CommandParents& parents) {
   point->add_option("--onset", p->onset_s, "Jammer onset (s)")->capture_default_str();
   point->add_option("--out", *out, "Sweep folder")->required();
   point->callback([p, out] {
-    const auto fig = run_jam_point(*p, fs::absolute(*out).string(), self_executable());
+    const auto fig = run_jam_point(*p, fs::absolute(*out).string());
     fmt::print("{}: tracked {:.2f}, C/N0 {}, fixes {:.2f}, horizontal max {} m -> {}\n", fig["id"].get<std::string>(),
                fig["tracked_fraction_mean"].get<double>(), fig["cn0_mean_dbhz"].dump(),
                fig["solution"]["fix_availability"].get<double>(), fig["solution"]["horizontal_max_m"].dump(),

@@ -13,13 +13,19 @@
 #include <map>
 #include <sstream>
 
+#include "aiding/navigation_session.hpp"
 #include "ins/frames.hpp"
+#include "ins/imu_file.hpp"
+#include "ins/imu_model.hpp"
+#include "receiver/file_sample_source.hpp"
+#include "receiver/mitigation_config.hpp"
 #include "receiver/tracking_channel.hpp"
 #include "receiver/truth_file.hpp"
 #include "signals/if_synthesizer.hpp"
 #include "signals/rinex_nav.hpp"
 #include "signals/scenario.hpp"
 #include "signals/text_output_file.hpp"
+#include "tools/aided_scenario_run.hpp"
 #include "tools/child_process.hpp"
 #include "tools/command_registry.hpp"
 #include "tools/receiver_modes.hpp"
@@ -28,7 +34,6 @@ namespace deepnav::cli {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 /// A tracked channel's carrier must follow the true Doppler within this.
 constexpr double kDopplerToleranceHz = 10.0;
@@ -85,6 +90,42 @@ struct ErrorStats {
 
 nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
+/// One correlator integration, as the run's tracking product has it.
+struct TrackingRow {
+  double t_s;  ///< start of the integration (first sample / fs)
+  int prn;
+  ChannelState state;
+  double integration_s, doppler_hz, cn0_dbhz;
+};
+
+/// One solution of the run (its pvt.csv row).
+struct SolutionRow {
+  double t_s;
+  Eigen::Vector3d r_ecef_m;
+  double lat_rad, lon_rad;
+  std::string mode;
+};
+
+/// Keeps what the figures need from the run (a jam point is tens of seconds long).
+class JamRecorder : public ProductSink {
+ public:
+  explicit JamRecorder(double fs_hz) : fs_hz_(fs_hz) {}
+  void on_epoch(const NavigationEpoch& e) override {
+    if (!e.solution.valid) return;
+    solutions.push_back({e.receiver.t_s, e.solution.r_ecef_m, e.solution.llh.lat_rad, e.solution.llh.lon_rad,
+                         std::string(e.mode)});
+  }
+  void on_correlation(const CorrelatorEpoch& e, const ChannelSnapshot& ch) override {
+    tracking.push_back({static_cast<double>(e.first_sample) / fs_hz_, e.prn, ch.state, e.integration_s,
+                        e.carrier_doppler_hz, ch.cn0_dbhz});
+  }
+  std::vector<TrackingRow> tracking;
+  std::vector<SolutionRow> solutions;
+
+ private:
+  double fs_hz_;
+};
+
 /// When each satellite is tracked in the jammed window, from tracking.csv and the
 /// synthesizer's sat_truth.csv (true Doppler, 10 Hz). An integration counts as tracked when
 /// the channel is in the tracking state, its carrier is within 10 Hz of the true Doppler,
@@ -114,7 +155,7 @@ struct ChannelTimeline {
   }
 };
 
-ChannelTimeline channel_timeline(const std::string& tracking_path, const std::string& sat_truth_path, double fs_hz,
+ChannelTimeline channel_timeline(const std::vector<TrackingRow>& tracking, const std::string& sat_truth_path,
                                  double window_start_s, double window_end_s) {
   const Csv truth(sat_truth_path);
   const std::size_t t_col = truth.at("t_s", sat_truth_path), prn_col = truth.at("prn", sat_truth_path),
@@ -127,20 +168,16 @@ ChannelTimeline channel_timeline(const std::string& tracking_path, const std::st
     return it == v.end() ? v.back().second : it->second;
   };
   const TrackingConfig loss;  // the receiver's loss-of-lock rule
-  const Csv tracking(tracking_path);
-  const std::size_t first_col = tracking.at("first_sample", tracking_path), tp = tracking.at("prn", tracking_path),
-                    st = tracking.at("state", tracking_path), it = tracking.at("integration_s", tracking_path),
-                    dp = tracking.at("doppler_hz", tracking_path), cn = tracking.at("cn0_dbhz", tracking_path);
   ChannelTimeline timeline;
   for (const auto& [prn, v] : doppler) timeline.prns.push_back(prn);
   std::map<int, double> below_since;  // per PRN: start of the current run of C/N0 below the loss threshold
   std::map<int, std::deque<std::pair<double, double>>> last_second;  // per PRN: (t, C/N0) over the last second
   std::map<int, double> last_second_sum;
-  for (const auto& r : tracking.rows) {
-    const double t = number(r, first_col) / fs_hz;
-    const int prn = std::stoi(r[tp]);
+  for (const TrackingRow& r : tracking) {
+    const double t = r.t_s;
+    const int prn = r.prn;
     if (!doppler.count(prn) || t >= window_end_s) continue;
-    const double cn0 = number(r, cn);
+    const double cn0 = r.cn0_dbhz;
     if (!(cn0 < loss.lost_cn0_dbhz))
       below_since.erase(prn);
     else
@@ -157,9 +194,9 @@ ChannelTimeline channel_timeline(const std::string& tracking_path, const std::st
     const bool no_signal = recent_sum / static_cast<double>(recent.size()) < kSignalFloorDbhz;
     // Kept from one second before the window, so the first epochs see their channels.
     if (t < window_start_s - 1.0) continue;
-    const bool following = std::stoi(r[st]) == static_cast<int>(ChannelState::tracking) &&
-                           std::abs(number(r, dp) - true_doppler(prn, t)) <= kDopplerToleranceHz;
-    timeline.spans[prn].push_back({t, number(r, it), cn0, following && !faded, following && !no_signal});
+    const bool following =
+        r.state == ChannelState::tracking && std::abs(r.doppler_hz - true_doppler(prn, t)) <= kDopplerToleranceHz;
+    timeline.spans[prn].push_back({t, r.integration_s, cn0, following && !faded, following && !no_signal});
   }
   for (auto& [prn, v] : timeline.spans)
     std::stable_sort(v.begin(), v.end(), [](const auto& a, const auto& b) { return a.t_s < b.t_s; });
@@ -193,32 +230,26 @@ nlohmann::json channel_figures(const ChannelTimeline& timeline, double window_st
   return channels;
 }
 
-/// Horizontal/vertical error and fix availability of pvt.csv in the jammed window. Every
-/// solution the run gives counts for the error (an aided mode's coasting INS included);
-/// only GNSS fixes count for availability: a solution not in INS coast with at least four
-/// satellites tracked (as in ChannelTimeline) at its epoch.
-nlohmann::json solution_figures(const std::string& pvt_path, const std::string& truth_path,
+/// Horizontal/vertical error and fix availability of the run's solutions in the jammed
+/// window. Every solution the run gives counts for the error (an aided mode's coasting INS
+/// included); only GNSS fixes count for availability: a solution not in INS coast with at
+/// least four satellites tracked (as in ChannelTimeline) at its epoch.
+nlohmann::json solution_figures(const std::vector<SolutionRow>& solutions_in, const std::string& truth_path,
                                 const ChannelTimeline& timeline, double window_start_s, double window_end_s) {
   constexpr int kMinSatellites = 4;
   const TruthFile truth(truth_path);
-  const Csv pvt(pvt_path);
-  const std::size_t t = pvt.at("t_s", pvt_path), x = pvt.at("x_ecef_m", pvt_path), y = pvt.at("y_ecef_m", pvt_path),
-                    z = pvt.at("z_ecef_m", pvt_path), lat = pvt.at("lat_deg", pvt_path), lon = pvt.at("lon_deg", pvt_path),
-                    mode_col = pvt.at("mode", pvt_path);
   std::vector<double> horizontal, vertical;
   std::map<std::string, double> epochs_in_mode;
   int solutions = 0, gnss_fixes = 0;
-  for (const auto& r : pvt.rows) {
-    const double ts = number(r, t);
+  for (const SolutionRow& r : solutions_in) {
+    const double ts = r.t_s;
     if (ts < window_start_s || ts >= window_end_s) continue;
     const auto ref = truth.at(ts);
     if (!ref) continue;
     ++solutions;
-    const std::string mode = mode_col < r.size() ? r[mode_col] : "";
-    epochs_in_mode[mode] += 1.0;
-    if (mode != "coast" && timeline.tracked_at(ts) >= kMinSatellites) ++gnss_fixes;
-    const Eigen::Vector3d d = C_e_n(number(r, lat) * kDegToRad, number(r, lon) * kDegToRad) *
-                              (Eigen::Vector3d(number(r, x), number(r, y), number(r, z)) - ref->r_ecef_m);
+    epochs_in_mode[r.mode] += 1.0;
+    if (r.mode != "coast" && timeline.tracked_at(ts) >= kMinSatellites) ++gnss_fixes;
+    const Eigen::Vector3d d = C_e_n(r.lat_rad, r.lon_rad) * (r.r_ecef_m - ref->r_ecef_m);
     horizontal.push_back(d.head<2>().norm());
     vertical.push_back(std::abs(d.z()));
   }
@@ -314,7 +345,7 @@ bool point_done(const std::string& out_dir, const JamPoint& p) {
   return fs::exists(fs::path(point_dir(out_dir, p)) / "point.json");
 }
 
-nlohmann::json run_jam_point(const JamPoint& p, const std::string& out_dir, const std::string& deepnav_exe) {
+nlohmann::json run_jam_point(const JamPoint& p, const std::string& out_dir) {
   const auto start = std::chrono::steady_clock::now();
   const ReceiverMode& mode = find_receiver_mode(p.mode);
   Scenario sc;
@@ -342,37 +373,42 @@ nlohmann::json run_jam_point(const JamPoint& p, const std::string& out_dir, cons
   so.threads = 1;
   const SynthesisSummary s = IfSynthesizer(sc, read_rinex_nav(sc.nav_file)).run((work / "sim").string(), so);
 
-  std::vector<std::string> argv = {deepnav_exe,
-                                   "-q",
-                                   "run",
-                                   "--input",
-                                   s.if_path,
-                                   "--format",
-                                   std::string(to_string(sc.format)),
-                                   "--fs",
-                                   fmt::format("{}", sc.sample_rate_hz),
-                                   "--if",
-                                   fmt::format("{}", sc.if_hz),
-                                   "--week",
-                                   std::to_string(sc.start_time.week),
-                                   "--iono-from",
-                                   sc.nav_file,
-                                   "--ephemeris-from",
-                                   sc.nav_file,
-                                   "--truth",
-                                   s.truth_path,
-                                   "--mitigation",
-                                   p.mitigation,
-                                   "--out",
-                                   (work / "run").string()};
+  // The run, in-process; `command` records the equivalent `deepnav run` for a rerun by hand.
+  std::vector<std::string> argv = {"deepnav", "run", "--input", s.if_path, "--format", std::string(to_string(sc.format)),
+                                   "--fs", fmt::format("{}", sc.sample_rate_hz), "--if", fmt::format("{}", sc.if_hz),
+                                   "--week", std::to_string(sc.start_time.week), "--iono-from", sc.nav_file,
+                                   "--ephemeris-from", sc.nav_file, "--truth", s.truth_path, "--mitigation",
+                                   p.mitigation, "--out", (work / "run").string()};
   const RunImu imu{s.imu_path, sc.imu.grade, sc.imu.grades_file, sc.imu.lever_arm_m};
   for (const auto& a : receiver_mode_run_arguments(mode, imu, p.scenario)) argv.push_back(a);
-  const std::string log = (dir / "run.log").string();
-  fs::remove(log);
-  const int rc = wait_child(start_child(argv, log));
-  if (rc != 0) throw UserError(fmt::format("'deepnav run' for point {} exited with {}; see {}", point_id(p), rc, log));
+  JamRecorder recorder(sc.sample_rate_hz);
+  nlohmann::json mode_changes = nlohmann::json::array(), seconds_in_mode;
+  {
+    FileSampleSource source(synthesized_source(sc, s));
+    aiding::NavigationSessionConfig cfg;
+    cfg.navigator.mode = aiding::parse_nav_mode(p.mode);
+    cfg.navigator.receiver.reference_week = sc.start_time.week;
+    cfg.mitigation.mode = parse_mitigation_mode(p.mitigation);
+    const NavData nav = read_rinex_nav(sc.nav_file);
+    cfg.assisted_iono = nav.iono;
+    cfg.assisted_ephemerides = nav;
+    std::optional<ImuLog> imu_log;
+    if (mode.needs_imu) {
+      cfg.navigator.imu = load_imu_grade(sc.imu.grades_file, sc.imu.grade).model;
+      cfg.navigator.lever_arm_imu_to_antenna_b_m =
+          -Eigen::Vector3d(sc.imu.lever_arm_m[0], sc.imu.lever_arm_m[1], sc.imu.lever_arm_m[2]);
+      imu_log = read_imu_csv(s.imu_path);
+    }
+    aiding::NavigationSession session(cfg, source, std::move(imu_log), sc.duration_s);
+    session.run({&recorder});
+    if (const aiding::AidedReceiver* aided = session.aided()) {
+      for (const auto& c : aided->mode_changes())
+        mode_changes.push_back(
+            {{"t_s", c.t_s}, {"from", aiding::to_string(c.from)}, {"to", aiding::to_string(c.to)}, {"reason", c.reason}});
+      seconds_in_mode = session.seconds_in_mode();
+    }
+  }
 
-  const fs::path run = work / "run";
   nlohmann::json fig = {{"id", point_id(p)},
                         {"scenario", fs::path(p.scenario).stem().string()},
                         {"jammer", p.jammer},
@@ -384,19 +420,12 @@ nlohmann::json run_jam_point(const JamPoint& p, const std::string& out_dir, cons
                         {"duration_s", sc.duration_s},
                         {"adc_bits", sc.adc.bits},
                         {"command", shell_command_line(argv)}};
-  const ChannelTimeline timeline = channel_timeline((run / "tracking.csv").string(), s.sat_truth_path,
-                                                     sc.sample_rate_hz, p.onset_s, sc.duration_s);
+  const ChannelTimeline timeline = channel_timeline(recorder.tracking, s.sat_truth_path, p.onset_s, sc.duration_s);
   fig["channels"] = channel_figures(timeline, p.onset_s, sc.duration_s);
-  fig["solution"] = solution_figures((run / "pvt.csv").string(), s.truth_path, timeline, p.onset_s, sc.duration_s);
+  fig["solution"] = solution_figures(recorder.solutions, s.truth_path, timeline, p.onset_s, sc.duration_s);
   judge(fig);
-  fs::copy_file(run / "summary.json", dir / "summary.json", fs::copy_options::overwrite_existing);
-  {
-    std::ifstream in(dir / "summary.json");
-    const nlohmann::json summary = nlohmann::json::parse(in, nullptr, false);
-    if (summary.is_discarded()) throw UserError(fmt::format("'{}' is not JSON", (run / "summary.json").string()));
-    fig["mode_changes"] = summary.value("mode_changes", nlohmann::json::array());
-    if (summary.contains("seconds_in_mode")) fig["seconds_in_mode"] = summary["seconds_in_mode"];
-  }
+  fig["mode_changes"] = mode_changes;
+  if (!seconds_in_mode.is_null()) fig["seconds_in_mode"] = seconds_in_mode;
   fs::remove_all(work);
   fig["wall_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   TextOutputFile out((dir / "point.json").string());

@@ -41,10 +41,10 @@ struct FailureCriteria {
   double min_tracked_fraction = 0.5;
 };
 
-/// Synthesizes, runs `deepnav run` (the executable `deepnav_exe`; every mode with the
+/// Synthesizes, runs the receiver in-process (NavigationSession, every mode with the
 /// broadcast ephemerides of the scenario's navigation file as assistance, so the first fix
-/// comes at about 11 s) and writes point.json;
-/// the large intermediate files are deleted. Returns the figures.
-nlohmann::json run_jam_point(const JamPoint& p, const std::string& out_dir, const std::string& deepnav_exe);
+/// comes at about 11 s) and writes point.json (its `command` is the equivalent `deepnav
+/// run`); the IF file is deleted. Returns the figures.
+nlohmann::json run_jam_point(const JamPoint& p, const std::string& out_dir);
 
 }  // namespace deepnav::cli
