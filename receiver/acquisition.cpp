@@ -263,7 +263,16 @@ struct Acquisition::Impl {
   };
   std::array<std::vector<std::complex<double>>, 2> refiner_storage;
 
-  std::vector<AcquisitionResult> search(std::span<const Sample> x) {
+  /// The search's working memory, kept between searches (tens of MB for all 32 PRNs at a
+  /// few Msps: allocated again each time, it made the run's peak memory vary).
+  std::vector<std::complex<float>> scratch;
+  std::vector<std::vector<std::complex<float>>> spectra;
+  std::vector<std::vector<float>> grids;
+
+  std::vector<AcquisitionResult> search(std::span<const Sample> x, const std::vector<int>& prns) {
+    for (int p : prns)
+      if (std::find(cfg.prns.begin(), cfg.prns.end(), p) == cfg.prns.end())
+        throw std::invalid_argument("acquisition: PRN " + std::to_string(p) + " is not one of the configured PRNs");
     const int blocks = static_cast<int>(std::min<std::int64_t>(cfg.noncoherent, static_cast<std::int64_t>(x.size()) / n));
     if (blocks < 1) {
       throw std::invalid_argument("acquisition: need at least " + std::to_string(n) + " samples (one coherent block), got " +
@@ -273,10 +282,11 @@ struct Acquisition::Impl {
     // every PRN while they are still in cache; each PRN's grid collects its rows.
     const std::size_t nb = dopplers.size();
     const auto cells_per_row = static_cast<std::size_t>(nf);
-    std::vector<std::complex<float>> scratch(static_cast<std::size_t>(n));
-    std::vector<std::vector<std::complex<float>>> spectra(static_cast<std::size_t>(blocks),
-                                                          std::vector<std::complex<float>>(cells_per_row));
-    std::vector<std::vector<float>> grids(cfg.prns.size(), std::vector<float>(nb * cells_per_row, 0.0f));
+    scratch.resize(static_cast<std::size_t>(n));
+    if (spectra.size() < static_cast<std::size_t>(blocks)) spectra.resize(static_cast<std::size_t>(blocks));
+    for (auto& spectrum : spectra) spectrum.resize(cells_per_row);
+    if (grids.size() < prns.size()) grids.resize(prns.size());
+    for (std::size_t p = 0; p < prns.size(); ++p) grids[p].assign(nb * cells_per_row, 0.0f);
     const std::vector<std::complex<double>> means = block_means(x, blocks);
     for (std::size_t d = 0; d < nb; ++d) {
       for (int b = 0; b < blocks; ++b) {
@@ -284,8 +294,8 @@ struct Acquisition::Impl {
         forward->execute();
         std::copy(out.c(), out.c() + nf, spectra[static_cast<std::size_t>(b)].begin());
       }
-      for (std::size_t p = 0; p < cfg.prns.size(); ++p) {
-        const auto& code = code_spectra[static_cast<std::size_t>(cfg.prns[p] - 1)];
+      for (std::size_t p = 0; p < prns.size(); ++p) {
+        const auto& code = code_spectra[static_cast<std::size_t>(prns[p] - 1)];
         float* row = grids[p].data() + d * cells_per_row;
         for (int b = 0; b < blocks; ++b) {
           multiply_spectra(spectra[static_cast<std::size_t>(b)].data(), code.data(), in.c(), nf);
@@ -297,7 +307,7 @@ struct Acquisition::Impl {
     const double cells = static_cast<double>(nb) * std::floor(samples_per_ms);
     const double threshold = acquisition_threshold(blocks, cells, cfg.pfa);
     std::vector<AcquisitionResult> results;
-    for (std::size_t p = 0; p < cfg.prns.size(); ++p) results.push_back(evaluate(x, means, cfg.prns[p], grids[p], threshold));
+    for (std::size_t p = 0; p < prns.size(); ++p) results.push_back(evaluate(x, means, prns[p], grids[p], threshold));
     reject_cross_correlations(results);
     return results;
   }
@@ -405,6 +415,12 @@ std::int64_t Acquisition::samples_needed() const {
   return static_cast<std::int64_t>(impl_->n) * impl_->cfg.noncoherent;
 }
 
-std::vector<AcquisitionResult> Acquisition::search(std::span<const Sample> samples) { return impl_->search(samples); }
+std::vector<AcquisitionResult> Acquisition::search(std::span<const Sample> samples) {
+  return impl_->search(samples, impl_->cfg.prns);
+}
+
+std::vector<AcquisitionResult> Acquisition::search(std::span<const Sample> samples, const std::vector<int>& prns) {
+  return impl_->search(samples, prns);
+}
 
 }  // namespace deepnav

@@ -72,6 +72,9 @@ class Acquisition {
   /// Fewer samples than samples_needed() shorten the non-coherent sum; fewer than one
   /// coherent block throw std::invalid_argument.
   std::vector<AcquisitionResult> search(std::span<const Sample> samples);
+  /// The same for `prns`, a subset of the configured ones (a receiver searching again for
+  /// the satellites it does not track keeps one object, its plans and its buffers).
+  std::vector<AcquisitionResult> search(std::span<const Sample> samples, const std::vector<int>& prns);
 
  private:
   struct Impl;

@@ -92,6 +92,8 @@ struct ScalarReceiver::Impl {
     thread_count = threads;
   }
 
+  std::unique_ptr<Acquisition> acquisition;
+
   bool tracked(int prn) const {
     return std::any_of(channels.begin(), channels.end(), [&](const Channel& ch) { return ch.trk->prn() == prn; });
   }
@@ -99,15 +101,16 @@ struct ScalarReceiver::Impl {
   /// Searches `samples` (starting at absolute index `first`) for satellites not tracked yet.
   void acquire(const std::vector<Sample>& samples, std::int64_t first) {
     if (static_cast<int>(channels.size()) >= cfg.channels) return;
-    AcquisitionConfig ac = cfg.acquisition;
-    ac.prns.clear();
+    std::vector<int> prns;
     for (int prn = 1; prn <= gps::kMaxPrn; ++prn)
       if (!tracked(prn) && (cfg.acquisition.prns.empty() || std::count(cfg.acquisition.prns.begin(), cfg.acquisition.prns.end(), prn)))
-        ac.prns.push_back(prn);
-    if (ac.prns.empty()) return;
-    Acquisition acq(ac);
-    if (static_cast<std::int64_t>(samples.size()) < acq.samples_needed() / std::max(1, ac.noncoherent)) return;
-    auto results = acq.search(samples);
+        prns.push_back(prn);
+    if (prns.empty()) return;
+    // One search engine for the run: its plans, code spectra and buffers are made once.
+    if (!acquisition) acquisition = std::make_unique<Acquisition>(cfg.acquisition);
+    if (static_cast<std::int64_t>(samples.size()) < acquisition->samples_needed() / std::max(1, cfg.acquisition.noncoherent))
+      return;
+    auto results = acquisition->search(samples, prns);
     std::sort(results.begin(), results.end(), [](const auto& a, const auto& b) { return a.cn0_dbhz > b.cn0_dbhz; });
     for (const auto& r : results) {
       if (!r.detected || static_cast<int>(channels.size()) >= cfg.channels) continue;
