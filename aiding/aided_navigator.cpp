@@ -26,6 +26,17 @@ AidedNavigator::AidedNavigator(const NavState& initial, double clock_bias_m, dou
   cfg_.noise.psd(kTropo) = cfg_.troposphere.enabled ? rw * rw / 3600.0 : 0.0;
 }
 
+void AidedNavigator::enable_troposphere_state(double sigma_m) {
+  cfg_.troposphere.enabled = true;
+  kf_.reopen_state(kTropo, sigma_m);
+  // The height and the clock have taken the model's error until now (a zenith error z
+  // moves them by a few z): let them move back as the state takes it.
+  kf_.add_variance(kPos + 2, 3.0 * sigma_m);
+  kf_.add_variance(kClockBias, 3.0 * sigma_m);
+  const double rw = cfg_.troposphere.random_walk_m_per_sqrt_h;
+  cfg_.noise.psd(kTropo) = rw * rw / 3600.0;
+}
+
 double AidedNavigator::residual_delay_m(const RangePrediction& p) const {
   return cfg_.troposphere.enabled ? troposphere_residual_m_ * p.troposphere_mapping : 0.0;
 }

@@ -42,6 +42,9 @@ struct InitialUncertainty {
 /// the signal has no troposphere and the receiver removes a model).
 struct TroposphereResidualConfig {
   bool enabled = false;
+  /// Take the state when the receiver's fixes show the troposphere model wrong by more
+  /// than a metre at the zenith (troposphere_mismatch_detector.hpp).
+  bool enable_on_mismatch = true;
   double random_walk_m_per_sqrt_h = 0.02;  ///< wet delay wander (1-3 cm/sqrt(h) in the literature)
 };
 
@@ -104,6 +107,10 @@ class AidedNavigator {
   wgs84::Llh antenna_llh() const;
   double clock_bias_m() const { return clock_bias_m_; }
   double clock_drift_mps() const { return clock_drift_mps_; }
+  /// Starts estimating the zenith troposphere residual from now on, from 0 with this
+  /// 1-sigma (m); the height and clock variances grow to match.
+  void enable_troposphere_state(double sigma_m);
+  bool troposphere_state_enabled() const { return cfg_.troposphere.enabled; }
   /// The estimated zenith troposphere residual (m; 0 while the state is off).
   double troposphere_residual_m() const { return troposphere_residual_m_; }
   /// What the filter adds to a predicted pseudorange beyond the clock: the troposphere

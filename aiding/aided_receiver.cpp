@@ -42,6 +42,9 @@ struct AidedReceiver::Impl : ExternalChannelControl {
   ModeManager modes;
   InnovationMonitor innovations;
   SatelliteFaultMonitor faults;
+  TroposphereMismatchDetector troposphere_check;
+  std::optional<double> troposphere_state_from_s;
+  double troposphere_mismatch_zenith_m = 0.0;
   std::string start_method;
   int restarts = 0;
   double fs;
@@ -60,6 +63,7 @@ struct AidedReceiver::Impl : ExternalChannelControl {
         ultra(rx, cfg.ultra, cfg.receiver.pvt.range_errors, cfg.fault_exclusion ? &faults : nullptr),
         modes(cfg.mode, cfg.limits),
         faults(cfg.faults),
+        troposphere_check(cfg.troposphere_mismatch),
         fs(source.sample_rate_hz()) {
     rx.set_external_control(this);
   }
@@ -170,6 +174,7 @@ struct AidedReceiver::Impl : ExternalChannelControl {
     nc.noise = process_noise_from(cfg.imu, cfg.oscillator);
     nc.lever_arm_imu_to_antenna_b_m = cfg.lever_arm_imu_to_antenna_b_m;
     nc.troposphere = cfg.troposphere;
+    if (troposphere_state_from_s) nc.troposphere.enabled = true;  // a restart keeps what was found
     const double dt = start->state.t_s - ep.t_s;
     // The fix's clock bias is against the receiver clock before this epoch's re-setting
     // (observe() steers it right after the fix, before the next block's follow): move it
@@ -257,12 +262,39 @@ struct AidedReceiver::Impl : ExternalChannelControl {
         spdlog::info("t = {:.2f} s: PRN {:2d} agrees with the filter again: re-admitted", t_s, prn);
   }
 
+  /// Takes the zenith troposphere state when the fixes show the model wrong at the zenith
+  /// by more than the detector's threshold (once; a state on from the start stays on).
+  void watch_troposphere(const ReceiverEpoch& ep) {
+    if (cfg.troposphere.enabled || troposphere_state_from_s || !cfg.troposphere.enable_on_mismatch) return;
+    if (nav && modes.mode() == NavMode::ultra) {
+      // Steered channels' pseudoranges echo the filter: the discriminators tell instead.
+      troposphere_check.add(ultra.take_mean_pseudorange_residuals(), cfg.receiver.pvt.range_errors);
+    } else {
+      if (!ep.pvt.valid) return;
+      std::map<int, double> cn0;
+      for (const ChannelObservation& o : ep.observations) cn0[o.prn] = o.cn0_dbhz;
+      troposphere_check.add(fix_residuals(ep.pvt, cn0), cfg.receiver.pvt.range_errors);
+    }
+    spdlog::debug("t = {:.2f} s: troposphere model error fitted at the zenith {:+.3f} m", ep.t_s,
+                  troposphere_check.zenith_error_m());
+    if (!troposphere_check.mismatch()) return;
+    troposphere_state_from_s = ep.t_s;
+    troposphere_mismatch_zenith_m = troposphere_check.zenith_error_m();
+    // From 0 with room for the error the fixes show (the prior's half metre would take
+    // minutes to reach it).
+    if (nav) nav->enable_troposphere_state(std::max(0.5, std::abs(troposphere_mismatch_zenith_m)));
+    spdlog::warn("t = {:.2f} s: the fixes fit a troposphere model error of {:+.2f} m at the zenith: the signal does not "
+                 "match the receiver's troposphere model (IF without troposphere? then use --troposphere none); the "
+                 "aided filter estimates the residual from now on", ep.t_s, troposphere_mismatch_zenith_m);
+  }
+
   AidedEpoch on_observation(const ReceiverEpoch& ep) {
     if (ep.pvt.valid) last_pvt_t_s = ep.t_s;
     ranging = 0;
     for (const auto& o : ep.observations)
       if (rx.ephemeris(o.prn)) ++ranging;
     if (!nav && ep.pvt.valid) start_ins(ep);
+    watch_troposphere(ep);
     if (nav) {
       if (modes.mode() == NavMode::loose) loose_update(ep);
       if (modes.mode() == NavMode::tight) tight_update(ep);
@@ -321,5 +353,7 @@ const std::vector<ModeChange>& AidedReceiver::mode_changes() const { return impl
 const std::string& AidedReceiver::ins_start_method() const { return impl_->start_method; }
 int AidedReceiver::filter_restarts() const { return impl_->restarts; }
 int AidedReceiver::satellite_exclusions() const { return impl_->faults.exclusions(); }
+std::optional<double> AidedReceiver::troposphere_state_from_s() const { return impl_->troposphere_state_from_s; }
+double AidedReceiver::troposphere_mismatch_zenith_m() const { return impl_->troposphere_mismatch_zenith_m; }
 
 }  // namespace deepnav::aiding

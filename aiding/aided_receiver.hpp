@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "aiding/aided_navigator.hpp"
+#include "aiding/troposphere_mismatch_detector.hpp"
 #include "aiding/mode_manager.hpp"
 #include "aiding/ultra_tight_tracker.hpp"
 #include "ins/imu_file.hpp"
@@ -35,6 +36,7 @@ struct AidedReceiverConfig {
   /// Tight and ultra-tight: the zenith troposphere residual state, and per-satellite fault
   /// exclusion on the pseudorange innovations (satellite_fault_monitor.hpp).
   TroposphereResidualConfig troposphere;
+  TroposphereMismatchConfig troposphere_mismatch;
   bool fault_exclusion = true;
   SatelliteFaultConfig faults;
 };
@@ -78,6 +80,10 @@ class AidedReceiver {
   int filter_restarts() const;
   /// Times a satellite was excluded by the per-satellite fault monitor.
   int satellite_exclusions() const;
+  /// When the zenith troposphere state was taken on a model mismatch (nullopt: it was not;
+  /// a state on from the start is not reported here), and the zenith error fitted then.
+  std::optional<double> troposphere_state_from_s() const;
+  double troposphere_mismatch_zenith_m() const;
 
  private:
   struct Impl;

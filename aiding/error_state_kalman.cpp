@@ -73,6 +73,13 @@ double ErrorStateKalman::normalized_innovation(double z, const StateRow& h, doub
   return (z - h * x_) / std::sqrt(s);
 }
 
+void ErrorStateKalman::reopen_state(int index, double sigma) {
+  P_.row(index).setZero();
+  P_.col(index).setZero();
+  P_(index, index) = sigma * sigma;
+  x_(index) = 0.0;
+}
+
 void ErrorStateKalman::clear_fed_back_states() { x_.setZero(); }
 
 void ErrorStateKalman::check() {

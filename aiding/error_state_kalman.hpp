@@ -43,6 +43,11 @@ class ErrorStateKalman {
   const StateVector& x() const { return x_; }
   StateVector& x() { return x_; }
   const StateMatrix& P() const { return P_; }
+  /// Makes state `index` independent of the others with variance sigma^2 (a state taken
+  /// on mid-run: what was known about it no longer holds).
+  void reopen_state(int index, double sigma);
+  /// Adds sigma^2 to state `index`'s variance (what the filter knew of it may be wrong).
+  void add_variance(int index, double sigma) { P_(index, index) += sigma * sigma; }
   /// Zeroes the error states once they have been fed back.
   void clear_fed_back_states();
   void reset(const StateVector& x0, const StateMatrix& P0);

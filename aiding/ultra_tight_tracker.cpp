@@ -196,12 +196,34 @@ std::optional<RangeMeasurement> UltraTightTracker::to_measurement(const Discrimi
   return m;
 }
 
+std::vector<RangeResidual> UltraTightTracker::take_mean_pseudorange_residuals() {
+  std::vector<RangeResidual> out;
+  for (const auto& [prn, sum] : residual_sums_) {
+    RangeResidual r = sum.latest;
+    r.residual_m = sum.sum_m / sum.count;
+    out.push_back(r);
+  }
+  residual_sums_.clear();
+  return out;
+}
+
 UpdateResult UltraTightTracker::update_and_steer(AidedNavigator& nav, std::int64_t end_sample, bool measure,
                                                  std::vector<SatelliteInnovation>* innovations) {
   std::vector<RangeMeasurement> ms, watched;
   for (const DiscriminatorSample& d : queued_) {
     if (!measure || d.cn0_dbhz < cfg_.min_cn0_dbhz) continue;
-    if (auto m = to_measurement(d, nav)) (faults_ && faults_->excluded(d.prn) ? watched : ms).push_back(*m);
+    const std::optional<RangeMeasurement> m = to_measurement(d, nav);
+    if (!m) continue;
+    (faults_ && faults_->excluded(d.prn) ? watched : ms).push_back(*m);
+    if (m->pseudorange_m) {
+      const RangePrediction& g = m->geometry;
+      const double predicted = g.pseudorange_m(nav.clock_bias_m() + nav.clock_drift_mps() * m->time_offset_s) +
+                               nav.residual_delay_m(g);
+      ResidualSum& sum = residual_sums_[d.prn];
+      sum.latest = {g.los_ecef, g.elevation_rad, d.cn0_dbhz, *m->pseudorange_m - predicted};
+      sum.sum_m += sum.latest.residual_m;
+      ++sum.count;
+    }
   }
   queued_.clear();
   measuring_ = static_cast<int>(ms.size());

@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "aiding/aided_navigator.hpp"
+#include "aiding/troposphere_mismatch_detector.hpp"
 #include "receiver/scalar_receiver.hpp"
 
 namespace deepnav::aiding {
@@ -89,6 +90,10 @@ class UltraTightTracker {
   int count_steerable();
   /// Channels whose last integration was strong enough to be a measurement.
   int measuring_channels() const { return measuring_; }
+  /// Per satellite, the mean of its discriminator pseudoranges against the filter's
+  /// prediction (measured minus predicted) since the last call (one integration's code
+  /// noise is metres; a second's mean of them is what a scalar DLL would give).
+  std::vector<RangeResidual> take_mean_pseudorange_residuals();
 
  private:
   /// The filter's view of one satellite at an absolute sample index.
@@ -120,6 +125,12 @@ class UltraTightTracker {
     double rate_window_start_cycles = 0.0;          ///< carrier phase there (NCO plus Costas error)
   };
   std::map<int, ChannelMemory> memory_;
+  struct ResidualSum {
+    RangeResidual latest;  ///< geometry and C/N0 of the latest integration
+    double sum_m = 0.0;
+    int count = 0;
+  };
+  std::map<int, ResidualSum> residual_sums_;
   std::map<int, bool> steered_;
   int measuring_ = 0;
 };

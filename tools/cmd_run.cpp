@@ -40,6 +40,7 @@ struct RunOptions {
   std::vector<double> imu_lever_arm_m{0.0, 0.0, 0.0};
   bool filter_troposphere = false;
   bool fault_exclusion = true;
+  bool detect_troposphere_mismatch = true;
   bool print_config = false;
 };
 
@@ -71,6 +72,7 @@ aiding::AidedReceiverConfig aided_config(const RunOptions& o, aiding::NavMode mo
   c.lever_arm_imu_to_antenna_b_m = -Eigen::Vector3d(o.imu_lever_arm_m[0], o.imu_lever_arm_m[1], o.imu_lever_arm_m[2]);
   c.ultra.spacing_chips = o.receiver.tracking.spacing_chips;
   c.troposphere.enabled = o.filter_troposphere;
+  c.troposphere.enable_on_mismatch = o.detect_troposphere_mismatch;
   c.fault_exclusion = o.fault_exclusion;
   return c;
 }
@@ -143,6 +145,8 @@ nlohmann::json run_summary(const RunOptions& o, const OpenedSource& opened, aidi
     summary["ins_start"] = aided->ins_start_method();
     summary["filter_restarts"] = aided->filter_restarts();
     summary["satellite_exclusions"] = aided->satellite_exclusions();
+    if (const auto from = aided->troposphere_state_from_s())
+      summary["troposphere_mismatch"] = {{"state_from_s", *from}, {"zenith_error_m", aided->troposphere_mismatch_zenith_m()}};
   }
   summary["interrupted"] = opened.interrupted();
   if (opened.is_stream) summary["stream"] = opened.report();
@@ -247,6 +251,10 @@ const bool registered = register_command([](CommandParents& parents) {
   cmd->add_option("--imu-grades-file", o->imu_grades_file, "IMU grades YAML file (relative: from here, else the project's data/)")->capture_default_str();
   cmd->add_flag("--filter-troposphere,!--no-filter-troposphere", o->filter_troposphere,
                "Tight/ultra: estimate a zenith troposphere residual (an 18th filter state)");
+  cmd->add_flag("--troposphere-mismatch,!--no-troposphere-mismatch", o->detect_troposphere_mismatch,
+                "Tight/ultra: take the zenith troposphere state when the fixes show the troposphere model wrong by "
+                "over 1 m at the zenith (a signal without troposphere)")
+      ->default_str("true");
   cmd->add_flag("--fault-exclusion,!--no-fault-exclusion", o->fault_exclusion,
                 "Tight/ultra: exclude a satellite whose pseudorange innovations disagree with the filter")
       ->default_str("true");  // flags capture no default: --print-config reads this one

@@ -1,0 +1,64 @@
+#include "aiding/troposphere_mismatch_detector.hpp"
+
+#include <Eigen/Dense>
+#include <cmath>
+
+#include "signals/atmosphere.hpp"
+
+namespace deepnav::aiding {
+
+std::vector<RangeResidual> fix_residuals(const PvtSolution& fix, const std::map<int, double>& cn0_dbhz) {
+  std::vector<RangeResidual> out;
+  if (!fix.valid) return out;
+  for (int prn : fix.used_prns) {
+    const auto el = fix.elevation_rad.find(prn), az = fix.azimuth_rad.find(prn), res = fix.residuals_m.find(prn);
+    if (el == fix.elevation_rad.end() || az == fix.azimuth_rad.end() || res == fix.residuals_m.end()) continue;
+    const double ce = std::cos(el->second);
+    RangeResidual r;
+    r.los = Eigen::Vector3d(ce * std::sin(az->second), ce * std::cos(az->second), std::sin(el->second));  // ENU
+    r.elevation_rad = el->second;
+    if (const auto c = cn0_dbhz.find(prn); c != cn0_dbhz.end()) r.cn0_dbhz = c->second;
+    r.residual_m = res->second;
+    out.push_back(r);
+  }
+  return out;
+}
+
+void TroposphereMismatchDetector::add(const std::vector<RangeResidual>& epoch, const RangeErrorModel& weights) {
+  const auto n = static_cast<Eigen::Index>(epoch.size());
+  if (n < 6) return;  // five unknowns with the zenith error: one redundant satellite at least
+  Eigen::MatrixXd H(n, 4);
+  Eigen::VectorXd w(n), m(n), r(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const RangeResidual& e = epoch[static_cast<std::size_t>(i)];
+    H.row(i) << e.los.transpose(), 1.0;  // position (along the line of sight) and clock
+    w(i) = 1.0 / weights.pseudorange_variance_m2(e.elevation_rad, e.cn0_dbhz);
+    m(i) = troposphere_mapping(e.elevation_rad);
+    r(i) = e.residual_m;
+  }
+  // z with position and clock eliminated (Schur complement): information m' W m - b' N^-1 b
+  // and right-hand side m' W r - b' N^-1 H' W r, b = H' W m.
+  const Eigen::Matrix4d N = H.transpose() * w.asDiagonal() * H;
+  const auto solver = N.ldlt();
+  const Eigen::Vector4d b = H.transpose() * w.asDiagonal() * m;
+  const Eigen::Vector4d c = H.transpose() * w.asDiagonal() * r;
+  const double information = m.dot(w.cwiseProduct(m)) - b.dot(solver.solve(b));
+  const double rhs = m.dot(w.cwiseProduct(r)) - b.dot(solver.solve(c));
+  if (!(information > 1e-9) || !std::isfinite(information) || !std::isfinite(rhs)) return;
+  window_.push_back({information, rhs});
+  while (static_cast<int>(window_.size()) > cfg_.window_fixes) window_.pop_front();
+}
+
+double TroposphereMismatchDetector::zenith_error_m() const {
+  if (static_cast<int>(window_.size()) < cfg_.min_fixes) return 0.0;
+  double information = 0.0, sum = 0.0;
+  for (const FixTerm& t : window_) {
+    information += t.information;
+    sum += t.weighted_sum;
+  }
+  return sum / information;
+}
+
+bool TroposphereMismatchDetector::mismatch() const { return std::abs(zenith_error_m()) > cfg_.threshold_zenith_m; }
+
+}  // namespace deepnav::aiding
