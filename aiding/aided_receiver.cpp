@@ -43,7 +43,7 @@ struct AidedReceiver::Impl : ExternalChannelControl {
   InnovationMonitor innovations;
   SatelliteFaultMonitor faults;
   TroposphereMismatchDetector troposphere_check;
-  std::optional<double> troposphere_state_from_s;
+  std::optional<double> troposphere_mismatch_found_s, troposphere_state_from_s;
   double troposphere_mismatch_zenith_m = 0.0;
   std::string start_method;
   int restarts = 0;
@@ -174,7 +174,7 @@ struct AidedReceiver::Impl : ExternalChannelControl {
     nc.noise = process_noise_from(cfg.imu, cfg.oscillator);
     nc.lever_arm_imu_to_antenna_b_m = cfg.lever_arm_imu_to_antenna_b_m;
     nc.troposphere = cfg.troposphere;
-    if (troposphere_state_from_s) nc.troposphere.enabled = true;  // a restart keeps what was found
+    if (troposphere_mismatch_found_s) nc.troposphere.enabled = true;  // a restart keeps what was found
     const double dt = start->state.t_s - ep.t_s;
     // The fix's clock bias is against the receiver clock before this epoch's re-setting
     // (observe() steers it right after the fix, before the next block's follow): move it
@@ -262,10 +262,22 @@ struct AidedReceiver::Impl : ExternalChannelControl {
         spdlog::info("t = {:.2f} s: PRN {:2d} agrees with the filter again: re-admitted", t_s, prn);
   }
 
-  /// Takes the zenith troposphere state when the fixes show the model wrong at the zenith
-  /// by more than the detector's threshold (once; a state on from the start stays on).
+  /// Looks for a troposphere model the signal does not match, and once one is found has
+  /// the filter estimate the zenith residual whenever it takes pseudoranges (tight and
+  /// ultra-tight; loose coupling has no rows that could see it).
   void watch_troposphere(const ReceiverEpoch& ep) {
-    if (cfg.troposphere.enabled || troposphere_state_from_s || !cfg.troposphere.enable_on_mismatch) return;
+    if (cfg.troposphere.enabled || !cfg.troposphere.enable_on_mismatch) return;
+    if (!troposphere_mismatch_found_s) find_troposphere_mismatch(ep);
+    const bool ranging_mode = modes.mode() == NavMode::tight || modes.mode() == NavMode::ultra;
+    if (!troposphere_mismatch_found_s || !nav || !ranging_mode || nav->troposphere_state_enabled()) return;
+    // From 0 with room for the error the fixes show (the prior's half metre would take
+    // minutes to reach it).
+    nav->enable_troposphere_state(std::max(0.5, std::abs(troposphere_mismatch_zenith_m)));
+    if (!troposphere_state_from_s) troposphere_state_from_s = ep.t_s;
+    spdlog::info("t = {:.2f} s: the aided filter estimates the zenith troposphere residual from now on", ep.t_s);
+  }
+
+  void find_troposphere_mismatch(const ReceiverEpoch& ep) {
     if (nav && modes.mode() == NavMode::ultra) {
       // Steered channels' pseudoranges echo the filter: the discriminators tell instead.
       troposphere_check.add(ultra.take_mean_pseudorange_residuals(), cfg.receiver.pvt.range_errors);
@@ -278,14 +290,11 @@ struct AidedReceiver::Impl : ExternalChannelControl {
     spdlog::debug("t = {:.2f} s: troposphere model error fitted at the zenith {:+.3f} m", ep.t_s,
                   troposphere_check.zenith_error_m());
     if (!troposphere_check.mismatch()) return;
-    troposphere_state_from_s = ep.t_s;
+    troposphere_mismatch_found_s = ep.t_s;
     troposphere_mismatch_zenith_m = troposphere_check.zenith_error_m();
-    // From 0 with room for the error the fixes show (the prior's half metre would take
-    // minutes to reach it).
-    if (nav) nav->enable_troposphere_state(std::max(0.5, std::abs(troposphere_mismatch_zenith_m)));
     spdlog::warn("t = {:.2f} s: the fixes fit a troposphere model error of {:+.2f} m at the zenith: the signal does not "
-                 "match the receiver's troposphere model (IF without troposphere? then use --troposphere none); the "
-                 "aided filter estimates the residual from now on", ep.t_s, troposphere_mismatch_zenith_m);
+                 "match the receiver's troposphere model (IF without troposphere? then use --troposphere none)",
+                 ep.t_s, troposphere_mismatch_zenith_m);
   }
 
   AidedEpoch on_observation(const ReceiverEpoch& ep) {
@@ -353,6 +362,7 @@ const std::vector<ModeChange>& AidedReceiver::mode_changes() const { return impl
 const std::string& AidedReceiver::ins_start_method() const { return impl_->start_method; }
 int AidedReceiver::filter_restarts() const { return impl_->restarts; }
 int AidedReceiver::satellite_exclusions() const { return impl_->faults.exclusions(); }
+std::optional<double> AidedReceiver::troposphere_mismatch_found_s() const { return impl_->troposphere_mismatch_found_s; }
 std::optional<double> AidedReceiver::troposphere_state_from_s() const { return impl_->troposphere_state_from_s; }
 double AidedReceiver::troposphere_mismatch_zenith_m() const { return impl_->troposphere_mismatch_zenith_m; }
 

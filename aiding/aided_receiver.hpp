@@ -80,10 +80,13 @@ class AidedReceiver {
   int filter_restarts() const;
   /// Times a satellite was excluded by the per-satellite fault monitor.
   int satellite_exclusions() const;
-  /// When the zenith troposphere state was taken on a model mismatch (nullopt: it was not;
-  /// a state on from the start is not reported here), and the zenith error fitted then.
-  std::optional<double> troposphere_state_from_s() const;
+  /// When the fixes showed a troposphere model mismatch (nullopt: they did not), the
+  /// zenith error fitted then, and when the filter took its zenith troposphere state on
+  /// it (its first tight or ultra-tight epoch from then; a state on from the start is not
+  /// reported here).
+  std::optional<double> troposphere_mismatch_found_s() const;
   double troposphere_mismatch_zenith_m() const;
+  std::optional<double> troposphere_state_from_s() const;
 
  private:
   struct Impl;

@@ -145,8 +145,12 @@ nlohmann::json run_summary(const RunOptions& o, const OpenedSource& opened, aidi
     summary["ins_start"] = aided->ins_start_method();
     summary["filter_restarts"] = aided->filter_restarts();
     summary["satellite_exclusions"] = aided->satellite_exclusions();
-    if (const auto from = aided->troposphere_state_from_s())
-      summary["troposphere_mismatch"] = {{"state_from_s", *from}, {"zenith_error_m", aided->troposphere_mismatch_zenith_m()}};
+    if (const auto found = aided->troposphere_mismatch_found_s()) {
+      const auto from = aided->troposphere_state_from_s();
+      summary["troposphere_mismatch"] = {{"found_at_s", *found},
+                                         {"zenith_error_m", aided->troposphere_mismatch_zenith_m()},
+                                         {"state_from_s", from ? nlohmann::json(*from) : nlohmann::json(nullptr)}};
+    }
   }
   summary["interrupted"] = opened.interrupted();
   if (opened.is_stream) summary["stream"] = opened.report();

@@ -35,12 +35,15 @@ v = {m: s[m]["vertical_error_m"]["rms"] for m in s}
 bad = []
 for m in ["tight", "ultra"]:
     t = s[m].get("troposphere_mismatch")
-    if not t or not (-3.0 < t["zenith_error_m"] < -1.5):
-        bad.append(f"{m}: troposphere_mismatch {t} (expected a zenith error near -2.3 m)")
+    if not t or not (-3.0 < t["zenith_error_m"] < -1.5) or t["state_from_s"] is None:
+        bad.append(f"{m}: troposphere_mismatch {t} (expected a zenith error near -2.3 m and the state taken)")
     if h[m] > h["loose"]:
         bad.append(f"{m}: horizontal RMS {h[m]:.2f} m above loose's {h['loose']:.2f} m")
     if v[m] > 0.6 * v["loose"]:
         bad.append(f"{m}: vertical RMS {v[m]:.2f} m not well under loose's {v['loose']:.2f} m")
+lt = s["loose"].get("troposphere_mismatch")
+if not lt or lt["state_from_s"] is not None:
+    bad.append(f"loose: troposphere_mismatch {lt} (expected found, no state: loose has no ranges)")
 if "troposphere_mismatch" in s["ultra_off"]:
     bad.append("--no-troposphere-mismatch still took the state")
 print(" ".join(f"{m}: h {h[m]:.2f} v {v[m]:.2f}" for m in s))
