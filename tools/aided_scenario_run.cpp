@@ -65,26 +65,37 @@ class TruthScoring : public ProductSink {
 
 }  // namespace
 
+aiding::NavigationSessionConfig scenario_session_config(const Scenario& sc, aiding::NavMode mode) {
+  aiding::NavigationSessionConfig cfg;
+  cfg.navigator.mode = mode;
+  cfg.navigator.receiver.reference_week = sc.start_time.week;
+  const NavData nav_data = read_rinex_nav(sc.nav_file);
+  cfg.assisted_iono = nav_data.iono;
+  cfg.assisted_ephemerides = nav_data;
+  if (mode != aiding::NavMode::scalar) {
+    cfg.navigator.imu = load_imu_grade(sc.imu.grades_file, sc.imu.grade).model;
+    cfg.navigator.lever_arm_imu_to_antenna_b_m =
+        -Eigen::Vector3d(sc.imu.lever_arm_m[0], sc.imu.lever_arm_m[1], sc.imu.lever_arm_m[2]);
+  }
+  return cfg;
+}
+
+std::optional<ImuLog> scenario_imu_log(const SynthesisSummary& s, aiding::NavMode mode) {
+  if (mode == aiding::NavMode::scalar) return std::nullopt;
+  return read_imu_csv(s.imu_path);
+}
+
 AidedRunResult run_aided_scenario(const Scenario& sc, const SynthesisSummary& s, aiding::NavMode mode,
                                   const AidedRunSettings& settings) {
   const auto start = std::chrono::steady_clock::now();
   FileSampleSource source(synthesized_source(sc, s));
-  aiding::NavigationSessionConfig cfg;
+  aiding::NavigationSessionConfig cfg = scenario_session_config(sc, mode);
   aiding::AidedReceiverConfig& nav = cfg.navigator;
-  nav.mode = mode;
-  nav.receiver.reference_week = sc.start_time.week;
   nav.receiver.pull_in.pll_order = settings.pll_order;
   nav.receiver.tracking_loops.pll_order = settings.pll_order;
   nav.receiver.atmosphere = settings.atmosphere;
   nav.troposphere.enabled = settings.filter_troposphere;
-  nav.imu = load_imu_grade(sc.imu.grades_file, sc.imu.grade).model;
-  nav.lever_arm_imu_to_antenna_b_m = -Eigen::Vector3d(sc.imu.lever_arm_m[0], sc.imu.lever_arm_m[1], sc.imu.lever_arm_m[2]);
-  const NavData nav_data = read_rinex_nav(sc.nav_file);
-  cfg.assisted_iono = nav_data.iono;
-  cfg.assisted_ephemerides = nav_data;
-  std::optional<ImuLog> imu;
-  if (mode != aiding::NavMode::scalar) imu = read_imu_csv(s.imu_path);
-  aiding::NavigationSession session(cfg, source, std::move(imu), sc.duration_s);
+  aiding::NavigationSession session(cfg, source, scenario_imu_log(s, mode), sc.duration_s);
   const TruthFile truth(s.truth_path);
   AidedRunResult result;
   TruthScoring scoring(truth, nav.receiver.tracking.lost_cn0_dbhz, result);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "aiding/aided_receiver.hpp"
+#include "aiding/navigation_session.hpp"
 #include "receiver/file_sample_source.hpp"
 #include "signals/if_synthesizer.hpp"
 #include "signals/scenario.hpp"
@@ -47,6 +48,12 @@ struct AidedRunSettings {
   /// Tight and ultra-tight: the zenith troposphere residual state (an 18th state).
   bool filter_troposphere = false;
 };
+
+/// The session for a synthesized scenario in `mode`: its week, its navigation file's
+/// ionosphere and ephemerides as assistance, and in an aided mode its IMU's grade and lever arm.
+aiding::NavigationSessionConfig scenario_session_config(const Scenario& scenario, aiding::NavMode mode);
+/// The IMU log the synthesizer wrote, for an aided mode (nullopt in scalar mode).
+std::optional<ImuLog> scenario_imu_log(const SynthesisSummary& synthesis, aiding::NavMode mode);
 
 /// Runs `mode` (scalar included) on a synthesized scenario with assisted ephemerides and
 /// ionosphere from the scenario's navigation file.

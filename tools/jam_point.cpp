@@ -385,21 +385,10 @@ nlohmann::json run_jam_point(const JamPoint& p, const std::string& out_dir) {
   nlohmann::json mode_changes = nlohmann::json::array(), seconds_in_mode;
   {
     FileSampleSource source(synthesized_source(sc, s));
-    aiding::NavigationSessionConfig cfg;
-    cfg.navigator.mode = aiding::parse_nav_mode(p.mode);
-    cfg.navigator.receiver.reference_week = sc.start_time.week;
+    const aiding::NavMode nav_mode = aiding::parse_nav_mode(p.mode);
+    aiding::NavigationSessionConfig cfg = scenario_session_config(sc, nav_mode);
     cfg.mitigation.mode = parse_mitigation_mode(p.mitigation);
-    const NavData nav = read_rinex_nav(sc.nav_file);
-    cfg.assisted_iono = nav.iono;
-    cfg.assisted_ephemerides = nav;
-    std::optional<ImuLog> imu_log;
-    if (mode.needs_imu) {
-      cfg.navigator.imu = load_imu_grade(sc.imu.grades_file, sc.imu.grade).model;
-      cfg.navigator.lever_arm_imu_to_antenna_b_m =
-          -Eigen::Vector3d(sc.imu.lever_arm_m[0], sc.imu.lever_arm_m[1], sc.imu.lever_arm_m[2]);
-      imu_log = read_imu_csv(s.imu_path);
-    }
-    aiding::NavigationSession session(cfg, source, std::move(imu_log), sc.duration_s);
+    aiding::NavigationSession session(cfg, source, scenario_imu_log(s, nav_mode), sc.duration_s);
     session.run({&recorder});
     if (const aiding::AidedReceiver* aided = session.aided()) {
       for (const auto& c : aided->mode_changes())
