@@ -1,0 +1,32 @@
+# The libraries' dependencies point one way: tools -> aiding -> receiver -> signals -> ins.
+# Run at every build (the `layering` target): a source that includes a header of a library
+# above its own fails the build, naming the file, the line and the rule.
+#   cmake -DROOT=<source dir> -P tools/check_layering.cmake
+set(order ins signals receiver aiding tools)
+set(failures "")
+list(LENGTH order n)
+math(EXPR last "${n} - 1")
+foreach(i RANGE ${last})
+  list(GET order ${i} lib)
+  if(lib STREQUAL "tools")
+    continue()  # the top: it may include everything
+  endif()
+  math(EXPR above_from "${i} + 1")
+  set(above "")
+  foreach(j RANGE ${above_from} ${last})
+    list(GET order ${j} upper)
+    list(APPEND above ${upper})
+  endforeach()
+  list(JOIN above "|" above_regex)
+  file(GLOB_RECURSE sources "${ROOT}/${lib}/*.cpp" "${ROOT}/${lib}/*.hpp")
+  foreach(source ${sources})
+    file(STRINGS "${source}" lines REGEX "^[ \t]*#[ \t]*include[ \t]*\"(${above_regex})/")
+    foreach(line ${lines})
+      file(RELATIVE_PATH rel "${ROOT}" "${source}")
+      string(APPEND failures "\n  ${rel}: ${line}  (${lib}/ may include only libraries below it)")
+    endforeach()
+  endforeach()
+endforeach()
+if(failures)
+  message(FATAL_ERROR "include against the dependency order ins <- signals <- receiver <- aiding <- tools:${failures}")
+endif()
