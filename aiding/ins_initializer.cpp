@@ -1,5 +1,7 @@
 #include "aiding/ins_initializer.hpp"
 
+#include <spdlog/spdlog.h>
+
 #include <cmath>
 #include <vector>
 
@@ -75,6 +77,12 @@ std::optional<InsStart> InsInitializer::at_rest(const GnssFix& fix) const {
   return s;
 }
 
+namespace {
+// A one-second velocity difference at 0.1 m/s noise: 0.15 m/s^2 and, at 1 g, 0.6 deg.
+constexpr double kMaxSpecificForceMismatch_mps2 = 0.5;
+constexpr double kMaxTriadAngleMismatch_rad = 2.0 * M_PI / 180.0;
+}  // namespace
+
 std::optional<InsStart> InsInitializer::moving(const GnssFix& fix) const {
   if (!previous_fix_ || fix.t_s - previous_fix_->t_s > 2.0 || fix.t_s <= previous_fix_->t_s) return std::nullopt;
   const wgs84::Llh llh = wgs84::ecef_to_llh(fix.r_antenna_ecef_m);
@@ -95,6 +103,21 @@ std::optional<InsStart> InsInitializer::moving(const GnssFix& fix) const {
   if (span <= 0.0) return std::nullopt;
   const Eigen::Vector3d f_b = dv / span;
   const Eigen::Vector3d v_b(v_n.norm(), 0.0, 0.0);
+  // The two frames must agree on what TRIAD does not fit: the specific force's magnitude
+  // and its angle to the direction of travel. A velocity difference spoilt by multipath or
+  // a blocked satellite (suburban: metres per second) fails this, and a start from it had
+  // pitch wrong by 10 deg in a 60 deg banked turn, which the filter, told 1 deg, never
+  // corrected: such a pair of fixes is passed over and the next one tried.
+  const auto angle = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    return std::atan2(a.cross(b).norm(), a.dot(b));
+  };
+  if (std::abs(f_n.norm() - f_b.norm()) > kMaxSpecificForceMismatch_mps2 ||
+      std::abs(angle(f_n, v_n) - angle(f_b, v_b)) > kMaxTriadAngleMismatch_rad) {
+    spdlog::debug("t = {:.2f} s: moving INS start passed over: specific force {:.2f} m/s^2 from the fixes, {:.2f} from "
+                  "the IMU; angle to the velocity {:.2f} / {:.2f} deg",
+                  fix.t_s, f_n.norm(), f_b.norm(), angle(f_n, v_n) * 180.0 / M_PI, angle(f_b, v_b) * 180.0 / M_PI);
+    return std::nullopt;
+  }
   const Eigen::Matrix3d C_b_n = triad(f_n, v_n) * triad(f_b, v_b).transpose();
   InsStart s = finish(fix, C_b_n);
   s.method = "moving: TRIAD of specific force and direction of travel";

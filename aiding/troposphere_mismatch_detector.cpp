@@ -59,6 +59,6 @@ double TroposphereMismatchDetector::zenith_error_m() const {
   return sum / information;
 }
 
-bool TroposphereMismatchDetector::mismatch() const { return std::abs(zenith_error_m()) > cfg_.threshold_zenith_m; }
+bool TroposphereMismatchDetector::mismatch() const { return zenith_error_m() < -cfg_.threshold_zenith_m; }
 
 }  // namespace deepnav::aiding

@@ -9,8 +9,10 @@
 // pseudoranges only echo the filter's prediction).
 //
 // A standard atmosphere is wrong by centimetres to a decimetre or two at the zenith; a
-// fitted error beyond a metre means the model removes a delay the signal does not have
-// (IF from a generator without troposphere) or misses one it has (a wrong site height).
+// model delay over a metre larger than the signal's means the signal has none (IF from a
+// generator without troposphere). The test is one-sided: reflected and non-line-of-sight
+// signals add delay, most at low elevation, and read as the opposite sign (suburban world:
+// up to +1.2 m), which no troposphere state should take.
 // The aided filter then takes its zenith troposphere state (aided_navigator.hpp): without
 // it, the tight and ultra-tight filters turn the model's elevation-dependent error, and
 // its rate in every Doppler and carrier row, into metres of height (measured on the
@@ -27,7 +29,7 @@
 namespace deepnav::aiding {
 
 struct TroposphereMismatchConfig {
-  double threshold_zenith_m = 1.0;  ///< |fitted zenith error| that counts as a mismatch
+  double threshold_zenith_m = 1.0;  ///< model over the signal by this at the zenith: a mismatch
   int window_fixes = 30;            ///< fixes combined
   int min_fixes = 20;               ///< before any verdict
 };

@@ -206,7 +206,13 @@ Fit solve_once(const GpsTime& t_rx, const std::vector<PseudorangeObservation>& o
   sol.dops.vdop = std::sqrt(Qn(2, 2));
   sol.dops.tdop = std::sqrt(Q(3, 3));
   sol.valid = std::isfinite(sol.r_ecef_m.norm()) && sol.r_ecef_m.norm() > 6.0e6 && sol.r_ecef_m.norm() < 7.0e6;
-  if (!sol.valid) sol.reason = "solution did not converge to the Earth's surface";
+  if (!sol.valid) {
+    sol.reason = "solution did not converge to the Earth's surface";
+  } else if (!(sol.llh.height_m >= cfg.min_height_m && sol.llh.height_m <= cfg.max_height_m)) {
+    sol.valid = false;
+    sol.reason = fmt::format("implausible height {:.0f} m (accepted {:.0f} to {:.0f} m)", sol.llh.height_m, cfg.min_height_m,
+                             cfg.max_height_m);
+  }
   return fit;
 }
 

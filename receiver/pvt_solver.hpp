@@ -79,6 +79,11 @@ struct PvtConfig {
   /// RAIM: satellites excluded at most per epoch before the fix is declared failed.
   int raim_max_exclusions = 2;
   RangeErrorModel range_errors;     ///< pseudorange weights (the aided modes use the same)
+  /// A fix outside these heights (WGS-84, m) is no fix: with four satellites nothing else
+  /// can catch a pseudorange off by a millisecond of transmit time, which puts a fix
+  /// hundreds of kilometres up (seen in the suburban world at 612 km).
+  double min_height_m = -1000.0;
+  double max_height_m = 100000.0;
 };
 
 class PvtSolver {

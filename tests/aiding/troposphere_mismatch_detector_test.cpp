@@ -48,6 +48,15 @@ TEST(TroposphereMismatchDetector, PositionAndClockErrorsAloneAreNoMismatch) {
   EXPECT_FALSE(d.mismatch());
 }
 
+TEST(TroposphereMismatchDetector, ExtraDelayIsNoMismatch) {
+  // Multipath and non-line-of-sight signals add delay: a positive fit is never taken.
+  TroposphereMismatchDetector d;
+  const RangeErrorModel weights;
+  for (int k = 0; k < 30; ++k) d.add(sky(Eigen::Vector3d::Zero(), 0.0, +2.3), weights);
+  EXPECT_NEAR(d.zenith_error_m(), 2.3, 1e-9);
+  EXPECT_FALSE(d.mismatch());
+}
+
 TEST(TroposphereMismatchDetector, NeedsItsFixesAndSixSatellites) {
   TroposphereMismatchDetector d;
   const RangeErrorModel weights;
