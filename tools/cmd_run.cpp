@@ -257,7 +257,7 @@ const bool registered = register_command([](CommandParents& parents) {
                "Tight/ultra: estimate a zenith troposphere residual (an 18th filter state)");
   cmd->add_flag("--troposphere-mismatch,!--no-troposphere-mismatch", o->detect_troposphere_mismatch,
                 "Tight/ultra: take the zenith troposphere state when the fixes show the troposphere model wrong by "
-                "over 1 m at the zenith (a signal without troposphere)")
+                "over 1.5 m at the zenith (a signal without troposphere)")
       ->default_str("true");
   cmd->add_flag("--fault-exclusion,!--no-fault-exclusion", o->fault_exclusion,
                 "Tight/ultra: exclude a satellite whose pseudorange innovations disagree with the filter")
