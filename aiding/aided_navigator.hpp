@@ -42,8 +42,8 @@ struct InitialUncertainty {
 /// the signal has no troposphere and the receiver removes a model).
 struct TroposphereResidualConfig {
   bool enabled = false;
-  /// Take the state when the receiver's fixes show the troposphere model wrong by more
-  /// than a metre at the zenith (troposphere_mismatch_detector.hpp).
+  /// Take the state when the pseudorange residuals show the troposphere model over the
+  /// signal at the zenith (troposphere_mismatch_detector.hpp).
   bool enable_on_mismatch = true;
   double random_walk_m_per_sqrt_h = 0.02;  ///< wet delay wander (1-3 cm/sqrt(h) in the literature)
 };

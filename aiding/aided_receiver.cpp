@@ -44,7 +44,6 @@ struct AidedReceiver::Impl : ExternalChannelControl {
   SatelliteFaultMonitor faults;
   TroposphereMismatchDetector troposphere_check;
   std::optional<double> troposphere_mismatch_found_s, troposphere_state_from_s;
-  double troposphere_mismatch_zenith_m = 0.0;
   std::string start_method;
   int restarts = 0;
   double fs;
@@ -272,7 +271,7 @@ struct AidedReceiver::Impl : ExternalChannelControl {
     if (!troposphere_mismatch_found_s || !nav || !ranging_mode || nav->troposphere_state_enabled()) return;
     // From 0 with room for the error the fixes show (the prior's half metre would take
     // minutes to reach it).
-    nav->enable_troposphere_state(std::max(0.5, std::abs(troposphere_mismatch_zenith_m)));
+    nav->enable_troposphere_state(std::max(0.5, std::abs(troposphere_check.zenith_error_m())));
     if (!troposphere_state_from_s) troposphere_state_from_s = ep.t_s;
     spdlog::info("t = {:.2f} s: the aided filter estimates the zenith troposphere residual from now on", ep.t_s);
   }
@@ -283,18 +282,15 @@ struct AidedReceiver::Impl : ExternalChannelControl {
       troposphere_check.add(ultra.take_mean_pseudorange_residuals(), cfg.receiver.pvt.range_errors);
     } else {
       if (!ep.pvt.valid) return;
-      std::map<int, double> cn0;
-      for (const ChannelObservation& o : ep.observations) cn0[o.prn] = o.cn0_dbhz;
-      troposphere_check.add(fix_residuals(ep.pvt, cn0), cfg.receiver.pvt.range_errors);
+      troposphere_check.add(fix_residuals(ep.pvt, cn0_by_prn(ep)), cfg.receiver.pvt.range_errors);
     }
     spdlog::debug("t = {:.2f} s: troposphere model error fitted at the zenith {:+.3f} m", ep.t_s,
                   troposphere_check.zenith_error_m());
     if (!troposphere_check.mismatch()) return;
-    troposphere_mismatch_found_s = ep.t_s;
-    troposphere_mismatch_zenith_m = troposphere_check.zenith_error_m();
+    troposphere_mismatch_found_s = ep.t_s;  // the detector takes no more epochs: its fit stays as found
     spdlog::warn("t = {:.2f} s: the fixes fit a troposphere model error of {:+.2f} m at the zenith: the signal does not "
                  "match the receiver's troposphere model (IF without troposphere? then use --troposphere none)",
-                 ep.t_s, troposphere_mismatch_zenith_m);
+                 ep.t_s, troposphere_check.zenith_error_m());
   }
 
   AidedEpoch on_observation(const ReceiverEpoch& ep) {
@@ -364,6 +360,8 @@ int AidedReceiver::filter_restarts() const { return impl_->restarts; }
 int AidedReceiver::satellite_exclusions() const { return impl_->faults.exclusions(); }
 std::optional<double> AidedReceiver::troposphere_mismatch_found_s() const { return impl_->troposphere_mismatch_found_s; }
 std::optional<double> AidedReceiver::troposphere_state_from_s() const { return impl_->troposphere_state_from_s; }
-double AidedReceiver::troposphere_mismatch_zenith_m() const { return impl_->troposphere_mismatch_zenith_m; }
+double AidedReceiver::troposphere_mismatch_zenith_m() const {
+  return impl_->troposphere_mismatch_found_s ? impl_->troposphere_check.zenith_error_m() : 0.0;
+}
 
 }  // namespace deepnav::aiding

@@ -28,9 +28,14 @@ const char* to_string(NavMode mode) {
   return "?";
 }
 
+std::optional<NavMode> nav_mode_named(std::string_view name) {
+  for (NavMode m : kChain)
+    if (name == to_string(m)) return m;
+  return std::nullopt;
+}
+
 NavMode parse_nav_mode(const std::string& text) {
-  for (NavMode m : {NavMode::scalar, NavMode::loose, NavMode::tight, NavMode::ultra})
-    if (text == to_string(m)) return m;
+  if (const auto m = nav_mode_named(text); m && *m != NavMode::coast) return *m;
   throw std::invalid_argument("unknown mode '" + text + "' (expected scalar, loose, tight or ultra)");
 }
 

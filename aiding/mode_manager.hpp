@@ -3,14 +3,19 @@
 // missing (satellites, lock, a healthy and converged filter) the manager falls back along
 // ultra -> tight -> loose -> coast (INS alone) -> scalar, and returns to the asked-for mode
 // once it has been possible again for `return_after_s`. Falling back is immediate.
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace deepnav::aiding {
 
 enum class NavMode { scalar, coast, loose, tight, ultra };
 const char* to_string(NavMode mode);
-/// Parses "scalar", "loose", "tight" or "ultra"; throws std::invalid_argument naming the choices.
+/// The mode of that name, coast included (nullopt: none).
+std::optional<NavMode> nav_mode_named(std::string_view name);
+/// Parses "scalar", "loose", "tight" or "ultra" (the modes a user can ask for); throws
+/// std::invalid_argument naming the choices.
 NavMode parse_nav_mode(const std::string& text);
 
 /// What the modes need, as seen at one instant.

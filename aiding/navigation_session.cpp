@@ -31,6 +31,13 @@ int gnss_measurements(const AidedEpoch& a) {
 
 }  // namespace
 
+nlohmann::json mode_changes_json(const std::vector<ModeChange>& changes) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const ModeChange& c : changes)
+    out.push_back({{"t_s", c.t_s}, {"from", to_string(c.from)}, {"to", to_string(c.to)}, {"reason", c.reason}});
+  return out;
+}
+
 NavigationSession::NavigationSession(NavigationSessionConfig config, SampleSource& source, std::optional<ImuLog> imu,
                                      std::optional<double> duration_s)
     : config_(std::move(config)),

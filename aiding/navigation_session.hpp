@@ -5,6 +5,7 @@
 // `deepnav run`, the benchmarks and the end-to-end tests all run through it, so the
 // wiring exists once.
 #include <map>
+#include <nlohmann/json.hpp>
 #include <memory>
 #include <optional>
 #include <string>
@@ -27,6 +28,9 @@ struct NavigationSessionConfig {
   std::optional<NavData> assisted_ephemerides;
 };
 
+/// Mode changes as summary.json and the jamming points report them.
+nlohmann::json mode_changes_json(const std::vector<ModeChange>& changes);
+
 class NavigationSession {
  public:
   /// `imu`: needed by the aided modes (throws std::invalid_argument without it, or when it
@@ -43,7 +47,6 @@ class NavigationSession {
   ScalarReceiver& receiver();
   /// The aided navigator (nullptr in scalar mode).
   const AidedReceiver* aided() const { return aided_.get(); }
-  NavMode mode() const { return config_.navigator.mode; }
   /// Seconds spent in each navigation mode.
   const std::map<std::string, double>& seconds_in_mode() const { return seconds_in_mode_; }
 

@@ -10,6 +10,7 @@
 // within a few metres of the clock bias the solution reports.
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -68,6 +69,13 @@ struct ReceiverEpoch {
   PvtSolution pvt;
   int channels_tracking = 0;
 };
+
+/// Each observed satellite's C/N0 (dB-Hz) at the epoch, by PRN.
+inline std::map<int, double> cn0_by_prn(const ReceiverEpoch& epoch) {
+  std::map<int, double> cn0;
+  for (const ChannelObservation& o : epoch.observations) cn0[o.prn] = o.cn0_dbhz;
+  return cn0;
+}
 
 struct ChannelSnapshot {
   int prn;

@@ -22,13 +22,6 @@ FileSampleSourceOptions synthesized_source(const Scenario& sc, const SynthesisSu
 
 namespace {
 
-aiding::NavMode mode_named(std::string_view name) {
-  for (aiding::NavMode m : {aiding::NavMode::scalar, aiding::NavMode::loose, aiding::NavMode::tight, aiding::NavMode::ultra,
-                            aiding::NavMode::coast})
-    if (name == aiding::to_string(m)) return m;
-  throw std::logic_error("no navigation mode is named '" + std::string(name) + "'");
-}
-
 /// Scores every epoch of a run against the synthesizer's truth.
 class TruthScoring : public ProductSink {
  public:
@@ -38,7 +31,9 @@ class TruthScoring : public ProductSink {
   void on_epoch(const NavigationEpoch& n) override {
     EpochError e;
     e.t_s = n.receiver.t_s;
-    e.mode = mode_named(n.mode);
+    const auto mode = aiding::nav_mode_named(n.mode);
+    if (!mode) throw std::logic_error("no navigation mode is named '" + std::string(n.mode) + "'");
+    e.mode = *mode;
     const bool aided = n.from_filter && e.mode != aiding::NavMode::scalar;
     const PvtSolution& p = aided ? n.solution : n.receiver.pvt;
     e.valid = aided || p.valid;

@@ -25,7 +25,6 @@
 namespace deepnav::cli {
 namespace {
 
-
 struct RunOptions {
   std::string input, format = "ibyte", out_dir, truth_path, assist_nav;
   double fs_hz = 0.0, if_hz = 0.0, skip_s = 0.0;
@@ -137,10 +136,7 @@ nlohmann::json run_summary(const RunOptions& o, const OpenedSource& opened, aidi
   summary["navigation"] = navigation;
   summary["mode"] = o.mode;
   if (const aiding::AidedReceiver* aided = session.aided()) {
-    nlohmann::json changes = nlohmann::json::array();
-    for (const auto& c : aided->mode_changes())
-      changes.push_back({{"t_s", c.t_s}, {"from", aiding::to_string(c.from)}, {"to", aiding::to_string(c.to)}, {"reason", c.reason}});
-    summary["mode_changes"] = changes;
+    summary["mode_changes"] = aiding::mode_changes_json(aided->mode_changes());
     summary["seconds_in_mode"] = session.seconds_in_mode();
     summary["ins_start"] = aided->ins_start_method();
     summary["filter_restarts"] = aided->filter_restarts();

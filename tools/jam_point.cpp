@@ -391,9 +391,7 @@ nlohmann::json run_jam_point(const JamPoint& p, const std::string& out_dir) {
     aiding::NavigationSession session(cfg, source, scenario_imu_log(s, nav_mode), sc.duration_s);
     session.run({&recorder});
     if (const aiding::AidedReceiver* aided = session.aided()) {
-      for (const auto& c : aided->mode_changes())
-        mode_changes.push_back(
-            {{"t_s", c.t_s}, {"from", aiding::to_string(c.from)}, {"to", aiding::to_string(c.to)}, {"reason", c.reason}});
+      mode_changes = aiding::mode_changes_json(aided->mode_changes());
       seconds_in_mode = session.seconds_in_mode();
     }
   }

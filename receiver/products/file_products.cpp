@@ -54,9 +54,7 @@ void TrackingCsvSink::on_correlation(const CorrelatorEpoch& e, const ChannelSnap
 
 void NmeaSink::on_epoch(const NavigationEpoch& e) {
   if (!e.solution.valid) return;
-  std::map<int, double> cn0;
-  for (const auto& ob : e.receiver.observations) cn0[ob.prn] = ob.cn0_dbhz;
-  file_.write(nmea_sentences(e.solution, cn0, e.leap_seconds));
+  file_.write(nmea_sentences(e.solution, cn0_by_prn(e.receiver), e.leap_seconds));
 }
 
 TrackSink::TrackSink(const std::string& kml_path, const std::string& gpx_path, const std::string& name)
@@ -66,7 +64,6 @@ TrackSink::TrackSink(const std::string& kml_path, const std::string& gpx_path, c
 }
 
 void TrackSink::on_epoch(const NavigationEpoch& e) {
-  leap_seconds_ = e.leap_seconds;
   if (!e.solution.valid) return;
   kml_.write(kml_point(e.solution));
   gpx_.write(gpx_point(e.solution, e.leap_seconds));

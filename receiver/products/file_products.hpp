@@ -56,7 +56,6 @@ class TrackSink : public ProductSink {
 
  private:
   TextOutputFile kml_, gpx_;
-  int leap_seconds_ = 18;
 };
 
 class RinexObsSink : public ProductSink {
