@@ -16,7 +16,7 @@ namespace {
 constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 }
 
-PvtCsvSink::PvtCsvSink(const std::string& path) : file_(path) {
+PvtCsvSink::PvtCsvSink(const std::string& path) : FileSink(path) {
   file_.write(
       "t_s,gps_week,gps_sow,valid,x_ecef_m,y_ecef_m,z_ecef_m,lat_deg,lon_deg,height_m,vn_mps,ve_mps,vd_mps,"
       "clock_bias_m,clock_drift_mps,satellites,gdop,pdop,hdop,vdop,excluded,mode,filter_satellites\n");
@@ -39,7 +39,7 @@ void PvtCsvSink::on_epoch(const NavigationEpoch& e) {
       p.used_prns.size(), p.dops.gdop, p.dops.pdop, p.dops.hdop, p.dops.vdop, excluded, e.mode, e.filter_satellites));
 }
 
-TrackingCsvSink::TrackingCsvSink(const std::string& path) : file_(path) {
+TrackingCsvSink::TrackingCsvSink(const std::string& path) : FileSink(path) {
   file_.write(
       "first_sample,prn,state,integration_s,i_prompt,q_prompt,i_early,q_early,i_late,q_late,doppler_hz,code_rate_cps,"
       "cn0_dbhz\n");
@@ -103,7 +103,7 @@ void RinexNavSink::finish(const NavData& decoded) {
   std::ostringstream rinex;
   write_rinex3_nav(rinex, decoded, "deepnav");
   file_.write(rinex.str());
-  file_.commit();
+  FileSink::finish(decoded);
 }
 
 std::vector<std::unique_ptr<ProductSink>> file_products(const std::string& out_dir, const std::string& track_name,

@@ -17,34 +17,32 @@
 
 namespace deepnav {
 
-class PvtCsvSink : public ProductSink {
+/// A product that is one file, complete once the run has ended.
+class FileSink : public ProductSink {
+ public:
+  void finish(const NavData&) override { file_.commit(); }
+
+ protected:
+  explicit FileSink(const std::string& path) : file_(path) {}
+  TextOutputFile file_;
+};
+
+class PvtCsvSink : public FileSink {
  public:
   explicit PvtCsvSink(const std::string& path);
   void on_epoch(const NavigationEpoch& e) override;
-  void finish(const NavData&) override { file_.commit(); }
-
- private:
-  TextOutputFile file_;
 };
 
-class TrackingCsvSink : public ProductSink {
+class TrackingCsvSink : public FileSink {
  public:
   explicit TrackingCsvSink(const std::string& path);
   void on_correlation(const CorrelatorEpoch& e, const ChannelSnapshot& ch) override;
-  void finish(const NavData&) override { file_.commit(); }
-
- private:
-  TextOutputFile file_;
 };
 
-class NmeaSink : public ProductSink {
+class NmeaSink : public FileSink {
  public:
-  explicit NmeaSink(const std::string& path) : file_(path) {}
+  explicit NmeaSink(const std::string& path) : FileSink(path) {}
   void on_epoch(const NavigationEpoch& e) override;
-  void finish(const NavData&) override { file_.commit(); }
-
- private:
-  TextOutputFile file_;
 };
 
 /// KML and GPX tracks; `name`: the track's name (the input's file name).
@@ -73,13 +71,10 @@ class RinexObsSink : public ProductSink {
   std::vector<ReceiverEpoch> held_;  ///< epochs before the first fix
 };
 
-class RinexNavSink : public ProductSink {
+class RinexNavSink : public FileSink {
  public:
-  explicit RinexNavSink(const std::string& path) : file_(path) {}
+  explicit RinexNavSink(const std::string& path) : FileSink(path) {}
   void finish(const NavData& decoded) override;
-
- private:
-  TextOutputFile file_;
 };
 
 /// All of the above in `out_dir`, named as listed.
