@@ -31,7 +31,7 @@ double scalar_rate_sigma_mps(double cn0_dbhz, double pll_bandwidth_hz, double co
 
 }  // namespace
 
-struct AidedReceiver::Impl : ExternalChannelControl {
+struct AidedReceiver::Impl : ChannelSteering {
   AidedReceiverConfig cfg;
   ScalarReceiver rx;
   ImuLog imu;
@@ -59,31 +59,35 @@ struct AidedReceiver::Impl : ExternalChannelControl {
         rx(cfg.receiver, source),
         imu(std::move(log)),
         init(cfg.imu, cfg.lever_arm_imu_to_antenna_b_m),
-        ultra(rx, cfg.ultra, cfg.receiver.pvt.range_errors, cfg.fault_exclusion ? &faults : nullptr),
+        ultra(cfg.ultra, source.sample_rate_hz(), cfg.receiver.pvt.range_errors, cfg.fault_exclusion ? &faults : nullptr,
+              cfg.receiver.atmosphere),
         modes(cfg.mode, cfg.limits),
         faults(cfg.faults),
         troposphere_check(cfg.troposphere_mismatch),
         fs(source.sample_rate_hz()) {
-    rx.set_external_control(this);
+    rx.set_channel_steering(this);
   }
 
-  bool on_epoch(const CorrelatorEpoch& e, TrackingChannel& ch, const NavDecoder& decoder) override {
+  ChannelController* controller_for(int prn) override { return ultra.controller_for(prn); }
+
+  void before_block() override {
     // Ultra-tight: the filter steers every channel it can. Loose/tight/coast: it steers only
     // channels whose signal has faded, so they are still aligned when it comes back.
     Engagement engage = Engagement::none;
     if (nav && modes.mode() == NavMode::ultra) engage = Engagement::all;
     else if (nav && modes.mode() != NavMode::scalar) engage = Engagement::faded_only;
-    return ultra.on_epoch(e, ch, decoder, engage);
+    ultra.set_engagement(engage);
   }
 
-  void after_block(std::int64_t end) override {
+  void after_block(const BlockSnapshot& block) override {
+    const std::int64_t end = block.end_sample;
     const double t = static_cast<double>(end) / fs;
     propagate_to(t);
     follow_receiver_clock();
-    if (nav && modes.mode() != NavMode::ultra && modes.mode() != NavMode::scalar) ultra.update_and_steer(*nav, end, false);
+    if (nav && modes.mode() != NavMode::ultra && modes.mode() != NavMode::scalar) ultra.update_and_steer(*nav, block, false);
     if (nav && modes.mode() == NavMode::ultra) {
       std::vector<SatelliteInnovation> rows;
-      const UpdateResult r = ultra.update_and_steer(*nav, end, true, cfg.fault_exclusion ? &rows : nullptr);
+      const UpdateResult r = ultra.update_and_steer(*nav, block, true, cfg.fault_exclusion ? &rows : nullptr);
       innovations.add(t, r);
       if (cfg.fault_exclusion) report_exclusions(t, rows);
       if (end % static_cast<std::int64_t>(fs) < static_cast<std::int64_t>(fs / 100))
@@ -91,7 +95,7 @@ struct AidedReceiver::Impl : ExternalChannelControl {
                       t, ultra.measuring_channels(), r.rejected, r.max_normalized_innovation, ultra.steered_channels());
       check_health();
     }
-    evaluate_modes(t);
+    evaluate_modes(t, block);
   }
 
   void propagate_to(double t) {
@@ -119,13 +123,13 @@ struct AidedReceiver::Impl : ExternalChannelControl {
     followed_clock_steps_s = steps_s;
   }
 
-  void evaluate_modes(double t) {
+  void evaluate_modes(double t, const BlockSnapshot& block) {
     ModeInputs in;
     in.ins_ready = nav.has_value();
     in.filter_healthy = nav && nav->healthy();
     in.recent_pvt = t - last_pvt_t_s < kRecentPvt_s;
     in.ranging_satellites = modes.mode() == NavMode::ultra ? std::max(ranging, ultra.measuring_channels()) : ranging;
-    in.steerable_channels = ultra.count_steerable();
+    in.steerable_channels = UltraTightTracker::count_steerable(block);
     if (nav) {
       const Eigen::Vector3d s = nav->position_sigma_ned_m();
       in.horizontal_sigma_m = std::hypot(s(0), s(1));

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
+#include <tuple>
 
 #include "ins/gps_time.hpp"
 #include "receiver/tracking_loops.hpp"
@@ -12,7 +13,6 @@ namespace deepnav::aiding {
 namespace {
 
 constexpr double kChip_m = gps::kSpeedOfLight_mps / gps::kCodeRate_cps;
-constexpr double kRateWindow_s = 0.1;   // phase-locked rate: adjoining windows of the mean frequency
 // Rate sigma floors (m/s). Phase windows: what the model leaves out inside a window (the
 // Doppler's second derivative around the window's middle, the INS velocity error there).
 // The receiver clock's white frequency noise is common to every channel (3 cm/s over
@@ -21,7 +21,6 @@ constexpr double kRateWindow_s = 0.1;   // phase-locked rate: adjoining windows 
 // across one integration.
 constexpr double kPhaseRateFloor_mps = 0.005;
 constexpr double kDiscriminatorRateFloor_mps = 0.02;
-constexpr double kMaxWindowPhaseError_cycles = 0.1;  // a window's ends: Costas error within +-36 deg
 
 /// 1-sigma of the normalised early-minus-late envelope discriminator (chips) for spacing d
 /// and coherent time T (Kaplan & Hegarty, noncoherent E-L power with normalisation).
@@ -45,125 +44,51 @@ double mean_frequency_sigma_hz(double phase_var_rad2, double span_s) {
 
 }  // namespace
 
-bool UltraTightTracker::can_steer(bool bit_synced, const TrackingChannel& ch, const NavDecoder& nav) const {
-  return bit_synced && ch.state() != ChannelState::lost && nav.synchronised() && rx_.ephemeris(ch.prn()) != nullptr;
+UltraTightTracker::UltraTightTracker(UltraTightConfig config, double sample_rate_hz, const RangeErrorModel& range_errors,
+                                     const SatelliteFaultMonitor* faults, const AtmosphereModels& atmosphere)
+    : cfg_(config), fs_(sample_rate_hz), range_errors_(range_errors), faults_(faults), atmosphere_(atmosphere) {}
+
+SteeredChannelController* UltraTightTracker::controller_for(int prn) {
+  auto it = controllers_.find(prn);
+  if (it == controllers_.end())
+    it = controllers_.emplace(std::piecewise_construct, std::forward_as_tuple(prn),
+                              std::forward_as_tuple(cfg_, fs_, engagement_)).first;
+  return &it->second;
 }
 
-int UltraTightTracker::count_steerable() {
+int UltraTightTracker::count_steerable(const BlockSnapshot& block) {
   int n = 0;
-  rx_.for_each_channel([&](TrackingChannel& ch, const NavDecoder& nav) {
-    if (can_steer(ch.bit_edge_period().has_value(), ch, nav)) ++n;
-  });
+  for (const ChannelStatus& ch : block.channels)
+    if (can_steer(ch.bit_synced, ch.state, ch.decoder_synchronised, ch.ephemeris.has_value())) ++n;
+  return n;
+}
+
+int UltraTightTracker::steered_channels() const {
+  int n = 0;
+  for (const auto& [prn, c] : controllers_) n += c.steered() ? 1 : 0;
   return n;
 }
 
 std::optional<UltraTightTracker::SamplePrediction> UltraTightTracker::predict_at(const Ephemeris& eph,
                                                                                  std::int64_t sample,
-                                                                                 const AidedNavigator& nav) const {
-  const std::optional<GpsTime> t_rx = rx_.receiver_time(sample);
-  if (!t_rx) return std::nullopt;
+                                                                                 const AidedNavigator& nav,
+                                                                                 const BlockSnapshot& block) const {
+  if (!block.clock) return std::nullopt;
   SamplePrediction p;
-  p.t_rx = *t_rx;
-  const double t_s = static_cast<double>(sample) / rx_.sample_rate_hz();
+  p.t_rx = block.clock->at(sample);
+  const double t_s = static_cast<double>(sample) / fs_;
   p.offset_s = t_s - nav.time_s();
   p.clock_bias_m = nav.clock_bias_m() + nav.clock_drift_mps() * p.offset_s;
   p.antenna_velocity_ecef_mps = nav.antenna_velocity_ecef_at(t_s);
-  p.range = predict_range(eph, *t_rx, p.clock_bias_m, nav.antenna_ecef_at(t_s), p.antenna_velocity_ecef_mps, rx_.iono(),
-                          rx_.atmosphere());
+  p.range = predict_range(eph, p.t_rx, p.clock_bias_m, nav.antenna_ecef_at(t_s), p.antenna_velocity_ecef_mps, block.iono,
+                          atmosphere_);
   return p;
 }
 
-UltraTightTracker::UltraTightTracker(ScalarReceiver& receiver, UltraTightConfig config,
-                                     const RangeErrorModel& range_errors, const SatelliteFaultMonitor* faults)
-    : rx_(receiver), cfg_(config), range_errors_(range_errors), faults_(faults) {}
-
-bool UltraTightTracker::on_epoch(const CorrelatorEpoch& e, TrackingChannel& ch, const NavDecoder& nav,
-                                 Engagement engagement) {
-  ChannelMemory& mem = memory_[e.prn];
-  const std::int64_t end = e.first_sample + e.samples;
-  std::optional<double> doppler;
-  if (mem.end_sample == e.first_sample) {
-    // Consecutive integrations: the phase advance between their prompts is the mean
-    // residual frequency over the interval between their centres.
-    // A phase correction applied between them turned the replica: add its share back.
-    doppler = 0.5 * (mem.doppler_hz + e.carrier_doppler_hz) + fll_frequency_error_hz(mem.prompt, e.prompt, e.integration_s) +
-              mem.applied_correction_cycles / e.integration_s;
-  }
-  mem.applied_correction_cycles = 0.0;
-  mem.prompt = e.prompt;
-  mem.end_sample = end;
-  mem.doppler_hz = e.carrier_doppler_hz;
-  mem.last_cn0_dbhz = e.cn0_dbhz;
-  const bool was_steered = steered_.count(e.prn) > 0;
-  bool engaged = engagement == Engagement::all;
-  if (engagement == Engagement::faded_only) {
-    // C/N0 reads 0 until the channel's estimator window is full: not a fade.
-    const bool faded = e.cn0_dbhz > 0.0 && e.cn0_dbhz < cfg_.faded_below_dbhz;
-    engaged = faded || (was_steered && e.cn0_dbhz < cfg_.recovered_above_dbhz);
-  }
-  if (!engaged || !can_steer(e.bit_synced, ch, nav) || !rx_.receiver_time(end)) {
-    if (was_steered) {
-      steered_.erase(e.prn);
-      ch.set_loss_detection(true);
-    }
-    mem.rate_window_start.reset();  // a window must lie inside one steered stretch
-    return false;
-  }
-  if (!was_steered) {
-    steered_[e.prn] = true;
-    ch.set_loss_detection(false);
-    spdlog::debug("PRN {:2d}: steered by the navigation filter", e.prn);
-  }
-  if (cfg_.carrier_phase_tracking) mem.phase_correction_cycles = cfg_.carrier_phase_gain * costas_phase_error_cycles(e.prompt);
-  const std::int64_t mid = e.first_sample + e.samples / 2;
-  const std::optional<double> tt = transmit_time_sow(nav, ch, mid);
-  if (!tt) return true;
-  DiscriminatorSample d;
-  d.prn = e.prn;
-  d.mid_sample = mid;
-  d.replica_transmit_sow = *tt;
-  d.code_error_chips = dll_code_error_chips(e.early, e.late, cfg_.spacing_chips);
-  // The phase is only as good as the Costas error is small: near its +-0.25 cycle range a
-  // noise sample wraps it by half a cycle (5 Hz over a window). A large error means the
-  // phase loop is stressed (the filter's Doppler still off after a start); then the
-  // frequency discriminator serves.
-  const double costas_cycles = costas_phase_error_cycles(e.prompt);
-  if (cfg_.carrier_phase_tracking && e.pll_lock && std::abs(costas_cycles) < kMaxWindowPhaseError_cycles) {
-    // Phase-locked: the mean frequency over adjoining windows of the carrier phase, a delta
-    // range every window. The phase at an integration's end is the NCO's accumulated phase
-    // (Costas corrections included) plus the Costas error still left: the loop's lag then
-    // cancels, so the filter's own corrections to the NCO Doppler do not echo back into
-    // the next window. The frequency discriminator across NCO updates is biased that way
-    // (up to 0.6 m of position error on the aircraft circle). Without the phase loop the
-    // accumulated phase would only repeat the filter's own commands.
-    const double phase_cycles = e.carrier_phase_cycles + costas_cycles;
-    const auto window = static_cast<std::int64_t>(std::llround(kRateWindow_s * rx_.sample_rate_hz()));
-    if (mem.rate_window_start && end - *mem.rate_window_start >= window - e.samples / 2) {
-      d.rate_window_s = static_cast<double>(end - *mem.rate_window_start) / rx_.sample_rate_hz();
-      d.doppler_hz = (phase_cycles - mem.rate_window_start_cycles) / d.rate_window_s;
-      d.doppler_sample = (*mem.rate_window_start + end) / 2;
-    }
-    if (!mem.rate_window_start || d.doppler_hz) {
-      mem.rate_window_start = end;
-      mem.rate_window_start_cycles = phase_cycles;
-    }
-  } else {
-    // Frequency tracking only (weak signals): the cross/dot discriminator between the two
-    // adjoining integrations, referred to their common edge.
-    mem.rate_window_start.reset();
-    d.doppler_hz = doppler;
-    d.doppler_sample = e.first_sample;
-  }
-  d.cn0_dbhz = e.cn0_dbhz;
-  d.integration_s = e.integration_s;
-  d.ephemeris = *rx_.ephemeris(e.prn);
-  queued_.push_back(d);
-  return true;
-}
-
 std::optional<RangeMeasurement> UltraTightTracker::to_measurement(const DiscriminatorSample& d,
-                                                                  const AidedNavigator& nav) const {
-  const std::optional<SamplePrediction> p = predict_at(d.ephemeris, d.mid_sample, nav);
+                                                                  const AidedNavigator& nav,
+                                                                  const BlockSnapshot& block) const {
+  const std::optional<SamplePrediction> p = predict_at(d.ephemeris, d.mid_sample, nav, block);
   if (!p) return std::nullopt;
   RangeMeasurement m;
   m.prn = d.prn;
@@ -178,7 +103,7 @@ std::optional<RangeMeasurement> UltraTightTracker::to_measurement(const Discrimi
                                     range_errors_.model_variance_per_row_m2(p->range.elevation_rad, d.integration_s));
   if (d.doppler_hz) {
     // Predicted where the Doppler refers to (doppler_sample), not at mid_sample.
-    const std::optional<SamplePrediction> at_rate = predict_at(d.ephemeris, d.doppler_sample, nav);
+    const std::optional<SamplePrediction> at_rate = predict_at(d.ephemeris, d.doppler_sample, nav, block);
     if (!at_rate) return m;
     m.rate_at_own_time = true;
     m.rate_geometry = at_rate->range;
@@ -207,75 +132,66 @@ std::vector<RangeResidual> UltraTightTracker::take_mean_pseudorange_residuals() 
   return out;
 }
 
-UpdateResult UltraTightTracker::update_and_steer(AidedNavigator& nav, std::int64_t end_sample, bool measure,
+UpdateResult UltraTightTracker::update_and_steer(AidedNavigator& nav, const BlockSnapshot& block, bool measure,
                                                  std::vector<SatelliteInnovation>* innovations) {
   std::vector<RangeMeasurement> ms, watched;
-  for (const DiscriminatorSample& d : queued_) {
-    if (!measure || d.cn0_dbhz < cfg_.min_cn0_dbhz) continue;
-    const std::optional<RangeMeasurement> m = to_measurement(d, nav);
-    if (!m) continue;
-    (faults_ && faults_->excluded(d.prn) ? watched : ms).push_back(*m);
-    if (m->pseudorange_m) {
-      const RangePrediction& g = m->geometry;
-      const double predicted = g.pseudorange_m(nav.clock_bias_m() + nav.clock_drift_mps() * m->time_offset_s) +
-                               nav.residual_delay_m(g);
-      ResidualSum& sum = residual_sums_[d.prn];
-      sum.latest = {g.los_ecef, g.elevation_rad, d.cn0_dbhz, *m->pseudorange_m - predicted};
-      sum.sum_m += sum.latest.residual_m;
-      ++sum.count;
+  // Channel order, each channel's integrations in time order: the same rows whichever
+  // thread tracked which channel.
+  for (const int prn : block.tracked_prns) {
+    for (const DiscriminatorSample& d : controller_for(prn)->take_samples()) {
+      if (!measure || d.cn0_dbhz < cfg_.min_cn0_dbhz) continue;
+      const std::optional<RangeMeasurement> m = to_measurement(d, nav, block);
+      if (!m) continue;
+      (faults_ && faults_->excluded(d.prn) ? watched : ms).push_back(*m);
+      if (m->pseudorange_m) {
+        const RangePrediction& g = m->geometry;
+        const double predicted = g.pseudorange_m(nav.clock_bias_m() + nav.clock_drift_mps() * m->time_offset_s) +
+                                 nav.residual_delay_m(g);
+        ResidualSum& sum = residual_sums_[d.prn];
+        sum.latest = {g.los_ecef, g.elevation_rad, d.cn0_dbhz, *m->pseudorange_m - predicted};
+        sum.sum_m += sum.latest.residual_m;
+        ++sum.count;
+      }
     }
   }
-  queued_.clear();
   measuring_ = static_cast<int>(ms.size());
   UpdateResult result;
   if (!ms.empty()) result = nav.update_ranges(ms, innovations, watched);
-  rx_.for_each_channel([&](TrackingChannel& ch, const NavDecoder& decoder) {
-    if (steered_.count(ch.prn())) steer(ch, decoder, nav, end_sample);
-  });
+  for (const ChannelStatus& ch : block.channels) {
+    SteeredChannelController& controller = *controller_for(ch.prn);
+    if (controller.steered()) steer(ch, controller, nav, block);
+  }
   return result;
 }
 
-void UltraTightTracker::steer(TrackingChannel& ch, const NavDecoder& decoder, const AidedNavigator& nav,
-                              std::int64_t sample) {
-  const std::optional<double> tt_replica = transmit_time_sow(decoder, ch, sample);
-  const Ephemeris* eph = rx_.ephemeris(ch.prn());
-  if (!tt_replica || !eph) return;
-  const std::optional<SamplePrediction> predicted = predict_at(*eph, sample, nav);
+void UltraTightTracker::steer(const ChannelStatus& ch, SteeredChannelController& controller, const AidedNavigator& nav,
+                              const BlockSnapshot& block) {
+  if (!ch.replica_transmit_sow || !ch.ephemeris) return;
+  const std::optional<SamplePrediction> predicted = predict_at(*ch.ephemeris, block.end_sample, nav, block);
   if (!predicted) return;
   const RangePrediction& p = predicted->range;
   const double tt_predicted =
       predicted->t_rx.sow - (p.pseudorange_m(predicted->clock_bias_m) + nav.residual_delay_m(p)) / gps::kSpeedOfLight_mps;
-  const double correction_chips = seconds_of_week_difference(tt_predicted, *tt_replica) * gps::kCodeRate_cps;
+  const double correction_chips = seconds_of_week_difference(tt_predicted, *ch.replica_transmit_sow) * gps::kCodeRate_cps;
   if (std::abs(correction_chips) > cfg_.max_code_correction_chips) {
     // The replica and the filter disagree by more than a plausible tracking error: the
     // channel or the filter is wrong. Give the channel back to its own loops.
-    spdlog::warn("PRN {:2d}: filter and replica differ by {:.1f} chips; channel back to scalar tracking", ch.prn(),
+    spdlog::warn("PRN {:2d}: filter and replica differ by {:.1f} chips; channel back to scalar tracking", ch.prn,
                  correction_chips);
-    steered_.erase(ch.prn());
-    ch.set_loss_detection(true);
+    controller.publish_release();
     return;
   }
-  ChannelMemory& mem = memory_[ch.prn()];
   NcoCommand cmd;
   cmd.carrier_doppler_hz = -(p.pseudorange_rate_mps(predicted->antenna_velocity_ecef_mps, nav.clock_drift_mps()) +
                              nav.residual_delay_rate_mps(p)) /
                            gps::kL1Wavelength_m;
   cmd.code_rate_cps = gps::kCodeRate_cps * (1.0 + cmd.carrier_doppler_hz / gps::kL1_Hz);
   cmd.code_phase_correction_chips = correction_chips;
-  if (cfg_.carrier_phase_tracking && mem.phase_correction_cycles != 0.0) {
-    cmd.carrier_phase_correction_cycles = mem.phase_correction_cycles;
-    mem.applied_correction_cycles += mem.phase_correction_cycles;
-    mem.phase_correction_cycles = 0.0;
-  }
-  ch.apply(cmd);
+  controller.publish(cmd);
 }
 
 void UltraTightTracker::release_all() {
-  rx_.for_each_channel([&](TrackingChannel& ch, const NavDecoder&) {
-    if (steered_.count(ch.prn())) ch.set_loss_detection(true);
-  });
-  steered_.clear();
-  queued_.clear();
+  for (auto& [prn, controller] : controllers_) controller.release();
 }
 
 }  // namespace deepnav::aiding

@@ -32,7 +32,8 @@ int this_week() {
 
 struct Channel {
   std::unique_ptr<TrackingChannel> trk;
-  std::unique_ptr<ScalarLoopController> loop;
+  std::unique_ptr<ScalarChannelControl> loop;  ///< the channel's own loops
+  ChannelController* steered = nullptr;         ///< an outside filter's controller (not owned), or none
   std::unique_ptr<NavDecoder> nav;
   double last_doppler_hz = 0.0;
   double start_t_s = 0.0;
@@ -56,7 +57,8 @@ struct ScalarReceiver::Impl {
   double clock_steps_s = 0.0;  ///< sum of the steers applied to time_ref
   bool gap_since_epoch = false;  ///< samples lost since the last observation epoch
   double last_reacquire_s = 0.0;
-  ExternalChannelControl* external = nullptr;  ///< an outside filter driving channels, or none
+  ChannelSteering* steering = nullptr;  ///< an outside filter steering channels, or none
+  std::vector<int> tracked_prns;        ///< channels of the block just tracked, lost ones included
   struct EpochRecord {
     CorrelatorEpoch epoch;
     ChannelSnapshot snapshot;
@@ -116,7 +118,8 @@ struct ScalarReceiver::Impl {
       if (!r.detected || static_cast<int>(channels.size()) >= cfg.channels) continue;
       Channel ch;
       ch.trk = std::make_unique<TrackingChannel>(cfg.tracking, ChannelStart{r.prn, r.doppler_hz, r.code_phase_chips, first});
-      ch.loop = std::make_unique<ScalarLoopController>(r.doppler_hz, cfg.pull_in);
+      ch.loop = std::make_unique<ScalarChannelControl>(r.doppler_hz, cfg.pull_in, cfg.tracking_loops);
+      if (steering) ch.steered = steering->controller_for(r.prn);
       ch.nav = std::make_unique<NavDecoder>(r.prn, cfg.reference_week);
       ch.last_doppler_hz = r.doppler_hz;
       ch.start_t_s = static_cast<double>(first) / fs;
@@ -126,21 +129,63 @@ struct ScalarReceiver::Impl {
     }
   }
 
-  /// One channel over one block: correlation, its loop (or the outside filter) after
-  /// every epoch, navigation bits; what concerns the whole receiver is recorded for later.
+  ChannelView view_of(const Channel& ch) const {
+    const auto eph = ephs.find(ch.trk->prn());
+    return ChannelView{*ch.trk, *ch.nav, eph == ephs.end() ? nullptr : &eph->second, time_ref.has_value()};
+  }
+
+  static void carry_out(Channel& ch, const ChannelDecision& d) {
+    if (d.loss_detection) ch.trk->set_loss_detection(*d.loss_detection);
+    if (d.command) ch.trk->apply(*d.command);
+  }
+
+  /// What the outside filter published for its channels since they last tracked.
+  void collect_published() {
+    for (Channel& ch : channels)
+      if (ch.steered) carry_out(ch, ch.steered->between_blocks(view_of(ch)));
+  }
+
+  /// The channels as the outside filter sees them after a block ending at `end`.
+  BlockSnapshot snapshot(std::int64_t end) const {
+    BlockSnapshot s;
+    s.end_sample = end;
+    s.sample_rate_hz = fs;
+    if (time_ref) s.clock = ReceiverClockReference{*time_ref, sample_ref, fs};
+    s.iono = iono;
+    s.tracked_prns = tracked_prns;
+    for (const Channel& ch : channels) {
+      ChannelStatus c;
+      c.prn = ch.trk->prn();
+      c.state = ch.trk->state();
+      c.bit_synced = ch.trk->bit_edge_period().has_value();
+      c.decoder_synchronised = ch.nav->synchronised();
+      c.cn0_dbhz = ch.trk->cn0_dbhz();
+      c.replica_transmit_sow = transmit_time_sow(*ch.nav, *ch.trk, end);
+      if (const auto eph = ephs.find(c.prn); eph != ephs.end()) c.ephemeris = eph->second;
+      s.channels.push_back(std::move(c));
+    }
+    return s;
+  }
+
+  /// One channel over one block: correlation, its controller after every epoch (the
+  /// outside filter's, else its own loops), navigation bits; what concerns the whole
+  /// receiver is recorded for later. Touches nothing but the channel and its controllers.
   void run_channel(Channel& ch, const SampleBlock& block, std::vector<EpochRecord>& out) {
     ch.trk->process(block, [&](const CorrelatorEpoch& e) {
-      const bool steered = external && external->on_epoch(e, *ch.trk, *ch.nav);
-      const bool pulling_in = ch.trk->state() == ChannelState::pull_in;
-      ch.loop->set_bandwidths(ch.trk->state() == ChannelState::tracking ? cfg.tracking_loops : cfg.pull_in);
-      if (!steered) {
+      const ChannelView view = view_of(ch);
+      ChannelDecision outside;
+      if (ch.steered) {
+        outside = ch.steered->on_epoch(e, view);
+        carry_out(ch, outside);
+      }
+      if (!outside.owns_epoch) {
         // Each epoch's command acts from the very next sample (not after the block).
-        const NcoCommand cmd = ch.loop->update(e, pulling_in);
-        ch.trk->apply(cmd);
-        ch.last_doppler_hz = cmd.carrier_doppler_hz;
+        const ChannelDecision own = ch.loop->on_epoch(e, view);
+        carry_out(ch, own);
+        ch.last_doppler_hz = own.command->carrier_doppler_hz;
       } else {
         // Keep the loop ready to take the channel back where the outside filter leaves it.
-        ch.loop->reset(e.carrier_doppler_hz);
+        ch.loop->follow(e, view);
         ch.last_doppler_hz = e.carrier_doppler_hz;
       }
       // The channel assembles the data bits (sums over each bit's 20 code periods); a bit
@@ -156,9 +201,11 @@ struct ScalarReceiver::Impl {
              const std::function<void(const CorrelatorEpoch&, const ChannelSnapshot&)>& on_correlation) {
     records.resize(channels.size());
     for (auto& r : records) r.clear();
-    // Channels are independent within a block: with worker threads they run in parallel,
-    // except when an outside filter is attached (it sees every channel's epochs in order).
-    if (pool && !external && channels.size() > 1) {
+    tracked_prns.clear();
+    for (const Channel& ch : channels) tracked_prns.push_back(ch.trk->prn());
+    // Channels are independent within a block (an outside filter's controllers included:
+    // each touches only its own channel): with worker threads they run in parallel.
+    if (pool && channels.size() > 1) {
       // One contiguous share of the channels per thread, the calling thread's included: a
       // 10 ms block is about 0.1 ms of work, so one hand-off per thread and block, not per channel.
       const std::size_t shares = std::min<std::size_t>(thread_count, channels.size());
@@ -309,9 +356,16 @@ void ScalarReceiver::run(const std::function<void(const ReceiverEpoch&)>& on_epo
       next_obs = block.first_sample_index + obs_step;
       first = false;
     }
+    if (m.steering) {
+      m.steering->before_block();
+      m.collect_published();
+    }
     m.track(block, on_correlation);
-    if (m.external) m.external->after_block(block.first_sample_index + static_cast<std::int64_t>(block.samples.size()));
     const std::int64_t end = block.first_sample_index + static_cast<std::int64_t>(block.samples.size());
+    if (m.steering) {
+      m.steering->after_block(m.snapshot(end));
+      m.collect_published();
+    }
     // Keep the last acquisition window of samples for re-acquisition, while a channel is free.
     if (static_cast<int>(m.channels.size()) < m.cfg.channels)
       recent.append(block.samples.data(), block.samples.size(), block.first_sample_index);
@@ -349,10 +403,9 @@ const Ephemeris* ScalarReceiver::ephemeris(int prn) const {
   return it == impl_->ephs.end() ? nullptr : &it->second;
 }
 
-void ScalarReceiver::set_external_control(ExternalChannelControl* control) { impl_->external = control; }
-
-void ScalarReceiver::for_each_channel(const std::function<void(TrackingChannel&, const NavDecoder&)>& visit) {
-  for (auto& ch : impl_->channels) visit(*ch.trk, *ch.nav);
+void ScalarReceiver::set_channel_steering(ChannelSteering* steering) {
+  impl_->steering = steering;
+  for (Channel& ch : impl_->channels) ch.steered = steering ? steering->controller_for(ch.trk->prn()) : nullptr;
 }
 
 std::optional<GpsTime> ScalarReceiver::receiver_time(std::int64_t sample_index) const {

@@ -20,6 +20,7 @@
 #include "receiver/pvt_solver.hpp"
 #include "receiver/sample_source.hpp"
 #include "receiver/tracking_channel.hpp"
+#include "receiver/channel_controller.hpp"
 #include "receiver/tracking_loops.hpp"
 #include "signals/rinex_nav.hpp"
 
@@ -84,19 +85,6 @@ struct ChannelSnapshot {
   bool has_ephemeris;
 };
 
-/// An outside navigation filter that takes over channels' NCOs (ultra-tight mode). The
-/// receiver calls it from inside run(); it steers a channel through TrackingChannel::apply.
-class ExternalChannelControl {
- public:
-  virtual ~ExternalChannelControl() = default;
-  /// Every completed integration of every channel, as it completes (the channel's NCOs
-  /// are at the epoch's end). Returns true when it owns this channel now: the
-  /// channel's scalar loop is then skipped for the epoch.
-  virtual bool on_epoch(const CorrelatorEpoch& epoch, TrackingChannel& channel, const NavDecoder& nav) = 0;
-  /// After each block has been tracked, with the absolute index one past its last sample.
-  virtual void after_block(std::int64_t end_sample) = 0;
-};
-
 /// What a channel's navigation data decoding achieved (for products and diagnostics).
 struct NavigationStatus {
   int prn = 0;
@@ -123,10 +111,11 @@ class ScalarReceiver {
   void set_assisted_ephemerides(const NavData& nav);
   /// The ephemeris in use for a PRN (decoded, else assisted), nullptr when there is none.
   const Ephemeris* ephemeris(int prn) const;
-  /// Hands the channels' epochs to `control` (nullptr: scalar loops only). Not owned.
-  void set_external_control(ExternalChannelControl* control);
-  /// Visits every channel (for an outside filter, from after_block()).
-  void for_each_channel(const std::function<void(TrackingChannel&, const NavDecoder&)>& visit);
+  /// Lets an outside filter steer channels through the controllers it hands out
+  /// (nullptr: the channels' own loops only). Not owned. Channels with an outside
+  /// controller still track on the worker threads: the filter sees them only through
+  /// the BlockSnapshot after each block.
+  void set_channel_steering(ChannelSteering* steering);
   /// Receiver clock time at an absolute sample index, once the clock is set.
   std::optional<GpsTime> receiver_time(std::int64_t sample_index) const;
   /// Sum of the steps the receiver clock has been steered by since it was set (s). An
