@@ -1,7 +1,8 @@
 #pragma once
 // Samples from a recorded IF file in any of the GNSS-SDR formats, read in
-// bounded pieces so memory stays small whatever the file length.
-#include <cstdio>
+// bounded pieces so memory stays small whatever the file length. The bytes come from the
+// one IF file reader (signals/if_file_stream: opening, size, partial samples, seeking);
+// this adds the skip, the spectrum inversion and the conversion to samples.
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -9,6 +10,7 @@
 
 #include "receiver/sample_converter.hpp"
 #include "receiver/sample_source.hpp"
+#include "signals/if_file_stream.hpp"
 #include "signals/sample_format.hpp"
 
 namespace deepnav {
@@ -31,37 +33,30 @@ class FileSampleSource final : public SampleSource {
   /// an unreadable path, an empty file, or a skip past the end, and
   /// std::invalid_argument for an impossible sample rate or skip.
   explicit FileSampleSource(FileSampleSourceOptions options);
-  ~FileSampleSource() override;
-  FileSampleSource(const FileSampleSource&) = delete;
-  FileSampleSource& operator=(const FileSampleSource&) = delete;
 
   double sample_rate_hz() const override { return options_.sample_rate_hz; }
   double intermediate_frequency_hz() const override { return options_.intermediate_frequency_hz; }
   bool is_real() const override { return !is_complex(options_.format); }
   std::size_t read(std::span<Sample> out) override;
-  std::int64_t next_sample_index() const override { return next_index_; }
+  std::int64_t next_sample_index() const override { return file_.next_sample_index(); }
   bool at_end() const override { return at_end_; }
 
   /// Whole samples in the file (including skipped ones).
-  std::int64_t total_samples() const { return total_samples_; }
+  std::int64_t total_samples() const { return *file_.total_samples(); }
   /// Factor applied to gr_complex values before rounding to int16 (1 for the integer formats).
   float float_scale() const { return converter_.float_scale(); }
   /// Problems that do not stop reading (a trailing partial sample), one sentence each.
-  const std::vector<std::string>& warnings() const { return warnings_; }
+  const std::vector<std::string>& warnings() const { return file_.warnings(); }
 
  private:
   void choose_float_scale();
-  std::size_t read_raw(std::size_t max_samples);
-  void convert(std::size_t count, std::span<Sample> out) const;
+  void convert(std::span<Sample> out, std::int64_t first_index) const;
 
   FileSampleSourceOptions options_;
-  std::FILE* file_ = nullptr;
-  std::int64_t total_samples_ = 0;
-  std::int64_t next_index_ = 0;
+  IfFileStream file_;
   bool at_end_ = false;
   SampleConverter converter_;
-  std::vector<unsigned char> raw_;
-  std::vector<std::string> warnings_;
+  std::vector<std::byte> raw_;
 };
 
 }  // namespace deepnav

@@ -22,7 +22,14 @@ IfFileStream::IfFileStream(IfFileStreamOptions options) : options_(std::move(opt
   std::error_code ec;
   const auto size_bytes = std::filesystem::file_size(options_.path, ec);
   if (ec) throw std::runtime_error(fmt::format("cannot read the size of sample file '{}': {}", name, ec.message()));
-  total_samples_ = static_cast<std::int64_t>(size_bytes / bytes_per_sample(options_.format));
+  const std::size_t bps = bytes_per_sample(options_.format);
+  if (size_bytes == 0) throw std::runtime_error(fmt::format("sample file '{}' is empty", name));
+  total_samples_ = static_cast<std::int64_t>(size_bytes / bps);
+  if (const auto trailing = size_bytes % bps; trailing != 0)
+    warnings_.push_back(fmt::format(
+        "sample file '{}': its last {} byte(s) are ignored (a partial sample: the size {} is not a multiple of "
+        "the {} bytes of one {} sample)",
+        name, trailing, size_bytes, bps, to_string(options_.format)));
   if (total_samples_ == 0)
     throw std::runtime_error(fmt::format("sample file '{}' holds no whole {} sample ({} bytes)", name,
                                          to_string(options_.format), size_bytes));
@@ -46,10 +53,21 @@ std::size_t IfFileStream::read(std::vector<std::byte>& out, std::size_t max_samp
   return got;
 }
 
+std::size_t IfFileStream::peek(std::vector<std::byte>& out, std::size_t max_samples) {
+  const std::int64_t at = next_index_;
+  const std::size_t got = read(out, max_samples);
+  position_at(at);
+  return got;
+}
+
 void IfFileStream::seek(std::int64_t sample_index) {
   if (sample_index < next_index_ || sample_index > total_samples_)
     throw std::invalid_argument(fmt::format("sample file '{}': cannot seek to sample {} (next sample {}, {} in all)",
                                             options_.path.string(), sample_index, next_index_, total_samples_));
+  position_at(sample_index);
+}
+
+void IfFileStream::position_at(std::int64_t sample_index) {
   const auto offset = static_cast<off_t>(sample_index) * static_cast<off_t>(bytes_per_sample(options_.format));
   if (::fseeko(file_, offset, SEEK_SET) != 0)
     throw std::runtime_error(

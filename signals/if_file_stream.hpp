@@ -1,8 +1,10 @@
 #pragma once
-// A recorded IF file as a byte stream (for serving it over the network): whole samples
-// of the given format, read in bounded pieces.
+// A recorded IF file as a byte stream: whole samples of the given format, read in bounded
+// pieces. The one reader of IF files: a server sends its bytes as they are, and the
+// receiver's FileSampleSource converts them to samples.
 #include <cstdio>
 #include <filesystem>
+#include <string>
 
 #include "signals/if_byte_stream.hpp"
 
@@ -18,8 +20,8 @@ struct IfFileStreamOptions {
 
 class IfFileStream final : public IfByteStream {
  public:
-  /// Throws std::runtime_error naming the file when it cannot be opened or holds no
-  /// whole sample, std::invalid_argument for a sample rate that is not positive.
+  /// Throws std::runtime_error naming the file when it cannot be opened, is empty or holds
+  /// no whole sample, std::invalid_argument for a sample rate that is not positive.
   explicit IfFileStream(IfFileStreamOptions options);
   ~IfFileStream() override;
   IfFileStream(const IfFileStream&) = delete;
@@ -33,12 +35,20 @@ class IfFileStream final : public IfByteStream {
   std::size_t read(std::vector<std::byte>& out, std::size_t max_samples) override;
   void seek(std::int64_t sample_index) override;
   std::int64_t next_sample_index() const override { return next_index_; }
+  /// The same bytes read() would give, without moving on.
+  std::size_t peek(std::vector<std::byte>& out, std::size_t max_samples);
+  /// Problems that do not stop reading (a trailing partial sample), one sentence each.
+  const std::vector<std::string>& warnings() const { return warnings_; }
+  const std::filesystem::path& path() const { return options_.path; }
 
  private:
+  /// Puts the file position at a sample index.
+  void position_at(std::int64_t sample_index);
   IfFileStreamOptions options_;
   std::FILE* file_ = nullptr;
   std::int64_t total_samples_ = 0;
   std::int64_t next_index_ = 0;
+  std::vector<std::string> warnings_;
 };
 
 }  // namespace deepnav
