@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "receiver/mitigation_sample_source.hpp"
+#include "receiver/mitigation/mitigation_sample_source.hpp"
 
 namespace deepnav::aiding {
 namespace {

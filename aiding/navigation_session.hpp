@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "aiding/aided_receiver.hpp"
-#include "receiver/mitigation_config.hpp"
+#include "receiver/mitigation/mitigation_config.hpp"
 #include "receiver/products/product_sink.hpp"
 #include "signals/rinex_nav.hpp"
 

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "ins/imu_simulator.hpp"
+#include "ins/imu_sample.hpp"
 
 namespace deepnav {
 

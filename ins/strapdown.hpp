@@ -23,7 +23,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "ins/imu_simulator.hpp"
+#include "ins/imu_sample.hpp"
 #include "ins/wgs84.hpp"
 
 namespace deepnav {

@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "receiver/stream_protocol.hpp"
+#include "receiver/stream/stream_protocol.hpp"
 
 namespace deepnav {
 

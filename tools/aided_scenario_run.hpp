@@ -9,8 +9,8 @@
 #include "aiding/aided_receiver.hpp"
 #include "aiding/navigation_session.hpp"
 #include "receiver/file_sample_source.hpp"
-#include "signals/if_synthesizer.hpp"
-#include "signals/scenario.hpp"
+#include "signals/sim/if_synthesizer.hpp"
+#include "signals/sim/scenario.hpp"
 
 namespace deepnav::cli {
 

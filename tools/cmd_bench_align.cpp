@@ -18,7 +18,7 @@
 
 #include "ins/coarse_alignment.hpp"
 #include "ins/fine_alignment.hpp"
-#include "ins/static_imu_sim.hpp"
+#include "ins/sim/static_imu_sim.hpp"
 #include "ins/wgs84.hpp"
 #include "tools/bench_report.hpp"
 #include "tools/command_registry.hpp"

@@ -21,7 +21,7 @@
 #include <optional>
 #include <nlohmann/json.hpp>
 
-#include "signals/error_presets.hpp"
+#include "signals/sim/error_presets.hpp"
 #include "signals/rinex_nav.hpp"
 #include "signals/text_output_file.hpp"
 #include "tools/aided_scenario_run.hpp"

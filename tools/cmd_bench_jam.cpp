@@ -13,8 +13,8 @@
 #include <map>
 #include <sstream>
 
-#include "receiver/mitigation_config.hpp"
-#include "signals/scenario.hpp"
+#include "receiver/mitigation/mitigation_config.hpp"
+#include "signals/sim/scenario.hpp"
 #include "tools/child_process.hpp"
 #include "tools/command_registry.hpp"
 #include "tools/jam_point.hpp"

@@ -6,9 +6,9 @@
 #include <filesystem>
 #include <thread>
 
-#include "signals/if_synthesizer.hpp"
+#include "signals/sim/if_synthesizer.hpp"
 #include "signals/rinex_nav.hpp"
-#include "signals/scenario.hpp"
+#include "signals/sim/scenario.hpp"
 #include "tools/bench_report.hpp"
 #include "tools/command_registry.hpp"
 

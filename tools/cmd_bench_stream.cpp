@@ -12,12 +12,12 @@
 #include <unistd.h>
 
 #include "receiver/scalar_receiver.hpp"
-#include "receiver/stream_server.hpp"
-#include "receiver/tcp_sample_source.hpp"
+#include "receiver/stream/stream_server.hpp"
+#include "receiver/stream/tcp_sample_source.hpp"
 #include "signals/if_file_stream.hpp"
-#include "signals/if_synthesizer.hpp"
+#include "signals/sim/if_synthesizer.hpp"
 #include "signals/rinex_nav.hpp"
-#include "signals/scenario.hpp"
+#include "signals/sim/scenario.hpp"
 #include "tools/bench_report.hpp"
 #include "tools/command_registry.hpp"
 #include "tools/sample_source_factory.hpp"

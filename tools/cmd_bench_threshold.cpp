@@ -13,9 +13,9 @@
 
 #include "receiver/file_sample_source.hpp"
 #include "receiver/scalar_receiver.hpp"
-#include "signals/if_synthesizer.hpp"
+#include "signals/sim/if_synthesizer.hpp"
 #include "signals/rinex_nav.hpp"
-#include "signals/scenario.hpp"
+#include "signals/sim/scenario.hpp"
 #include "tools/aided_scenario_run.hpp"
 #include "tools/bench_report.hpp"
 #include "tools/command_registry.hpp"

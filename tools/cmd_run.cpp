@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "receiver/mitigation_config.hpp"
+#include "receiver/mitigation/mitigation_config.hpp"
 #include "receiver/products/file_products.hpp"
 #include "receiver/products/run_statistics.hpp"
 #include "receiver/truth_file.hpp"

@@ -7,11 +7,11 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "receiver/stream_server.hpp"
+#include "receiver/stream/stream_server.hpp"
 #include "signals/if_file_stream.hpp"
 #include "signals/rinex_nav.hpp"
-#include "signals/scenario.hpp"
-#include "signals/synthesized_if_stream.hpp"
+#include "signals/sim/scenario.hpp"
+#include "signals/sim/synthesized_if_stream.hpp"
 #include "tools/command_registry.hpp"
 #include "tools/sample_source_factory.hpp"
 

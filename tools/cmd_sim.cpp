@@ -8,9 +8,9 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "signals/if_synthesizer.hpp"
+#include "signals/sim/if_synthesizer.hpp"
 #include "signals/rinex_nav.hpp"
-#include "signals/scenario.hpp"
+#include "signals/sim/scenario.hpp"
 #include "signals/text_output_file.hpp"
 #include "tools/command_registry.hpp"
 #include "tools/progress.hpp"

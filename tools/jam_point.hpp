@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "signals/jammer.hpp"
+#include "signals/sim/jammer.hpp"
 
 namespace deepnav::cli {
 

@@ -10,8 +10,8 @@
 #include <unistd.h>
 
 #include "receiver/file_sample_source.hpp"
-#include "receiver/tcp_sample_source.hpp"
-#include "receiver/udp_sample_source.hpp"
+#include "receiver/stream/tcp_sample_source.hpp"
+#include "receiver/stream/udp_sample_source.hpp"
 #include "tools/command_registry.hpp"
 
 namespace deepnav::cli {

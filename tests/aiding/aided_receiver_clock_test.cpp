@@ -12,9 +12,9 @@
 #include "receiver/file_sample_source.hpp"
 #include "receiver/truth_file.hpp"
 #include "signals/gps_constants.hpp"
-#include "signals/if_synthesizer.hpp"
+#include "signals/sim/if_synthesizer.hpp"
 #include "signals/rinex_nav.hpp"
-#include "signals/scenario.hpp"
+#include "signals/sim/scenario.hpp"
 
 namespace deepnav::aiding {
 namespace {

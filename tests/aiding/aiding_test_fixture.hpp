@@ -10,8 +10,8 @@
 #include "aiding/aided_navigator.hpp"
 #include "ins/frames.hpp"
 #include "ins/imu_model.hpp"
-#include "ins/imu_simulator.hpp"
-#include "ins/trajectory_presets.hpp"
+#include "ins/sim/imu_simulator.hpp"
+#include "ins/sim/trajectory_presets.hpp"
 
 namespace deepnav::aiding::testing {
 

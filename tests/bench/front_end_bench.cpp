@@ -7,10 +7,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "signals/front_end.hpp"
-#include "signals/gaussian_noise.hpp"
-#include "signals/indexed_noise.hpp"
-#include "signals/jammer.hpp"
+#include "signals/sim/front_end.hpp"
+#include "signals/sim/gaussian_noise.hpp"
+#include "signals/sim/indexed_noise.hpp"
+#include "signals/sim/jammer.hpp"
 
 namespace {
 

@@ -3,7 +3,7 @@
 
 #include <vector>
 
-#include "signals/satellite_signal_kernel.hpp"
+#include "signals/sim/satellite_signal_kernel.hpp"
 
 namespace {
 

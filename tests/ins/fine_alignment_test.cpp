@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "ins/coarse_alignment.hpp"
-#include "ins/static_imu_sim.hpp"
+#include "ins/sim/static_imu_sim.hpp"
 #include "ins/wgs84.hpp"
 
 namespace deepnav {

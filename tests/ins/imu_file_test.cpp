@@ -6,7 +6,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "ins/simulated_imu_file.hpp"
+#include "ins/sim/simulated_imu_file.hpp"
 #include "ins_test_trajectories.hpp"
 
 namespace deepnav {

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <string>
 
-#include "ins/imu_error_generator.hpp"
+#include "ins/sim/imu_error_generator.hpp"
 
 namespace deepnav {
 namespace {

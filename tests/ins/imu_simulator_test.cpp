@@ -1,4 +1,4 @@
-#include "ins/imu_simulator.hpp"
+#include "ins/sim/imu_simulator.hpp"
 
 #include <gtest/gtest.h>
 

@@ -9,9 +9,10 @@
 
 #include "ins/frames.hpp"
 #include "ins/rotations.hpp"
+#include "ins/sim/imu_simulator.hpp"
 #include "ins_test_trajectories.hpp"
 
-#include "ins/trajectory_presets.hpp"
+#include "ins/sim/trajectory_presets.hpp"
 
 namespace deepnav {
 namespace {

@@ -1,4 +1,4 @@
-#include "ins/trajectory_csv.hpp"
+#include "ins/sim/trajectory_csv.hpp"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 #include <fstream>
 
-#include "ins/trajectory_presets.hpp"
+#include "ins/sim/trajectory_presets.hpp"
 
 namespace deepnav {
 namespace {

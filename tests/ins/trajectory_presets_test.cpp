@@ -1,4 +1,4 @@
-#include "ins/trajectory_presets.hpp"
+#include "ins/sim/trajectory_presets.hpp"
 
 #include <gtest/gtest.h>
 

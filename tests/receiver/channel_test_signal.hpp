@@ -10,9 +10,9 @@
 
 #include "receiver/sample_source.hpp"
 #include "signals/ca_code.hpp"
-#include "signals/gaussian_noise.hpp"
+#include "signals/sim/gaussian_noise.hpp"
 #include "signals/gps_constants.hpp"
-#include "signals/satellite_signal_kernel.hpp"
+#include "signals/sim/satellite_signal_kernel.hpp"
 
 namespace deepnav::testing {
 

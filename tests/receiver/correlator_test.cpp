@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "signals/satellite_signal_kernel.hpp"
+#include "signals/sim/satellite_signal_kernel.hpp"
 
 namespace deepnav {
 namespace {

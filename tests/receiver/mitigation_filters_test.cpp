@@ -7,9 +7,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "receiver/mitigation_blanking.hpp"
-#include "receiver/mitigation_excision.hpp"
-#include "receiver/mitigation_sample_source.hpp"
+#include "receiver/mitigation/mitigation_blanking.hpp"
+#include "receiver/mitigation/mitigation_excision.hpp"
+#include "receiver/mitigation/mitigation_sample_source.hpp"
 #include "mitigation_test_signal.hpp"
 
 namespace deepnav {

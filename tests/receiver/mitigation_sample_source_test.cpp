@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "mitigation_test_signal.hpp"
-#include "receiver/mitigation_sample_source.hpp"
+#include "receiver/mitigation/mitigation_sample_source.hpp"
 
 namespace deepnav {
 namespace {

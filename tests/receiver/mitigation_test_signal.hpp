@@ -13,7 +13,7 @@
 
 #include "receiver/sample_source.hpp"
 #include "signals/ca_code.hpp"
-#include "signals/jammer.hpp"
+#include "signals/sim/jammer.hpp"
 
 namespace deepnav::test {
 

@@ -35,8 +35,8 @@
 #include "receiver/tracking_loops.hpp"
 #include "signals/ca_code.hpp"
 #include "signals/gps_constants.hpp"
-#include "signals/multipath_channel.hpp"
-#include "signals/satellite_signal_kernel.hpp"
+#include "signals/sim/multipath_channel.hpp"
+#include "signals/sim/satellite_signal_kernel.hpp"
 
 namespace deepnav {
 namespace {

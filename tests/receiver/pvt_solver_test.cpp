@@ -8,7 +8,7 @@
 
 #include "signals/gps_constants.hpp"
 #include "signals/rinex_nav.hpp"
-#include "signals/satellite_signal_model.hpp"
+#include "signals/sim/satellite_signal_model.hpp"
 
 namespace deepnav {
 namespace {

@@ -7,7 +7,7 @@
 #include "ins/wgs84.hpp"
 #include "signals/gps_constants.hpp"
 #include "signals/rinex_nav.hpp"
-#include "signals/satellite_signal_model.hpp"
+#include "signals/sim/satellite_signal_model.hpp"
 
 namespace deepnav {
 namespace {

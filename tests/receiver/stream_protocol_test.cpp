@@ -5,7 +5,7 @@
 #include <random>
 
 #include "receiver/frame_sequencer.hpp"
-#include "receiver/stream_protocol.hpp"
+#include "receiver/stream/stream_protocol.hpp"
 
 namespace deepnav::stream {
 namespace {

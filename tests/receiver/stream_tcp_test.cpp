@@ -7,9 +7,9 @@
 #include <boost/asio.hpp>
 #include <thread>
 
-#include "receiver/stream_protocol.hpp"
-#include "receiver/stream_server.hpp"
-#include "receiver/tcp_sample_source.hpp"
+#include "receiver/stream/stream_protocol.hpp"
+#include "receiver/stream/stream_server.hpp"
+#include "receiver/stream/tcp_sample_source.hpp"
 
 namespace deepnav {
 namespace {

@@ -1,4 +1,4 @@
-#include "signals/antenna_pattern.hpp"
+#include "signals/sim/antenna_pattern.hpp"
 
 #include <gtest/gtest.h>
 

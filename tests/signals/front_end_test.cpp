@@ -1,4 +1,4 @@
-#include "signals/front_end.hpp"
+#include "signals/sim/front_end.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,8 +13,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "signals/if_file_writer.hpp"
-#include "signals/tone_generator.hpp"
+#include "signals/sim/if_file_writer.hpp"
+#include "signals/sim/tone_generator.hpp"
 
 namespace deepnav {
 namespace {

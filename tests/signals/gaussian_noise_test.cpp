@@ -1,11 +1,11 @@
-#include "signals/gaussian_noise.hpp"
+#include "signals/sim/gaussian_noise.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
 
-#include "signals/indexed_noise.hpp"
+#include "signals/sim/indexed_noise.hpp"
 
 namespace deepnav {
 namespace {

@@ -1,4 +1,4 @@
-#include "signals/if_synthesizer.hpp"
+#include "signals/sim/if_synthesizer.hpp"
 
 #include <gtest/gtest.h>
 

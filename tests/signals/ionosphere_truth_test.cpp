@@ -1,4 +1,4 @@
-#include "signals/ionosphere_truth.hpp"
+#include "signals/sim/ionosphere_truth.hpp"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include <numbers>
 
 #include "signals/atmosphere.hpp"
-#include "signals/error_presets.hpp"
+#include "signals/sim/error_presets.hpp"
 #include "signals/gps_constants.hpp"
 
 namespace deepnav {

@@ -1,4 +1,4 @@
-#include "signals/jammer.hpp"
+#include "signals/sim/jammer.hpp"
 
 #include <gtest/gtest.h>
 
@@ -7,8 +7,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "signals/bandlimited_noise.hpp"
-#include "signals/tone_generator.hpp"
+#include "signals/sim/bandlimited_noise.hpp"
+#include "signals/sim/tone_generator.hpp"
 
 namespace deepnav {
 namespace {

@@ -1,4 +1,4 @@
-#include "signals/multipath_channel.hpp"
+#include "signals/sim/multipath_channel.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "signals/gps_constants.hpp"
-#include "signals/multipath_presets.hpp"
+#include "signals/sim/multipath_presets.hpp"
 
 namespace deepnav {
 namespace {

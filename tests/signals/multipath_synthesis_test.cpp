@@ -12,8 +12,8 @@
 
 #include "signals/ca_code.hpp"
 #include "signals/gps_constants.hpp"
-#include "signals/if_synthesizer.hpp"
-#include "signals/multipath_channel.hpp"
+#include "signals/sim/if_synthesizer.hpp"
+#include "signals/sim/multipath_channel.hpp"
 
 namespace deepnav {
 namespace {

@@ -1,4 +1,4 @@
-#include "signals/orbit_clock_error.hpp"
+#include "signals/sim/orbit_clock_error.hpp"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "signals/error_presets.hpp"
+#include "signals/sim/error_presets.hpp"
 
 namespace deepnav {
 namespace {

@@ -1,4 +1,4 @@
-#include "signals/receiver_clock_model.hpp"
+#include "signals/sim/receiver_clock_model.hpp"
 
 #include <gtest/gtest.h>
 

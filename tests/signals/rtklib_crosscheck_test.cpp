@@ -33,7 +33,7 @@
 #include "ins/wgs84.hpp"
 #include "signals/ephemeris.hpp"
 #include "signals/gps_constants.hpp"
-#include "signals/line_of_sight.hpp"
+#include "signals/sim/line_of_sight.hpp"
 #include "signals/rinex_nav.hpp"
 
 namespace deepnav {

@@ -1,4 +1,4 @@
-#include "signals/satellite_signal_kernel.hpp"
+#include "signals/sim/satellite_signal_kernel.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,11 +1,11 @@
-#include "signals/scenario.hpp"
+#include "signals/sim/scenario.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
 
-#include "signals/multipath_presets.hpp"
+#include "signals/sim/multipath_presets.hpp"
 
 namespace deepnav {
 namespace {

@@ -1,4 +1,4 @@
-#include "signals/troposphere_truth.hpp"
+#include "signals/sim/troposphere_truth.hpp"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include <numbers>
 
 #include "signals/atmosphere.hpp"
-#include "signals/error_presets.hpp"
+#include "signals/sim/error_presets.hpp"
 
 namespace deepnav {
 namespace {

@@ -1,0 +1,89 @@
+#include "signals/sim/front_end.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "signals/sim/gaussian_noise.hpp"
+
+namespace deepnav {
+namespace {
+
+const FrontEndConfig& validated(const FrontEndConfig& c) {
+  if (!std::isfinite(c.sample_rate_hz) || c.sample_rate_hz <= 0.0)
+    throw std::invalid_argument("front end sample_rate_hz = " + std::to_string(c.sample_rate_hz) + ": expected > 0");
+  if (!std::isfinite(c.cn0_ref_dbhz))
+    throw std::invalid_argument("front end cn0_ref_dbhz is not finite: expected a C/N0 in dB-Hz");
+  validate_adc(c.adc, c.format);
+  for (std::size_t j = 0; j < c.jammers.size(); ++j) {
+    try {
+      validate_jammer(c.jammers[j], c.sample_rate_hz, c.if_hz);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("jammers[" + std::to_string(j) + "]: " + e.what());
+    }
+  }
+  return c;
+}
+
+double sum_squares(const float* x, std::size_t n) {
+  // Eight independent partial sums break the add dependency chain (and vectorise) without
+  // relying on -ffast-math; one AGC window is short, so float sums are exact enough.
+  float part[8] = {};
+  std::size_t k = 0;
+  for (; k + 8 <= n; k += 8)
+    for (int l = 0; l < 8; ++l) part[l] += x[k + l] * x[k + l];
+  double s = 0.0;
+  for (; k < n; ++k) s += static_cast<double>(x[k]) * x[k];
+  for (float p : part) s += p;
+  return s;
+}
+
+}  // namespace
+
+FrontEnd::FrontEnd(FrontEndConfig config, std::uint64_t seed)
+    : config_(validated(config)),
+      noise_sigma_(static_cast<float>(thermal_noise_sigma(config_.sample_rate_hz))),
+      noise_(splitmix64(seed)),
+      agc_(config_.adc, config_.sample_rate_hz) {
+  for (std::size_t j = 0; j < config_.jammers.size(); ++j)
+    jammers_.emplace_back(config_.jammers[j], config_.sample_rate_hz, config_.if_hz, config_.cn0_ref_dbhz,
+                          splitmix64(seed ^ (0xA5A5A5A5ULL + j)));
+}
+
+void FrontEnd::process(std::span<std::complex<float>> block, std::int64_t first_sample,
+                       std::vector<std::byte>& out_bytes) {
+  out_bytes.resize(block.size() * bytes_per_sample(config_.format));
+  for (Jammer& jammer : jammers_) jammer.add_to(block, first_sample);
+  if (is_complex(config_.format)) {
+    if (config_.thermal_noise) noise_.add_complex(block, first_sample, noise_sigma_);
+    digitize(reinterpret_cast<const float*>(block.data()), block.size(), 2, first_sample, out_bytes.data());
+    return;
+  }
+  real_.resize(block.size());
+  const float root2 = std::sqrt(2.0f);
+  for (std::size_t k = 0; k < block.size(); ++k) real_[k] = root2 * block[k].real();
+  if (config_.thermal_noise) noise_.add_real(real_, first_sample, noise_sigma_);
+  digitize(real_.data(), block.size(), 1, first_sample, out_bytes.data());
+}
+
+// Segments end at AGC window boundaries (absolute multiples of Agc::kWindow samples) so
+// the gain sequence does not depend on how the run is cut into blocks.
+void FrontEnd::digitize(const float* x, std::size_t n_samples, int values_per_sample, std::int64_t first_sample,
+                        std::byte* out) {
+  const std::size_t bytes_per_value = bytes_per_sample(config_.format) / static_cast<std::size_t>(values_per_sample);
+  const auto vps = static_cast<std::size_t>(values_per_sample);
+  for (std::size_t k = 0; k < n_samples;) {
+    const std::int64_t sample = first_sample + static_cast<std::int64_t>(k);
+    const std::int64_t in_window = ((sample % Agc::kWindow) + Agc::kWindow) % Agc::kWindow;
+    const std::size_t len = std::min<std::size_t>(static_cast<std::size_t>(Agc::kWindow - in_window), n_samples - k);
+    const float* seg = x + k * vps;
+    const double energy = sum_squares(seg, len * vps);
+    if (!agc_.initialized()) agc_.initialize(energy / static_cast<double>(len * vps));
+    quantize_pack(seg, len * vps, agc_.gain(), config_.adc.bits, config_.format, out + k * vps * bytes_per_value);
+    agc_.accumulate(energy, len * vps, in_window + static_cast<std::int64_t>(len) == Agc::kWindow);
+    k += len;
+  }
+}
+
+}  // namespace deepnav

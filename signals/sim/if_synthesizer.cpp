@@ -1,0 +1,567 @@
+#include "signals/sim/if_synthesizer.hpp"
+
+#include <fmt/format.h>
+#include <fmt/os.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <complex>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <thread>
+
+#include "ins/frames.hpp"
+#include "ins/imu_model.hpp"
+#include "ins/sim/simulated_imu_file.hpp"
+#include "ins/sim/trajectory_csv.hpp"
+#include "ins/rotations.hpp"
+#include "ins/sim/trajectory_presets.hpp"
+#include "signals/ca_code.hpp"
+#include "signals/sim/error_world.hpp"
+#include "signals/sim/front_end.hpp"
+#include "signals/sim/if_file_writer.hpp"
+#include "signals/gps_constants.hpp"
+#include "signals/sim/line_of_sight.hpp"
+#include "signals/lnav_message.hpp"
+#include "signals/sim/multipath_channel.hpp"
+#include "signals/sim/receiver_clock_model.hpp"
+#include "signals/sim/satellite_selection.hpp"
+#include "signals/sim/satellite_signal_kernel.hpp"
+#include "signals/sim/satellite_signal_model.hpp"
+#include "signals/text_output_file.hpp"
+
+namespace deepnav {
+namespace {
+
+constexpr int kEpochsPerChunk = 100;  // 100 ms of samples per parallel chunk
+constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+constexpr std::int64_t kMsPerWeek = 604800000;
+constexpr double kChip_m = gps::kSpeedOfLight_mps / gps::kCodeRate_cps;
+/// sat_truth.csv's multipath_m is the error of an ideal E-L DLL with this (the receiver's default) spacing.
+constexpr double kTruthDllSpacing_chips = 0.5;
+
+/// The LNAV data-bit signs (+1/-1) a satellite transmits over a span of its own time,
+/// indexed by the absolute 1 ms code period (counted from the GPS time origin).
+class DataBitTable {
+ public:
+  DataBitTable(const lnav::LnavContent& content, std::int64_t first_ms, std::int64_t last_ms) {
+    first_subframe_ = first_ms / 6000;
+    const std::int64_t last_subframe = last_ms / 6000;
+    signs_.reserve(static_cast<std::size_t>((last_subframe - first_subframe_ + 1) * 300));
+    for (std::int64_t g = first_subframe_; g <= last_subframe; ++g) {
+      const lnav::Subframe sf = lnav::subframe_of_week(content, g % lnav::kTowCountsPerWeek);
+      for (int i = 0; i < lnav::kBitsPerSubframe; ++i) signs_.push_back(lnav::subframe_bit(sf, i) ? -1 : 1);
+    }
+  }
+  /// Sign of the data bit that modulates code period `ms` (1 ms periods, 20 per bit).
+  int sign_at_ms(std::int64_t ms) const {
+    const std::int64_t bit = ms / 20 - first_subframe_ * 300;
+    if (bit < 0 || bit >= static_cast<std::int64_t>(signs_.size())) {
+      throw std::logic_error("LNAV bit outside the precomputed span");
+    }
+    return signs_[static_cast<std::size_t>(bit)];
+  }
+
+ private:
+  std::int64_t first_subframe_ = 0;
+  std::vector<std::int8_t> signs_;
+};
+
+struct SatelliteRun {
+  Ephemeris eph;
+  const CaCodeChips* code = nullptr;
+  std::unique_ptr<DataBitTable> bits;
+};
+
+/// Receiver-side state at an epoch boundary plus every satellite's signal there.
+struct BoundaryState {
+  ReceiverInstant rx;
+  TrajectoryState traj;
+  std::vector<SatelliteInstant> sats;
+  std::vector<PathSet> paths;  ///< per satellite; empty without a multipath model
+};
+
+double ramp_offset_db(const Cn0Spec& spec, double t_s) {
+  if (spec.ramp_delta_db == 0.0 || t_s <= spec.ramp_start_s) return 0.0;
+  if (t_s >= spec.ramp_end_s) return spec.ramp_delta_db;
+  return spec.ramp_delta_db * (t_s - spec.ramp_start_s) / (spec.ramp_end_s - spec.ramp_start_s);
+}
+
+/// The front end for a scenario. Without AGC the gain is fixed where the AGC would settle
+/// on thermal noise alone, so a jammer then drives the converter into saturation.
+FrontEndConfig make_front_end_config(const Scenario& sc) {
+  FrontEndConfig fe;
+  fe.sample_rate_hz = sc.sample_rate_hz;
+  fe.if_hz = sc.if_hz;
+  fe.format = sc.format;
+  int bits = sc.adc.bits;
+  if (bits == 0) bits = sc.format == SampleFormat::gr_complex ? 0 : (sc.format == SampleFormat::ishort ? 16 : 8);
+  fe.adc.bits = bits;
+  fe.adc.agc_enabled = sc.adc.agc;
+  fe.adc.agc_time_constant_s = sc.adc.agc_time_constant_s;
+  const double noise_rms = std::sqrt(sc.sample_rate_hz / 2.0);  // per component, N0 = 1
+  fe.adc.fixed_gain = optimum_quantizer_rms(bits) / noise_rms;
+  fe.cn0_ref_dbhz = sc.cn0.reference_dbhz();
+  fe.jammers = sc.jammers;
+  return fe;
+}
+
+}  // namespace
+
+struct IfSynthesizer::Impl {
+  Scenario sc;
+  NavData nav;
+  std::unique_ptr<Trajectory> trajectory;
+  std::vector<SatelliteRun> runs;
+  std::vector<SynthesizedSatellite> info;
+  std::int64_t samples_per_epoch = 0;
+  std::int64_t epochs = 0;
+  std::int64_t ref_ms_abs = 0;     ///< whole ms of the start time, counted from the GPS time origin
+  double ref_frac_s = 0.0;         ///< start time minus ref_ms_abs (below 1 ms)
+  GpsTime ref_time{};              ///< the reference epoch as a GpsTime
+  std::unique_ptr<ErrorWorld> world;  ///< the truth models the signal follows
+  std::unique_ptr<MultipathChannel> multipath;  ///< null for model none: no extra work at all
+
+  Impl(Scenario s, NavData n) : sc(std::move(s)), nav(std::move(n)) {
+    samples_per_epoch = std::llround(sc.sample_rate_hz / 1000.0);
+    epochs = std::llround(sc.duration_s * 1000.0);
+    const double sow_ms = std::floor(sc.start_time.sow * 1000.0);
+    ref_ms_abs = static_cast<std::int64_t>(sc.start_time.week) * kMsPerWeek + static_cast<std::int64_t>(sow_ms);
+    ref_frac_s = sc.start_time.sow - sow_ms / 1000.0;
+    ref_time = GpsTime{sc.start_time.week, sow_ms / 1000.0};
+    trajectory = make_trajectory();
+    world = std::make_unique<ErrorWorld>(sc.errors, AtmosphereSwitches{sc.ionosphere, sc.troposphere}, sc.seed,
+                                         sc.start_time, sc.duration_s,
+                                         wgs84::ecef_to_llh(trajectory->at(0.0).r_ecef_m));
+    choose_satellites();
+    if (sc.errors.multipath.model != MultipathSpec::Model::none) make_multipath();
+  }
+
+  /// The channel over the whole run; the land-mobile model reads each satellite's
+  /// elevation and the antenna's speed along the trajectory (receiver time since the start).
+  void make_multipath() {
+    std::vector<int> prns;
+    for (const auto& run : runs) prns.push_back(run.eph.prn);
+    auto state_at = [this](double t_s) { return trajectory->at(std::clamp(t_s, 0.0, trajectory->duration_s())); };
+    auto elevation = [&](std::size_t sat, double t_s) {
+      const TrajectoryState st = state_at(t_s);
+      const LineOfSight los = line_of_sight(runs[sat].eph, sc.start_time.plus_seconds(t_s), st.r_ecef_m, st.v_ecef_mps);
+      return look_angles(st.r_ecef_m, los.r_sat_ecef_m).elevation_rad;
+    };
+    auto speed = [&](double t_s) { return state_at(t_s).v_ned_mps.norm(); };
+    multipath = std::make_unique<MultipathChannel>(sc.errors.multipath, sc.seed, prns, sc.duration_s, elevation, speed);
+  }
+
+  std::unique_ptr<Trajectory> make_trajectory() const {
+    if (!sc.trajectory.csv_path.empty()) {
+      auto traj = load_csv_trajectory(sc.trajectory.csv_path);
+      try {
+        traj->at(0.0);
+        traj->at(sc.duration_s);
+      } catch (const std::out_of_range&) {
+        throw std::runtime_error(fmt::format("{}: trajectory file '{}' must cover the run: times 0 to {} s",
+                                             sc.source_path, sc.trajectory.csv_path, sc.duration_s));
+      }
+      return traj;
+    }
+    return make_preset_trajectory(sc.trajectory.preset, sc.trajectory.start, sc.trajectory.heading_rad,
+                                  sc.duration_s + 1.0);
+  }
+
+  void choose_satellites() {
+    SelectionRequest request;
+    request.start = sc.start_time;
+    request.duration_s = sc.duration_s;
+    request.elevation_mask_rad = sc.elevation_mask_rad;
+    request.prns = sc.prns;
+    request.max_satellites = sc.max_satellites;
+    const auto chosen = select_satellites(nav, *trajectory, request);
+    if (chosen.empty()) {
+      throw std::runtime_error(fmt::format("{}: no healthy satellite of '{}' is above the elevation mask at the start",
+                                           sc.source_path, sc.nav_file));
+    }
+    lnav::LnavContent content_template;
+    content_template.iono = nav.iono;
+    content_template.utc = nav.utc;
+    for (const auto& eph : nav.ephemerides) {
+      if (eph.prn >= 1 && eph.prn <= 32 && !content_template.almanac[eph.prn - 1]) {
+        content_template.almanac[eph.prn - 1] = lnav::almanac_from_ephemeris(eph);
+      }
+    }
+    // The satellite transmitted what arrives during the run between ~90 ms (plus the
+    // receiver clock bias) before the start and the end; a second of margin each side.
+    const double clock_span_s = std::abs(sc.clock.bias_s) + std::abs(sc.clock.drift_sps) * sc.duration_s + 1.0;
+    const auto first_ms = ref_ms_abs - static_cast<std::int64_t>(std::ceil(clock_span_s * 1000.0)) - 1000;
+    const auto last_ms = ref_ms_abs + epochs + static_cast<std::int64_t>(std::ceil(clock_span_s * 1000.0)) + 1000;
+    for (const auto& c : chosen) {
+      SatelliteRun run;
+      run.eph = *c.ephemeris;
+      run.code = &ca_code_chips(c.prn);
+      lnav::LnavContent content = content_template;
+      content.eph = run.eph;
+      run.bits = std::make_unique<DataBitTable>(content, first_ms, last_ms);
+      runs.push_back(std::move(run));
+      info.push_back(SynthesizedSatellite{c.prn, c.elevation_rad * kRadToDeg, c.azimuth_rad * kRadToDeg, 0, 0, 0});
+    }
+  }
+
+  ReceiverInstant receiver_at(std::int64_t k, const ClockState& clock, double bias0_s, TrajectoryState& traj) const {
+    const double t_rcv_since_start = static_cast<double>(k) * 1e-3;
+    double tau = t_rcv_since_start - (clock.bias_s - bias0_s);
+    tau = std::clamp(tau, 0.0, trajectory->duration_s());
+    traj = trajectory->at(tau);
+    ReceiverInstant rx;
+    rx.t_rcv_rel_s = ref_frac_s + t_rcv_since_start;
+    rx.t_true = sc.start_time.plus_seconds(t_rcv_since_start - clock.bias_s);
+    rx.r_ecef_m = traj.r_ecef_m;
+    rx.v_ecef_mps = traj.v_ecef_mps;
+    rx.llh = wgs84::ecef_to_llh(traj.r_ecef_m);
+    rx.clock_bias_s = clock.bias_s;
+    rx.clock_drift_sps = clock.drift_sps;
+    return rx;
+  }
+
+  double cn0_dbhz(std::size_t sat, const SatelliteInstant& s, double t_s) const {
+    const Cn0Spec& spec = sc.cn0;
+    double cn0 = spec.fixed_dbhz;
+    if (spec.model == Cn0Spec::Model::elevation) {
+      cn0 = spec.horizon_dbhz + (spec.zenith_dbhz - spec.horizon_dbhz) * std::sin(std::max(0.0, s.elevation_rad));
+    }
+    if (const auto it = spec.per_prn_dbhz.find(runs[sat].eph.prn); it != spec.per_prn_dbhz.end()) cn0 = it->second;
+    // The scenario's C/N0 is an isotropic antenna's; the antenna pattern comes on top.
+    return cn0 + s.antenna_gain_db + ramp_offset_db(spec, t_s);
+  }
+
+  bool in_outage(int prn, double t_s) const {
+    for (const auto& o : sc.outages) {
+      if (t_s >= o.start_s && t_s < o.end_s &&
+          (o.prns.empty() || std::find(o.prns.begin(), o.prns.end(), prn) != o.prns.end())) {
+        return true;
+      }
+    }
+    return false;
+  }
+
+  /// Signal amplitude for a satellite over the epoch that starts at t_s (0 when blocked).
+  float amplitude(std::size_t sat, const SatelliteInstant& s, double t_s) const {
+    if (s.elevation_rad <= 0.0 || in_outage(runs[sat].eph.prn, t_s)) return 0.0f;
+    return static_cast<float>(std::pow(10.0, cn0_dbhz(sat, s, t_s) / 20.0));
+  }
+
+  BoundaryState boundary(std::int64_t k, const ClockState& clock, double bias0_s) const {
+    BoundaryState b;
+    b.rx = receiver_at(k, clock, bias0_s, b.traj);
+    b.sats.reserve(runs.size());
+    for (const auto& run : runs) b.sats.push_back(evaluate_satellite(run.eph, nav.iono, *world, b.rx, sc.if_hz));
+    if (multipath) {
+      b.paths.reserve(runs.size());
+      const double t_s = static_cast<double>(k) * 1e-3;
+      for (std::size_t s = 0; s < runs.size(); ++s) b.paths.push_back(multipath->paths(s, t_s, b.sats[s].elevation_rad));
+    }
+    return b;
+  }
+
+  /// Adds one path of satellite s over an epoch of n samples whose code and carrier phases
+  /// go linearly from (code_a, carrier_a) to (code_b, carrier_b): segments split where the
+  /// code period (and possibly the data bit) changes, each with that period's bit.
+  void add_path(std::size_t s, int n, double code_a, double code_b, double carrier_a, double carrier_b, float amp,
+                float* i_out, float* q_out, float* scratch) const {
+    const double code_step = (code_b - code_a) / n;
+    const double carrier_step = (carrier_b - carrier_a) / n;
+    int first = 0;
+    while (first < n) {
+      const double chips = code_a + first * code_step;
+      const double period = std::floor(chips / gps::kCodeLength_chips);
+      const double next_edge = (period + 1.0) * gps::kCodeLength_chips;
+      const int last = std::min(n, static_cast<int>(std::ceil((next_edge - code_a) / code_step)));
+      const int count = std::max(1, last - first);
+      const auto ms = ref_ms_abs + static_cast<std::int64_t>(period);
+      SignalSegment seg;
+      seg.carrier_phase_cycles = carrier_a + first * carrier_step;
+      seg.carrier_step_cycles = carrier_step;
+      seg.code_phase_chips = std::clamp(chips - period * gps::kCodeLength_chips, 0.0, 1022.999999);
+      seg.code_step_chips = code_step;
+      seg.amplitude = amp * static_cast<float>(runs[s].bits->sign_at_ms(ms));
+      add_satellite_segment(i_out + first, q_out + first, count, seg, *runs[s].code, scratch);
+      first += count;
+    }
+  }
+
+  /// Adds every satellite's signal for epoch k (between boundaries a and b) into i/q: the
+  /// direct path, then (with a multipath model) each echo as a delayed, scaled and
+  /// phase-rotated replica with the data bits of its own, delayed, timing.
+  void synthesize_epoch(std::int64_t k, const BoundaryState& a, const BoundaryState& b, float* i_out, float* q_out,
+                        float* scratch) const {
+    constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
+    const int n = static_cast<int>(samples_per_epoch);
+    const double t_s = static_cast<double>(k) * 1e-3;
+    for (std::size_t s = 0; s < runs.size(); ++s) {
+      const SatelliteInstant& sa = a.sats[s];
+      const SatelliteInstant& sb = b.sats[s];
+      const float amp = amplitude(s, sa, t_s);
+      if (amp == 0.0f) continue;
+      if (!multipath) {
+        add_path(s, n, sa.code_chips, sb.code_chips, sa.carrier_cycles, sb.carrier_cycles, amp, i_out, q_out, scratch);
+        continue;
+      }
+      // The path set at the epoch's start holds for the epoch; an echo that is still the
+      // same reflector at its end has its delay and phase interpolated across it (its
+      // excess code and carrier rates), a new one keeps the start's values.
+      const PathSet& pa = a.paths[s];
+      const PathSet& pb = b.paths[s];
+      const float direct = amp * static_cast<float>(pa.direct_gain);
+      if (direct != 0.0f)
+        add_path(s, n, sa.code_chips, sb.code_chips, sa.carrier_cycles, sb.carrier_cycles, direct, i_out, q_out, scratch);
+      for (int e = 0; e < pa.echo_count; ++e) {
+        const EchoPath& ea = pa.echoes[static_cast<std::size_t>(e)];
+        const float echo_amp = amp * static_cast<float>(ea.amplitude);
+        if (echo_amp == 0.0f) continue;
+        EchoPath eb = ea;
+        if (e < pb.echo_count && pb.echoes[static_cast<std::size_t>(e)].id == ea.id) eb = pb.echoes[static_cast<std::size_t>(e)];
+        // Unwrapped phase change over the epoch: well below half a cycle per millisecond.
+        double dphi = eb.carrier_phase_rad - ea.carrier_phase_rad;
+        dphi -= kTwoPi * std::round(dphi / kTwoPi);
+        add_path(s, n, sa.code_chips - ea.excess_delay_m / kChip_m, sb.code_chips - eb.excess_delay_m / kChip_m,
+                 sa.carrier_cycles + ea.carrier_phase_rad / kTwoPi,
+                 sb.carrier_cycles + (ea.carrier_phase_rad + dphi) / kTwoPi, echo_amp, i_out, q_out, scratch);
+      }
+    }
+  }
+};
+
+std::string if_file_name(SampleFormat format) { return fmt::format("if_{}.bin", to_string(format)); }
+
+IfSynthesizer::IfSynthesizer(Scenario scenario, NavData nav)
+    : impl_(std::make_unique<Impl>(std::move(scenario), std::move(nav))) {}
+IfSynthesizer::~IfSynthesizer() = default;
+
+const std::vector<SynthesizedSatellite>& IfSynthesizer::satellites() const { return impl_->info; }
+
+namespace {
+
+void write_truth_header(TextOutputFile& f) {
+  f.write(
+      "t_s,gps_week,gps_sow,x_ecef_m,y_ecef_m,z_ecef_m,vx_ecef_mps,vy_ecef_mps,vz_ecef_mps,lat_deg,lon_deg,height_m,"
+      "vn_mps,ve_mps,vd_mps,roll_deg,pitch_deg,yaw_deg,clock_bias_s,clock_drift_sps\n");
+}
+
+void write_truth_row(TextOutputFile& f, const GpsTime& start, std::int64_t k, const BoundaryState& b) {
+  const double t_s = static_cast<double>(k) * 1e-3;
+  const GpsTime t = start.plus_seconds(t_s);
+  const EulerAngles e = euler_from_quaternion(b.traj.q_b_n);
+  const Eigen::Vector3d rpy = Eigen::Vector3d(e.roll_rad, e.pitch_rad, e.yaw_rad) * kRadToDeg;
+  f.write(fmt::format(
+      "{:.3f},{},{:.9f},{:.4f},{:.4f},{:.4f},{:.5f},{:.5f},{:.5f},{:.10f},{:.10f},{:.4f},{:.5f},{:.5f},{:.5f},{:.6f},{:.6f},"
+      "{:.6f},{:.12e},{:.6e}\n",
+      t_s, t.week, t.sow, b.rx.r_ecef_m.x(), b.rx.r_ecef_m.y(), b.rx.r_ecef_m.z(), b.rx.v_ecef_mps.x(),
+      b.rx.v_ecef_mps.y(), b.rx.v_ecef_mps.z(), b.rx.llh.lat_rad * kRadToDeg, b.rx.llh.lon_rad * kRadToDeg,
+      b.rx.llh.height_m, b.traj.v_ned_mps.x(), b.traj.v_ned_mps.y(), b.traj.v_ned_mps.z(), rpy.x(), rpy.y(), rpy.z(),
+      b.rx.clock_bias_s, b.rx.clock_drift_sps));
+}
+
+void write_sat_truth_header(TextOutputFile& f) {
+  f.write(
+      "t_s,prn,code_phase_chips,doppler_hz,carrier_phase_cycles,cn0_dbhz,elevation_deg,azimuth_deg,pseudorange_m,"
+      "range_m,range_rate_mps,iono_m,tropo_m,sat_clock_m,transmitting,iono_broadcast_m,tropo_model_m,orbit_m,"
+      "sat_clock_error_m,antenna_gain_db,multipath_m,los_gain_db,echoes\n");
+}
+
+}  // namespace
+
+/// The chunk loop shared by run() and the streaming generator: clock steps, epoch
+/// boundaries and satellite signals (in parallel), then the front end in sample order.
+struct IfChunkGenerator::State {
+  const IfSynthesizer::Impl& m;
+  FrontEnd front_end;
+  ReceiverClockModel clock;
+  double bias0;
+  unsigned threads;
+  std::int64_t n;  ///< samples per epoch
+  std::vector<float> i_buf, q_buf;
+  std::vector<std::complex<float>> iq;
+  std::vector<ClockState> clocks;
+  std::vector<BoundaryState> boundaries;  ///< of the last chunk: [0] is its first epoch
+  ClockState current;
+  std::int64_t k0 = 0;                    ///< first epoch of the next chunk
+
+  State(const IfSynthesizer::Impl& impl, unsigned thread_count)
+      : m(impl),
+        front_end(make_front_end_config(impl.sc), impl.sc.seed),
+        clock(impl.sc.clock.bias_s, impl.sc.clock.drift_sps, impl.sc.clock.h0, impl.sc.clock.h_minus2,
+              impl.sc.seed ^ 0x9E3779B97F4A7C15ULL),
+        bias0(impl.sc.clock.bias_s),
+        threads(thread_count == 0 ? std::max(1u, std::thread::hardware_concurrency()) : thread_count),
+        n(impl.samples_per_epoch),
+        i_buf(static_cast<std::size_t>(kEpochsPerChunk * n)),
+        q_buf(i_buf.size()),
+        iq(i_buf.size()),
+        clocks(kEpochsPerChunk + 1),
+        boundaries(kEpochsPerChunk + 1),
+        current(clock.state()) {}
+
+  /// Generates the next chunk into `bytes`; returns its epoch count (0 at the end).
+  int generate(std::vector<std::byte>& bytes) {
+    if (k0 >= m.epochs) {
+      bytes.clear();
+      return 0;
+    }
+    const int count = static_cast<int>(std::min<std::int64_t>(kEpochsPerChunk, m.epochs - k0));
+    clocks[0] = current;
+    for (int j = 1; j <= count; ++j) clocks[j] = clock.step(1e-3);
+    current = clocks[count];
+
+    std::fill(i_buf.begin(), i_buf.begin() + count * n, 0.0f);
+    std::fill(q_buf.begin(), q_buf.begin() + count * n, 0.0f);
+    // Boundaries then epochs, each split into contiguous ranges across the workers.
+    auto parallel_for = [&](int total, auto&& body) {
+      const int workers = static_cast<int>(std::min<unsigned>(threads, static_cast<unsigned>(total)));
+      if (workers <= 1) {
+        body(0, total);
+        return;
+      }
+      std::vector<std::thread> pool;
+      for (int w = 0; w < workers; ++w) {
+        pool.emplace_back([&, w] { body(total * w / workers, total * (w + 1) / workers); });
+      }
+      for (auto& t : pool) t.join();
+    };
+    parallel_for(count + 1, [&](int a, int b) {
+      for (int j = a; j < b; ++j) boundaries[j] = m.boundary(k0 + j, clocks[j], bias0);
+    });
+    parallel_for(count, [&](int a, int b) {
+      std::vector<float> scratch(static_cast<std::size_t>(n));
+      for (int j = a; j < b; ++j) {
+        m.synthesize_epoch(k0 + j, boundaries[j], boundaries[j + 1], i_buf.data() + j * n, q_buf.data() + j * n,
+                           scratch.data());
+      }
+    });
+    for (std::size_t s = 0; s < static_cast<std::size_t>(count * n); ++s) iq[s] = {i_buf[s], q_buf[s]};
+    front_end.process(std::span<std::complex<float>>(iq.data(), static_cast<std::size_t>(count * n)), k0 * n, bytes);
+    k0 += count;
+    return count;
+  }
+};
+
+IfChunkGenerator::IfChunkGenerator(std::unique_ptr<State> state) : state_(std::move(state)) {}
+IfChunkGenerator::~IfChunkGenerator() = default;
+
+bool IfChunkGenerator::next(std::vector<std::byte>& bytes) { return state_->generate(bytes) > 0; }
+
+std::int64_t IfChunkGenerator::next_sample_index() const { return state_->k0 * state_->n; }
+
+std::unique_ptr<IfChunkGenerator> IfSynthesizer::chunk_generator(unsigned threads) const {
+  return std::unique_ptr<IfChunkGenerator>(
+      new IfChunkGenerator(std::make_unique<IfChunkGenerator::State>(*impl_, threads)));
+}
+
+const Scenario& IfSynthesizer::scenario() const { return impl_->sc; }
+
+std::int64_t IfSynthesizer::total_samples() const { return impl_->epochs * impl_->samples_per_epoch; }
+
+SynthesisSummary IfSynthesizer::run(const std::string& out_dir, const SynthesisOptions& options) {
+  Impl& m = *impl_;
+  const auto wall_start = std::chrono::steady_clock::now();
+  std::error_code ec;
+  std::filesystem::create_directories(out_dir, ec);
+  if (ec) throw std::runtime_error(fmt::format("cannot create output folder '{}': {}", out_dir, ec.message()));
+
+  SynthesisSummary summary;
+  summary.if_path = (std::filesystem::path(out_dir) / if_file_name(m.sc.format)).string();
+  summary.truth_path = (std::filesystem::path(out_dir) / "truth.csv").string();
+  summary.sat_truth_path = (std::filesystem::path(out_dir) / "sat_truth.csv").string();
+  summary.scenario_path = (std::filesystem::path(out_dir) / "scenario.yaml").string();
+
+  IfFileWriter if_writer(summary.if_path);
+  std::unique_ptr<TextOutputFile> truth, sat_truth;
+  if (!options.if_only) {
+    truth = std::make_unique<TextOutputFile>(summary.truth_path);
+    sat_truth = std::make_unique<TextOutputFile>(summary.sat_truth_path);
+    write_truth_header(*truth);
+    write_sat_truth_header(*sat_truth);
+  }
+
+  const std::int64_t truth_stride = std::llround(1000.0 / m.sc.truth_rate_hz);
+  const std::int64_t sat_stride = std::llround(1000.0 / m.sc.sat_truth_rate_hz);
+  const auto n = m.samples_per_epoch;
+  IfChunkGenerator::State gen(m, options.threads);
+  std::vector<std::byte> bytes;
+
+  for (std::int64_t k0 = 0;; k0 += kEpochsPerChunk) {
+    const int count = gen.generate(bytes);
+    if (count == 0) break;
+    const std::vector<BoundaryState>& boundaries = gen.boundaries;
+    if_writer.write(bytes);
+    summary.bytes += static_cast<std::int64_t>(bytes.size());
+    if (!options.if_only) {
+      for (int j = 0; j < count; ++j) {
+        const std::int64_t k = k0 + j;
+        const BoundaryState& b = boundaries[j];
+        if (k % truth_stride == 0) write_truth_row(*truth, m.sc.start_time, k, b);
+        if (k % sat_stride == 0) {
+          for (std::size_t s = 0; s < m.runs.size(); ++s) {
+            const SatelliteInstant& si = b.sats[s];
+            const double t_s = static_cast<double>(k) * 1e-3;
+            const bool on = m.amplitude(s, si, t_s) > 0.0f;
+            // Multipath truth: the pseudorange error an ideal wide (0.5 chip) E-L DLL would
+            // have on the path set, the direct path's gain, and the number of echoes.
+            double multipath_m = 0.0, los_gain_db = 0.0;
+            int echoes = 0;
+            if (m.multipath) {
+              const PathSet& p = b.paths[s];
+              multipath_m = ideal_dll_multipath_error_chips(p, kTruthDllSpacing_chips) * kChip_m;
+              los_gain_db = p.direct_gain > 0.0 ? 20.0 * std::log10(p.direct_gain) : -300.0;
+              echoes = p.echo_count;
+            }
+            sat_truth->write(fmt::format("{:.3f},{},{:.6f},{:.4f},{:.4f},{:.2f},{:.4f},{:.4f},{:.4f},{:.4f},{:.5f},{:.4f},{:.4f},{:.4f},{},"
+                                         "{:.4f},{:.4f},{:.4f},{:.4f},{:.3f},{:.4f},{:.2f},{}\n",
+                                         t_s, m.runs[s].eph.prn,
+                                         si.code_chips - std::floor(si.code_chips / 1023.0) * 1023.0, si.doppler_hz,
+                                         m.sc.if_hz * b.rx.t_rcv_rel_s - si.carrier_cycles,
+                                         m.cn0_dbhz(s, si, t_s), si.elevation_rad * kRadToDeg,
+                                         si.azimuth_rad * kRadToDeg, si.pseudorange_m, si.range_m, si.range_rate_mps,
+                                         si.iono_m, si.tropo_m, si.sat_clock_m, on ? 1 : 0, si.iono_broadcast_m,
+                                         si.tropo_model_m, si.orbit_m, si.sat_clock_error_m, si.antenna_gain_db,
+                                         multipath_m, los_gain_db, echoes));
+          }
+        }
+      }
+    }
+    if (k0 == 0) {
+      for (std::size_t s = 0; s < m.runs.size(); ++s) {
+        const SatelliteInstant& si = boundaries[0].sats[s];
+        m.info[s].doppler_start_hz = si.doppler_hz;
+        m.info[s].cn0_start_dbhz = m.cn0_dbhz(s, si, 0.0);
+        m.info[s].code_phase_start_chips = si.code_chips - std::floor(si.code_chips / 1023.0) * 1023.0;
+      }
+    }
+    if (options.progress) options.progress(static_cast<double>(k0 + count) / static_cast<double>(m.epochs));
+  }
+
+  // Everything written: only now do the files take their final names.
+  if_writer.finish();
+  if (!options.if_only) {
+    truth->commit();
+    sat_truth->commit();
+    TextOutputFile scenario_file(summary.scenario_path);
+    scenario_file.write(scenario_to_yaml(m.sc));
+    scenario_file.commit();
+    if (m.sc.imu.enabled) {
+      // Same trajectory, trajectory time (true GPS time since the start, i.e. start_time - receiver clock bias at the start).
+      ImuSimConfig imu;
+      imu.imu = load_imu_grade(m.sc.imu.grades_file, m.sc.imu.grade).model;
+      imu.imu.sample_rate_hz = m.sc.imu.rate_hz;
+      imu.lever_arm_b_m = Eigen::Vector3d(m.sc.imu.lever_arm_m[0], m.sc.imu.lever_arm_m[1], m.sc.imu.lever_arm_m[2]);
+      summary.imu_path = (std::filesystem::path(out_dir) / "imu.csv").string();
+      write_simulated_imu_csv(summary.imu_path, *m.trajectory, imu, m.sc.seed ^ 0x5DEECE66DULL);
+    }
+  }
+  summary.samples = m.epochs * n;
+  summary.duration_s = static_cast<double>(m.epochs) * 1e-3;
+  summary.satellites = m.info;
+  summary.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  return summary;
+}
+
+}  // namespace deepnav

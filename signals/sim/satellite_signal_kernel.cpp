@@ -1,0 +1,87 @@
+#include "signals/sim/satellite_signal_kernel.hpp"
+
+#include <cmath>
+#include <complex>
+
+namespace deepnav {
+namespace {
+
+constexpr int kLanes = 16;  // phasors advanced in parallel: a multiple of every SIMD width we target
+
+// The two inner loops are compiled for AVX-512, AVX2 and the baseline; the loader picks
+// the best one the CPU has (the code index becomes a vector gather on AVX2 and later).
+#define DEEPNAV_SIMD_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
+
+/// out[k] = amplitude * code[(acc + k inc) >> 32] for n samples that do not wrap the code.
+DEEPNAV_SIMD_CLONES
+void fill_code_run(float* __restrict out, int n, std::uint64_t acc, std::uint64_t inc,
+                   const float* __restrict code_levels) {
+  for (int k = 0; k < n; ++k) out[k] = code_levels[(acc + static_cast<std::uint64_t>(k) * inc) >> 32];
+}
+
+/// i/q[k] += scratch[k] * phasor(k) with kLanes phasors rotated by w each kLanes samples.
+DEEPNAV_SIMD_CLONES
+void mix_carrier(float* __restrict i_out, float* __restrict q_out, int n, const float* __restrict scratch,
+                 float* __restrict re, float* __restrict im, float wr, float wi) {
+  int k = 0;
+  for (; k + kLanes <= n; k += kLanes) {
+    for (int l = 0; l < kLanes; ++l) {
+      i_out[k + l] += scratch[k + l] * re[l];
+      q_out[k + l] += scratch[k + l] * im[l];
+      const float nr = re[l] * wr - im[l] * wi;
+      const float ni = re[l] * wi + im[l] * wr;
+      re[l] = nr;
+      im[l] = ni;
+    }
+  }
+  for (int l = 0; k < n; ++k, ++l) {
+    i_out[k] += scratch[k] * re[l];
+    q_out[k] += scratch[k] * im[l];
+  }
+}
+
+/// Code chip levels times amplitude for n samples, from a 32.32 fixed-point chip
+/// accumulator, in runs that stop at each code wrap.
+void fill_code(float* out, int n, double chip0, double step, const CaCodeChips& code, float amplitude) {
+  constexpr double kOne = 4294967296.0;  // 2^32
+  constexpr std::uint64_t kPeriod = 1023ULL << 32;
+  float levels[1023];
+  for (int c = 0; c < 1023; ++c) levels[c] = amplitude * static_cast<float>(code[c]);
+  std::uint64_t acc = static_cast<std::uint64_t>(chip0 * kOne);
+  const std::uint64_t inc = static_cast<std::uint64_t>(step * kOne + 0.5);
+  int k = 0;
+  while (k < n) {
+    if (acc >= kPeriod) acc -= kPeriod;
+    // Samples left before the accumulator reaches the period end.
+    const std::uint64_t left = (kPeriod - acc + inc - 1) / inc;
+    const int run = static_cast<int>(std::min<std::uint64_t>(left, static_cast<std::uint64_t>(n - k)));
+    fill_code_run(out + k, run, acc, inc, levels);
+    acc += static_cast<std::uint64_t>(run) * inc;
+    k += run;
+  }
+}
+
+}  // namespace
+
+void add_satellite_segment(float* __restrict i_out, float* __restrict q_out, int n, const SignalSegment& s,
+                           const CaCodeChips& code, float* __restrict scratch) {
+  if (n <= 0) return;
+  fill_code(scratch, n, s.code_phase_chips, s.code_step_chips, code, s.amplitude);
+
+  // Lane l starts at sample l and every lane steps kLanes samples at a time. The lane
+  // phasors come from two exact exponentials by double-precision products (error
+  // ~1e-15); float rotation over one millisecond (a few hundred steps) stays below 1e-5 rad.
+  const double two_pi = 2.0 * M_PI;
+  const double phase0 = s.carrier_phase_cycles - std::floor(s.carrier_phase_cycles);
+  const std::complex<double> step = std::polar(1.0, two_pi * s.carrier_step_cycles);
+  std::complex<double> z = std::polar(1.0, two_pi * phase0);
+  alignas(64) float re[kLanes], im[kLanes];
+  for (int l = 0; l < kLanes; ++l, z *= step) {
+    re[l] = static_cast<float>(z.real());
+    im[l] = static_cast<float>(z.imag());
+  }
+  const std::complex<double> w = std::polar(1.0, two_pi * kLanes * s.carrier_step_cycles);
+  mix_carrier(i_out, q_out, n, scratch, re, im, static_cast<float>(w.real()), static_cast<float>(w.imag()));
+}
+
+}  // namespace deepnav
