@@ -117,6 +117,16 @@ UpdateResult AidedNavigator::update_position_velocity(const Eigen::Vector3d& r_a
   return result;
 }
 
+UpdateResult AidedNavigator::update_zero_velocity(double sigma_mps) {
+  // z = predicted - measured = v_ins - 0; dv = -x_vel in the error convention of feed_back.
+  Eigen::Matrix<double, 3, kStates> H = Eigen::Matrix<double, 3, kStates>::Zero();
+  H.block<3, 3>(0, kVel).setIdentity();
+  const Eigen::Vector3d r = Eigen::Vector3d::Constant(sigma_mps * sigma_mps);
+  const UpdateResult result = kf_.update<3>(ins_.state().v_ned_mps, H, r, cfg_.gate_sigma);
+  if (result.applied) feed_back();
+  return result;
+}
+
 namespace {
 
 /// The rows one navigator update builds: per row its H, z, R and the satellite it came from

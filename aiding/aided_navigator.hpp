@@ -97,6 +97,10 @@ class AidedNavigator {
                              std::vector<SatelliteInnovation>* innovations = nullptr,
                              const std::vector<RangeMeasurement>& test_only = {});
 
+  /// Zero-velocity update: the IMU is at rest (a stationarity detector says so), its NED
+  /// velocity is zero to within sigma_mps on each axis.
+  UpdateResult update_zero_velocity(double sigma_mps);
+
   /// Adds a known step to the receiver clock bias (the receiver re-set its clock).
   void shift_clock_bias(double step_m) { clock_bias_m_ += step_m; }
 

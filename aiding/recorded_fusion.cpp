@@ -1,0 +1,270 @@
+#include "aiding/recorded_fusion.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <deque>
+#include <stdexcept>
+
+#include "aiding/ins_initializer.hpp"
+#include "ins/frames.hpp"
+#include "ins/rotations.hpp"
+#include "ins/wgs84.hpp"
+#include "receiver/range_model.hpp"
+#include "signals/gps_constants.hpp"
+
+namespace deepnav::aiding {
+namespace {
+
+constexpr double kGpsToUnix_s = 315964800.0;  ///< 1980-01-06 minus 1970-01-01, in seconds
+
+/// The stationarity detector: over the last window the specific force and the angular rate
+/// each stay within a tolerance of their means.
+class StationarityDetector {
+ public:
+  explicit StationarityDetector(const StationarityConfig& c) : cfg_(c) {}
+  void add(const ImuSample& s, double dt) {
+    if (dt <= 0.0) return;
+    window_.push_back({s.t_s, s.dv_b_mps / dt, s.dtheta_b_rad / dt});
+    while (!window_.empty() && s.t_s - window_.front().t > cfg_.window_s) window_.pop_front();
+  }
+  bool stationary() const {
+    if (!cfg_.enabled || window_.size() < 5 || window_.back().t - window_.front().t < 0.8 * cfg_.window_s) return false;
+    Eigen::Vector3d mf = Eigen::Vector3d::Zero(), mw = Eigen::Vector3d::Zero();
+    for (const auto& e : window_) mf += e.f, mw += e.w;
+    mf /= static_cast<double>(window_.size());
+    mw /= static_cast<double>(window_.size());
+    for (const auto& e : window_)
+      if ((e.f - mf).norm() > cfg_.accel_tolerance_mps2 || (e.w - mw).norm() > cfg_.gyro_tolerance_radps) return false;
+    return true;
+  }
+
+ private:
+  struct Entry {
+    double t;
+    Eigen::Vector3d f, w;
+  };
+  StationarityConfig cfg_;
+  std::deque<Entry> window_;
+};
+
+}  // namespace
+
+nlohmann::json RecordedFusionReport::json() const {
+  return {{"epochs", epochs},
+          {"fixes", fixes},
+          {"filter_epochs", filter_epochs},
+          {"zero_velocity_updates", zero_velocity_updates},
+          {"clock_jumps_followed", clock_jumps_followed},
+          {"filter_restarts", filter_restarts},
+          {"rows_rejected", rows_rejected},
+          {"ins_start", ins_start},
+          {"ins_start_s", ins_start_t_s ? nlohmann::json(*ins_start_t_s) : nlohmann::json(nullptr)},
+          {"seconds_in_mode", seconds_in_mode}};
+}
+
+double fusion_time_s(const ObservationFile& obs, const GpsTime& t) {
+  return t.seconds_since(GpsTime{obs.epochs.front().t.week, 0.0});
+}
+
+ImuTimeBase parse_imu_time_base(const std::string& name) {
+  if (name == "week-seconds") return ImuTimeBase::week_seconds;
+  if (name == "gps") return ImuTimeBase::gps_seconds;
+  if (name == "unix-gps") return ImuTimeBase::unix_gps;
+  throw std::invalid_argument("IMU time base '" + name + "' is not one of week-seconds, gps, unix-gps");
+}
+
+void to_fusion_axis(ImuLog& imu, ImuTimeBase base, const ObservationFile& obs) {
+  const double week_start_gps_s = obs.epochs.front().t.week * kSecondsPerWeek;
+  const double first_sow = obs.epochs.front().t.sow;
+  const auto convert = [&](double t) {
+    switch (base) {
+      case ImuTimeBase::gps_seconds: return t - week_start_gps_s;
+      case ImuTimeBase::unix_gps: return t - kGpsToUnix_s - week_start_gps_s;
+      case ImuTimeBase::week_seconds:
+        // Seconds of week: the week of the first epoch, or the next one across a rollover.
+        return t < first_sow - kSecondsPerWeek / 2 ? t + kSecondsPerWeek : t;
+    }
+    return t;
+  };
+  for (ImuSample& s : imu.samples) s.t_s = convert(s.t_s);
+  for (ImuGap& g : imu.gaps) g.t_before_s = convert(g.t_before_s), g.t_after_s = convert(g.t_after_s);
+}
+
+RecordedFusion::RecordedFusion(RecordedFusionConfig config, const ObservationFile& obs, const NavData& nav, ImuLog imu)
+    : cfg_(std::move(config)), obs_(obs), nav_(nav), imu_(std::move(imu)) {
+  if (cfg_.mode != NavMode::loose && cfg_.mode != NavMode::tight)
+    throw std::invalid_argument(std::string("fuse couples loose or tight, not ") + to_string(cfg_.mode));
+  if (obs_.epochs.empty()) throw std::invalid_argument("no observation epochs");
+  if (imu_.samples.empty()) throw std::invalid_argument("the IMU log holds no samples");
+  const double first = fusion_time_s(obs_, obs_.epochs.front().t), last = fusion_time_s(obs_, obs_.epochs.back().t);
+  const double imu_first = imu_.samples.front().t_s, imu_last = imu_.samples.back().t_s;
+  if (imu_last < first || imu_first > last)
+    throw std::invalid_argument(
+        "the IMU log (" + std::to_string(imu_first) + " to " + std::to_string(imu_last) +
+        " s of GPS week) does not overlap the observations (" + std::to_string(first) + " to " + std::to_string(last) +
+        " s): check the IMU time base and offset");
+}
+
+void RecordedFusion::run(const std::vector<ProductSink*>& sinks) {
+  const NavMode mode = cfg_.mode;
+  const double t_first = fusion_time_s(obs_, obs_.epochs.front().t);
+  PvtSolver solver(cfg_.pvt, cfg_.atmosphere);
+  const IonoParameters iono = cfg_.iono ? *cfg_.iono : nav_.iono;
+  InsInitializer init(cfg_.imu, cfg_.lever_arm_imu_to_antenna_b_m);
+  std::optional<AidedNavigator> nav;
+  StationarityDetector still(cfg_.stationarity);
+  std::size_t next_imu = 0;
+  double last_imu_t = -1e300;
+  // A start at rest gyrocompasses: it needs a gyro whose bias is small against the Earth's
+  // rate (the initializer's heading sigma reaches its 0.5 rad cap beyond this). A consumer
+  // MEMS gyro (hundreds of deg/h) waits for the moving start (heading from the track).
+  const double lat = obs_.report.approx_position_ecef_m ? wgs84::ecef_to_llh(*obs_.report.approx_position_ecef_m).lat_rad : 0.7;
+  const bool rest_start =
+      (cfg_.imu.gyro.bias_sigma + cfg_.imu.gyro.bias_instability_sigma) < 0.5 * wgs84::kEarthRate_radps * std::cos(lat);
+  const int leap = nav_.leap_seconds_valid ? nav_.utc.delta_t_ls : 18;
+  const double interval = obs_.report.nominal_interval_s > 0.0 ? obs_.report.nominal_interval_s : 1.0;
+
+  for (const ObservationEpoch& e : obs_.epochs) {
+    const double t = fusion_time_s(obs_, e.t);
+    while (next_imu < imu_.samples.size() && imu_.samples[next_imu].t_s <= t + 1e-9) {
+      const ImuSample& s = imu_.samples[next_imu++];
+      still.add(s, s.t_s - last_imu_t);
+      last_imu_t = s.t_s;
+      if (!nav) init.add_imu(s);
+      else if (s.t_s > nav->time_s()) nav->propagate(s);
+    }
+    ++report_.epochs;
+    ReceiverEpoch re;
+    re.t_s = t - t_first;
+    re.t_rx = e.t;
+    std::map<int, Ephemeris> ephemerides;
+    std::vector<PseudorangeObservation> pvt_obs;
+    bool dopplers = true;
+    for (const GpsL1Observation& o : e.gps) {
+      ChannelObservation c;
+      c.prn = o.prn;
+      c.pseudorange_m = o.pseudorange_m.value_or(0.0);
+      c.doppler_hz = o.doppler_hz.value_or(0.0);
+      c.carrier_phase_cycles = -o.carrier_phase_cycles.value_or(0.0);  // ours: accumulated Doppler
+      c.cn0_dbhz = o.cn0_dbhz.value_or(0.0);
+      c.after_gap = o.loss_of_lock;
+      if (o.pseudorange_m) re.observations.push_back(c);
+      const Ephemeris* eph = nav_.select(o.prn, e.t);
+      if (eph == nullptr || !o.pseudorange_m) continue;
+      ephemerides[o.prn] = *eph;
+      pvt_obs.push_back({o.prn, *o.pseudorange_m, o.doppler_hz.value_or(0.0), o.cn0_dbhz.value_or(40.0)});
+      dopplers = dopplers && o.doppler_hz.has_value();
+    }
+    re.channels_tracking = static_cast<int>(e.gps.size());
+    re.pvt = solver.solve(e.t, pvt_obs, ephemerides, iono);
+    if (re.pvt.valid) ++report_.fixes;
+
+    if (nav && e.clock_jump_m != 0.0) {
+      nav->shift_clock_bias(e.clock_jump_m);
+      ++report_.clock_jumps_followed;
+      spdlog::info("t = {:.2f} s: receiver clock re-set by {:.3f} ms: filter clock follows", re.t_s,
+                   e.clock_jump_m / gps::kSpeedOfLight_mps * 1e3);
+    }
+    int filter_satellites = 0;
+    if (!nav && re.pvt.valid && dopplers && last_imu_t > t - 0.1) {
+      GnssFix fix;
+      fix.t_s = t;
+      fix.r_antenna_ecef_m = re.pvt.r_ecef_m;
+      fix.v_antenna_ecef_mps = re.pvt.v_ecef_mps;
+      fix.clock_bias_m = re.pvt.clock_bias_m;
+      fix.clock_drift_mps = re.pvt.clock_drift_mps;
+      fix.horizontal_sigma_m = std::max(1.0, re.pvt.dops.hdop * cfg_.pvt_position_sigma_scale_m);
+      fix.vertical_sigma_m = std::max(1.5, re.pvt.dops.vdop * cfg_.pvt_position_sigma_scale_m);
+      const double speed = ecef_to_ned_vector(re.pvt.llh, re.pvt.v_ecef_mps).norm();
+      std::optional<InsStart> start;
+      if (rest_start || speed >= 0.2) start = init.add_fix(fix);
+      if (start) {
+        NavigatorConfig nc;
+        nc.noise = process_noise_from(cfg_.imu, cfg_.oscillator);
+        nc.lever_arm_imu_to_antenna_b_m = cfg_.lever_arm_imu_to_antenna_b_m;
+        nc.gate_sigma = cfg_.gate_sigma;
+        const double dt = start->state.t_s - t;
+        nav.emplace(start->state, fix.clock_bias_m + fix.clock_drift_mps * dt, fix.clock_drift_mps, nc, start->uncertainty);
+        report_.ins_start = start->method;
+        report_.ins_start_t_s = re.t_s;
+        const EulerAngles a = euler_from_quaternion(start->state.q_b_n);
+        spdlog::info("t = {:.2f} s: INS started ({}): roll {:.1f} pitch {:.1f} yaw {:.1f} deg", re.t_s, start->method,
+                     a.roll_rad * 180 / M_PI, a.pitch_rad * 180 / M_PI, a.yaw_rad * 180 / M_PI);
+      }
+    } else if (nav) {
+      const double dt = t - nav->time_s();
+      if (mode == NavMode::loose && re.pvt.valid) {
+        const double h = std::max(1.0, re.pvt.dops.hdop * cfg_.pvt_position_sigma_scale_m / std::sqrt(2.0));
+        const double v = std::max(1.5, re.pvt.dops.vdop * cfg_.pvt_position_sigma_scale_m);
+        const double vs = dopplers ? cfg_.pvt_velocity_sigma_mps : 100.0;
+        const UpdateResult r = nav->update_position_velocity(re.pvt.r_ecef_m, re.pvt.v_ecef_mps, Eigen::Vector3d(h, h, v),
+                                                             Eigen::Vector3d::Constant(vs), dt, dt);
+        report_.rows_rejected += r.rejected;
+        filter_satellites = static_cast<int>(re.pvt.used_prns.size());
+      }
+      if (mode == NavMode::tight) {
+        const double bias = nav->clock_bias_m() + nav->clock_drift_mps() * dt;
+        std::vector<RangeMeasurement> rows;
+        for (const GpsL1Observation& o : e.gps) {
+          const auto eph = ephemerides.find(o.prn);
+          if (eph == ephemerides.end()) continue;
+          RangeMeasurement m;
+          m.prn = o.prn;
+          m.time_offset_s = dt;
+          m.geometry = predict_range(eph->second, e.t, bias, nav->antenna_ecef_at(t), nav->antenna_velocity_ecef_mps(), iono,
+                                     cfg_.atmosphere);
+          if (m.geometry.elevation_rad < cfg_.pvt.elevation_mask_rad) continue;
+          m.pseudorange_m = o.pseudorange_m;
+          m.pseudorange_sigma_m = cfg_.pseudorange_sigma_scale *
+                                  std::sqrt(cfg_.pvt.range_errors.pseudorange_variance_m2(m.geometry.elevation_rad,
+                                                                                          o.cn0_dbhz.value_or(40.0)));
+          if (o.doppler_hz) {
+            m.rate_mps = -gps::kL1Wavelength_m * *o.doppler_hz;
+            m.rate_sigma_mps = cfg_.doppler_sigma_mps;
+          }
+          rows.push_back(m);
+        }
+        if (!rows.empty()) {
+          const UpdateResult r = nav->update_ranges(rows);
+          report_.rows_rejected += r.rejected;
+        }
+        filter_satellites = static_cast<int>(rows.size());
+      }
+      if (still.stationary()) {
+        nav->update_zero_velocity(cfg_.stationarity.velocity_sigma_mps);
+        ++report_.zero_velocity_updates;
+      }
+      if (!nav->healthy()) {
+        spdlog::error("t = {:.2f} s: navigation filter failed ({}); INS restarted from the next fix", re.t_s,
+                      nav->health_reason());
+        nav.reset();
+        init = InsInitializer(cfg_.imu, cfg_.lever_arm_imu_to_antenna_b_m);
+        ++report_.filter_restarts;
+      }
+    }
+
+    PvtSolution solution = re.pvt;
+    const bool from_filter = nav.has_value();
+    if (from_filter) {
+      solution.valid = true;
+      solution.t = e.t;
+      solution.r_ecef_m = nav->antenna_ecef_at(t);
+      solution.v_ecef_mps = nav->antenna_velocity_ecef_mps();
+      solution.llh = wgs84::ecef_to_llh(solution.r_ecef_m);
+      solution.clock_bias_m = nav->clock_bias_m();
+      solution.clock_drift_mps = nav->clock_drift_mps();
+      ++report_.filter_epochs;
+    }
+    const std::string mode_name = from_filter ? to_string(mode) : "scalar";
+    report_.seconds_in_mode[mode_name] += interval;
+    const int measurements = from_filter ? (mode == NavMode::tight ? filter_satellites : static_cast<int>(re.pvt.used_prns.size()))
+                                         : static_cast<int>(re.pvt.used_prns.size());
+    const NavigationEpoch ne{re, solution, from_filter, mode_name,
+                             from_filter ? filter_satellites : static_cast<int>(re.pvt.used_prns.size()), measurements, leap};
+    for (ProductSink* s : sinks) s->on_epoch(ne);
+  }
+  for (ProductSink* s : sinks) s->finish(nav_);
+}
+
+}  // namespace deepnav::aiding

@@ -1,0 +1,103 @@
+#pragma once
+// The aided navigator fed from recordings instead of the IF receiver: GPS L1 C/A
+// observations read from RINEX, broadcast ephemerides from a RINEX navigation file and an
+// IMU log, coupled loosely (a PVT from the pseudoranges and Dopplers, by the receiver's PVT
+// solver) or tightly (pseudorange and Doppler rows), with the same filter, INS start,
+// lever arm and products as `deepnav run`.
+//
+// Time: one axis, GPS seconds from the start of the week of the first observation epoch.
+// The observations' receiver time tags and the IMU log's times (already on GPS time, see
+// ins/imu_log_reader.hpp) are both put on it.
+//
+// What recorded data need beyond the IF receiver's:
+//  - a receiver clock re-set between epochs (rinex_obs_reader.hpp finds it) moves the
+//    filter's clock bias by the same step;
+//  - zero-velocity updates whenever a stationarity detector on the IMU fires (a walker
+//    stops): over the last window the specific force and the angular rate each stay within
+//    a tolerance of their window means;
+//  - a satellite flagged with loss of lock keeps its pseudorange (code does not slip);
+//    a satellite without Doppler gives a pseudorange row only.
+#include <functional>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "aiding/aided_navigator.hpp"
+#include "aiding/mode_manager.hpp"
+#include "ins/imu_file.hpp"
+#include "ins/imu_model.hpp"
+#include "receiver/observations/rinex_obs_reader.hpp"
+#include "receiver/products/product_sink.hpp"
+#include "receiver/pvt_solver.hpp"
+#include "signals/rinex_nav.hpp"
+
+namespace deepnav::aiding {
+
+struct StationarityConfig {
+  bool enabled = true;
+  double window_s = 0.5;
+  double accel_tolerance_mps2 = 0.25;   ///< |f - mean f| within this over the window
+  double gyro_tolerance_radps = 0.25 * M_PI / 180.0;
+  double velocity_sigma_mps = 0.02;     ///< of the zero-velocity update
+};
+
+struct RecordedFusionConfig {
+  NavMode mode = NavMode::tight;        ///< loose or tight
+  ImuErrorModel imu;                    ///< the IMU's grade: process noise and start limits
+  OscillatorNoise oscillator;
+  Eigen::Vector3d lever_arm_imu_to_antenna_b_m = Eigen::Vector3d::Zero();
+  PvtConfig pvt;
+  AtmosphereModels atmosphere;
+  double pvt_position_sigma_scale_m = 2.0;  ///< loose: position sigma = DOP x this
+  double pvt_velocity_sigma_mps = 0.1;
+  double pseudorange_sigma_scale = 1.0;     ///< tight: times the shared range weight model's sigma
+  double doppler_sigma_mps = 0.1;           ///< tight: pseudorange-rate sigma from a recorded Doppler
+  double gate_sigma = 5.0;
+  StationarityConfig stationarity;
+  /// Before the first fix's ionosphere parameters (a navigation file without ION ALPHA/BETA):
+  /// none are applied.
+  std::optional<IonoParameters> iono;
+};
+
+/// What the run did, for summary.json.
+struct RecordedFusionReport {
+  int epochs = 0, fixes = 0, filter_epochs = 0;
+  int zero_velocity_updates = 0;
+  int clock_jumps_followed = 0;
+  int filter_restarts = 0;
+  int rows_rejected = 0;
+  std::string ins_start;
+  std::optional<double> ins_start_t_s;  ///< seconds since the first epoch
+  std::map<std::string, double> seconds_in_mode;
+  nlohmann::json json() const;
+};
+
+class RecordedFusion {
+ public:
+  /// `imu` times must be on the fusion's axis already (to_fusion_axis). Throws
+  /// std::invalid_argument when the IMU log does not overlap the observations.
+  RecordedFusion(RecordedFusionConfig config, const ObservationFile& obs, const NavData& nav, ImuLog imu);
+  /// Every epoch to every sink, then finish() on each (nav: passed through).
+  void run(const std::vector<ProductSink*>& sinks);
+  const RecordedFusionReport& report() const { return report_; }
+
+ private:
+  RecordedFusionConfig cfg_;
+  const ObservationFile& obs_;
+  const NavData& nav_;
+  ImuLog imu_;
+  RecordedFusionReport report_;
+};
+
+/// The fusion axis: GPS seconds from the start of the first epoch's week.
+double fusion_time_s(const ObservationFile& obs, const GpsTime& t);
+
+enum class ImuTimeBase { week_seconds, gps_seconds, unix_gps };
+/// "week-seconds", "gps", "unix-gps" (throws std::invalid_argument otherwise).
+ImuTimeBase parse_imu_time_base(const std::string& name);
+/// Moves every IMU time from `base` onto the fusion axis of `obs`.
+void to_fusion_axis(ImuLog& imu, ImuTimeBase base, const ObservationFile& obs);
+
+}  // namespace deepnav::aiding

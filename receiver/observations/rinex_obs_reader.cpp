@@ -1,0 +1,451 @@
+#include "receiver/observations/rinex_obs_reader.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <istream>
+#include <stdexcept>
+#include <string_view>
+
+#include "signals/gps_constants.hpp"
+
+namespace deepnav {
+namespace {
+
+constexpr double kMillisecondRange_m = gps::kSpeedOfLight_mps * 1e-3;
+
+std::string_view column(std::string_view line, std::size_t start, std::size_t width) {
+  if (start >= line.size()) return {};
+  return line.substr(start, std::min(width, line.size() - start));
+}
+
+std::string_view trim(std::string_view s) {
+  const auto first = s.find_first_not_of(' ');
+  if (first == std::string_view::npos) return {};
+  const auto last = s.find_last_not_of(' ');
+  return s.substr(first, last - first + 1);
+}
+
+/// A number, or nullopt for a blank field; throws a bare invalid_argument otherwise.
+std::optional<double> parse_number(std::string_view field) {
+  const std::string_view text = trim(field);
+  if (text.empty()) return std::nullopt;
+  std::string buf(text);
+  for (char& ch : buf) {
+    if (ch == 'D' || ch == 'd') ch = 'E';
+    const bool allowed = (ch >= '0' && ch <= '9') || ch == '+' || ch == '-' || ch == '.' || ch == 'E' || ch == 'e';
+    if (!allowed) throw std::invalid_argument(fmt::format("expected a number, got '{}'", text));
+  }
+  char* end = nullptr;
+  const double value = std::strtod(buf.c_str(), &end);
+  if (end != buf.c_str() + buf.size() || !std::isfinite(value))
+    throw std::invalid_argument(fmt::format("expected a finite number, got '{}'", text));
+  return value;
+}
+
+int parse_int(std::string_view field, const char* what, int lo, int hi) {
+  const auto v = parse_number(field);
+  if (!v) throw std::invalid_argument(fmt::format("{} is blank", what));
+  const double r = std::round(*v);
+  if (std::abs(*v - r) > 1e-9 || r < lo || r > hi)
+    throw std::invalid_argument(fmt::format("{} must be a whole number in [{}, {}], got '{}'", what, lo, hi, trim(field)));
+  return static_cast<int>(r);
+}
+
+class LineReader {
+ public:
+  LineReader(std::istream& in, std::string name) : in_(in), name_(std::move(name)) {}
+  bool next(std::string& line) {
+    if (!std::getline(in_, line)) return false;
+    ++line_no_;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    return true;
+  }
+  /// The next line, or an error saying what was expected there.
+  std::string require(const std::string& what) {
+    std::string line;
+    if (!next(line)) fail(line_no_ + 1, fmt::format("file ends where {} was expected (truncated file?)", what));
+    return line;
+  }
+  int line_no() const { return line_no_; }
+  [[noreturn]] void fail(int line_no, const std::string& message) const {
+    throw std::runtime_error(fmt::format("{}:{}: {}", name_, line_no, message));
+  }
+  [[noreturn]] void fail(const std::string& message) const { fail(line_no_, message); }
+
+ private:
+  std::istream& in_;
+  std::string name_;
+  int line_no_ = 0;
+};
+
+template <typename F>
+auto with_context(const LineReader& reader, const std::string& context, F&& parse) {
+  try {
+    return parse();
+  } catch (const std::invalid_argument& e) {
+    reader.fail(fmt::format("{}: {}", context, e.what()));
+  }
+}
+
+/// The observation types of the GPS system and where the L1 C/A ones are.
+struct GpsTypes {
+  std::vector<std::string> all;  ///< every GPS observation type, in file order
+  int pseudorange = -1, phase = -1, doppler = -1, cn0 = -1;
+};
+
+struct Header {
+  double version = 0.0;
+  char file_system = 'G';
+  GpsTypes gps;
+  std::map<char, int> type_counts;  ///< number of observation types per system
+  std::optional<double> interval_s;
+  std::optional<Eigen::Vector3d> approx_position;
+};
+
+std::string_view label(std::string_view line) { return trim(column(line, 60, 20)); }
+
+/// RINEX 2 names a system by one letter; blank means GPS.
+char system_letter(char c) { return c == ' ' ? 'G' : c; }
+
+void locate_l1(GpsTypes& types, bool rinex2) {
+  const std::array<const char*, 4> codes3 = {"C1C", "L1C", "D1C", "S1C"};
+  const std::array<const char*, 4> codes2 = {"C1", "L1", "D1", "S1"};
+  const auto& codes = rinex2 ? codes2 : codes3;
+  std::array<int*, 4> slots = {&types.pseudorange, &types.phase, &types.doppler, &types.cn0};
+  for (std::size_t k = 0; k < codes.size(); ++k) {
+    const auto it = std::find(types.all.begin(), types.all.end(), codes[k]);
+    if (it != types.all.end()) *slots[k] = static_cast<int>(it - types.all.begin());
+  }
+}
+
+Header read_header(LineReader& reader) {
+  Header h;
+  std::string line;
+  if (!reader.next(line)) reader.fail(1, "empty file, expected a RINEX observation file");
+  if (label(line) != "RINEX VERSION / TYPE")
+    reader.fail("not a RINEX file: expected 'RINEX VERSION / TYPE' in columns 61-80 of the first line");
+  h.version = with_context(reader, "RINEX version (columns 1-9)", [&] {
+    const auto v = parse_number(column(line, 0, 9));
+    if (!v) throw std::invalid_argument("blank");
+    return *v;
+  });
+  const bool v2 = h.version >= 2.095 && h.version < 2.115;
+  const bool v3 = h.version >= 2.995 && h.version < 3.055;
+  if (!v2 && !v3)
+    reader.fail(fmt::format("unsupported RINEX version {:.2f} (supported: 2.10, 2.11, 3.00 to 3.05)", h.version));
+  const char type = line.size() > 20 ? line[20] : ' ';
+  if (type != 'O')
+    reader.fail(fmt::format("not an observation file: file type '{}' in column 21, expected 'O'", type));
+  h.file_system = system_letter(line.size() > 40 ? line[40] : ' ');
+
+  char continuing = 0;  // the system whose type list goes on on the next line (RINEX 3)
+  int remaining = 0;
+  while (true) {
+    if (!reader.next(line)) reader.fail(reader.line_no(), "no 'END OF HEADER' line: the header never ends");
+    const std::string_view lab = label(line);
+    if (lab == "END OF HEADER") break;
+    if (lab == "SYS / # / OBS TYPES" && v3) {
+      char sys = line.empty() ? ' ' : line[0];
+      if (sys == ' ') {
+        if (continuing == 0) reader.fail("SYS / # / OBS TYPES: continuation line without a system line before it");
+        sys = continuing;
+      } else {
+        remaining = with_context(reader, fmt::format("SYS / # / OBS TYPES of '{}': number of types (columns 4-6)", sys),
+                                 [&] { return parse_int(column(line, 3, 3), "number of types", 1, 999); });
+        h.type_counts[sys] = remaining;
+      }
+      for (int k = 0; k < 13 && remaining > 0; ++k, --remaining) {
+        const std::string code(trim(column(line, 7 + 4 * static_cast<std::size_t>(k), 3)));
+        if (code.size() != 3)
+          reader.fail(fmt::format("SYS / # / OBS TYPES of '{}': type {} (columns {}-{}) is '{}', expected a 3-character "
+                                  "code such as C1C", sys, k + 1, 8 + 4 * k, 10 + 4 * k, code));
+        if (sys == 'G') h.gps.all.push_back(code);
+      }
+      continuing = remaining > 0 ? sys : 0;
+    } else if (lab == "# / TYPES OF OBSERV" && v2) {
+      if (!trim(column(line, 0, 6)).empty()) {
+        remaining = with_context(reader, "# / TYPES OF OBSERV: number of types (columns 1-6)",
+                                 [&] { return parse_int(column(line, 0, 6), "number of types", 1, 99); });
+        for (char s : std::string("GRESJCI")) h.type_counts[s] = remaining;
+      } else if (remaining == 0) {
+        reader.fail("# / TYPES OF OBSERV: continuation line without a count line before it");
+      }
+      for (int k = 0; k < 9 && remaining > 0; ++k, --remaining) {
+        const std::string code(trim(column(line, 6 + 6 * static_cast<std::size_t>(k), 6)));
+        if (code.size() != 2)
+          reader.fail(fmt::format("# / TYPES OF OBSERV: type {} (columns {}-{}) is '{}', expected a 2-character code "
+                                  "such as C1", k + 1, 11 + 6 * k, 12 + 6 * k, code));
+        h.gps.all.push_back(code);
+      }
+    } else if (lab == "INTERVAL") {
+      h.interval_s = with_context(reader, "INTERVAL (columns 1-10)", [&] { return parse_number(column(line, 0, 10)); });
+      if (h.interval_s && *h.interval_s <= 0.0) h.interval_s.reset();
+    } else if (lab == "APPROX POSITION XYZ") {
+      Eigen::Vector3d r;
+      for (int i = 0; i < 3; ++i) {
+        const auto v = with_context(reader, fmt::format("APPROX POSITION XYZ, {} (columns {}-{})", "XYZ"[i], 1 + 14 * i,
+                                                        14 + 14 * i),
+                                    [&] { return parse_number(column(line, 14 * static_cast<std::size_t>(i), 14)); });
+        r(i) = v.value_or(0.0);
+      }
+      if (r.norm() > 1e6) h.approx_position = r;
+    }
+  }
+  if (remaining > 0) reader.fail(fmt::format("the header ends with {} observation types still announced", remaining));
+  locate_l1(h.gps, v2);
+  if (h.gps.all.empty())
+    reader.fail(fmt::format("no GPS observation types in the header ({}): nothing to read", v2 ? "# / TYPES OF OBSERV"
+                                                                                             : "SYS / # / OBS TYPES"));
+  if (h.gps.pseudorange < 0)
+    reader.fail(fmt::format("the GPS observation types have no L1 C/A pseudorange ({}); they are: {}", v2 ? "C1" : "C1C",
+                            fmt::join(h.gps.all, " ")));
+  return h;
+}
+
+/// One 16-character observation field: value (F14.3), LLI digit, signal strength digit.
+struct Field {
+  std::optional<double> value;
+  int lli = 0;
+};
+
+Field parse_field(const LineReader& reader, std::string_view line, std::size_t start, const std::string& what) {
+  Field f;
+  f.value = with_context(reader, what, [&] { return parse_number(column(line, start, 14)); });
+  const std::string_view lli = column(line, start + 14, 1);
+  if (!lli.empty() && lli[0] != ' ') {
+    if (lli[0] < '0' || lli[0] > '9') reader.fail(fmt::format("{}: loss-of-lock indicator '{}' is not a digit", what, lli));
+    f.lli = lli[0] - '0';
+  }
+  return f;
+}
+
+struct Parser {
+  LineReader& reader;
+  Header h;
+  bool v2;
+  ObservationFile out;
+
+  GpsTime epoch_time(std::string_view line, bool rinex2) {
+    CalendarTime c;
+    if (rinex2) {
+      const int yy = with_context(reader, "epoch year (columns 2-3)", [&] { return parse_int(column(line, 1, 2), "year", 0, 99); });
+      c.year = yy < 80 ? 2000 + yy : 1900 + yy;
+    } else {
+      c.year = with_context(reader, "epoch year (columns 3-6)", [&] { return parse_int(column(line, 2, 4), "year", 1980, 2200); });
+    }
+    const std::size_t o = rinex2 ? 4 : 7;  // month's column (0-based)
+    c.month = with_context(reader, fmt::format("epoch month (columns {}-{})", o + 1, o + 2), [&] { return parse_int(column(line, o, 2), "month", 1, 12); });
+    c.day = with_context(reader, fmt::format("epoch day (columns {}-{})", o + 4, o + 5), [&] { return parse_int(column(line, o + 3, 2), "day", 1, 31); });
+    c.hour = with_context(reader, fmt::format("epoch hour (columns {}-{})", o + 7, o + 8), [&] { return parse_int(column(line, o + 6, 2), "hour", 0, 23); });
+    c.minute = with_context(reader, fmt::format("epoch minute (columns {}-{})", o + 10, o + 11), [&] { return parse_int(column(line, o + 9, 2), "minute", 0, 59); });
+    c.second = with_context(reader, fmt::format("epoch second (columns {}-{})", o + 12, o + 22), [&] {
+      const auto s = parse_number(column(line, o + 11, 11));
+      if (!s || *s < 0.0 || *s >= 61.0) throw std::invalid_argument("expected seconds in [0, 61)");
+      return *s;
+    });
+    return gps_time_from_calendar(c);
+  }
+
+  /// Reads one satellite's observations from `text` (all its fields in one string) and
+  /// files it: GPS L1 C/A kept, the rest counted.
+  void take_satellite(std::string_view sat, const std::string& text, int line_no, ObservationEpoch& epoch, bool keep) {
+    const char sys = system_letter(sat[0]);
+    if (sys != 'G') {
+      if (keep) ++out.report.skipped_satellite_records[std::string(1, sys)];
+      return;
+    }
+    const int prn = with_context(reader, fmt::format("satellite '{}' number", sat), [&] { return parse_int(sat.substr(1), "PRN", 1, 32); });
+    GpsL1Observation o;
+    o.prn = prn;
+    bool lost = false;
+    for (std::size_t k = 0; k < h.gps.all.size(); ++k) {
+      const std::string what = fmt::format("G{:02d} {} (line {} columns {}-{})", prn, h.gps.all[k], line_no,
+                                           (v2 ? 1 + 16 * (k % 5) : 4 + 16 * k), (v2 ? 14 + 16 * (k % 5) : 17 + 16 * k));
+      const Field f = parse_field(reader, text, 16 * k, what);
+      const int i = static_cast<int>(k);
+      if (i == h.gps.pseudorange) o.pseudorange_m = f.value;
+      else if (i == h.gps.phase) o.carrier_phase_cycles = f.value;
+      else if (i == h.gps.doppler) o.doppler_hz = f.value;
+      else if (i == h.gps.cn0) o.cn0_dbhz = f.value;
+      else {
+        if (f.value && keep) ++out.report.skipped_gps_values[h.gps.all[k]];
+        continue;
+      }
+      if (f.value && (f.lli & 1)) lost = true;
+    }
+    if (!keep) return;
+    if (!o.pseudorange_m && !o.carrier_phase_cycles && !o.doppler_hz) return;  // no L1 C/A signal (only other bands)
+    o.loss_of_lock = lost || epoch.flag == 1;
+    ObservationReport& r = out.report;
+    ++r.gps_satellite_records;
+    r.missing_pseudorange += !o.pseudorange_m;
+    r.missing_phase += !o.carrier_phase_cycles;
+    r.missing_doppler += !o.doppler_hz;
+    r.missing_cn0 += !o.cn0_dbhz;
+    r.loss_of_lock += o.loss_of_lock;
+    epoch.gps.push_back(o);
+  }
+
+  /// The satellite records of an epoch (flag 0, 1 or 6). RINEX 3: one line per satellite
+  /// starting with its ID. RINEX 2: the IDs in the epoch line(s), then each satellite's
+  /// fields five to a line.
+  void read_records(int count, const std::vector<std::string>& v2_ids, ObservationEpoch& epoch, bool keep) {
+    for (int s = 0; s < count; ++s) {
+      if (!v2) {
+        const std::string line = reader.require(fmt::format("satellite record {} of {} of the epoch at line {}", s + 1, count, epoch.line));
+        if (line.size() < 3 || line[0] == '>')
+          reader.fail(fmt::format("satellite record {} of {} of the epoch at line {} expected, got '{}' (truncated epoch?)",
+                                  s + 1, count, epoch.line, line.substr(0, 20)));
+        const std::string text = line.size() > 3 ? line.substr(3) : std::string();
+        const int n = h.type_counts.count(system_letter(line[0])) ? h.type_counts[system_letter(line[0])] : 0;
+        if (system_letter(line[0]) == 'G' || n > 0)
+          take_satellite(std::string_view(line).substr(0, 3), text, reader.line_no(), epoch, keep);
+        else if (keep)
+          ++out.report.skipped_satellite_records[std::string(1, line[0])];
+      } else {
+        const std::size_t lines = (h.gps.all.size() + 4) / 5;
+        std::string text;
+        int first_line = 0;
+        for (std::size_t l = 0; l < lines; ++l) {
+          std::string line = reader.require(fmt::format("observations of satellite '{}' (record {} of {} of the epoch at line {})",
+                                                        v2_ids[static_cast<std::size_t>(s)], s + 1, count, epoch.line));
+          if (l == 0) first_line = reader.line_no();
+          line.resize(80, ' ');
+          text += line;
+        }
+        take_satellite(v2_ids[static_cast<std::size_t>(s)], text, first_line, epoch, keep);
+      }
+    }
+  }
+
+  /// RINEX 2: the satellite IDs of an epoch, 12 per line from column 33.
+  std::vector<std::string> v2_satellites(const std::string& first, int count) {
+    std::vector<std::string> ids;
+    std::string line = first;
+    for (int s = 0; s < count; ++s) {
+      if (s > 0 && s % 12 == 0) line = reader.require("continuation of the epoch's satellite list");
+      std::string id(column(line, 32 + 3 * static_cast<std::size_t>(s % 12), 3));
+      if (id.size() != 3 || trim(id).empty())
+        reader.fail(fmt::format("epoch satellite list: satellite {} of {} (columns {}-{}) is missing", s + 1, count,
+                                33 + 3 * (s % 12), 35 + 3 * (s % 12)));
+      ids.push_back(id);
+    }
+    return ids;
+  }
+
+  void run() {
+    std::string line;
+    while (reader.next(line)) {
+      if (trim(line).empty()) continue;
+      if (!v2 && line[0] != '>')
+        reader.fail(fmt::format("expected an epoch record starting with '>', got '{}'", line.substr(0, 20)));
+      const std::size_t flag_col = v2 ? 28 : 31;
+      const int flag = with_context(reader, fmt::format("epoch flag (column {})", flag_col + 1),
+                                    [&] { return parse_int(column(line, flag_col, 1), "epoch flag", 0, 6); });
+      const int count = with_context(reader, fmt::format("number of satellites (columns {}-{})", flag_col + 2, flag_col + 4),
+                                     [&] { return parse_int(column(line, flag_col + 1, 3), "number of satellites", 0, 999); });
+      if (flag >= 2 && flag <= 5) {  // special records: header lines, events
+        ++out.report.event_epochs;
+        for (int k = 0; k < count; ++k) reader.require(fmt::format("special record {} of {} after the event flag {} at line {}",
+                                                                   k + 1, count, flag, reader.line_no() - k));
+        continue;
+      }
+      ObservationEpoch epoch;
+      epoch.line = reader.line_no();
+      epoch.flag = flag;
+      epoch.t = epoch_time(line, v2);
+      const auto clock = with_context(reader, v2 ? "receiver clock offset (columns 69-80)" : "receiver clock offset (columns 42-56)",
+                                      [&] { return parse_number(v2 ? column(line, 68, 12) : column(line, 41, 15)); });
+      epoch.receiver_clock_offset_s = clock;
+      const std::vector<std::string> ids = v2 ? v2_satellites(line, count) : std::vector<std::string>{};
+      if (flag == 6) {  // cycle slip records: in the observation format, not observations
+        ++out.report.cycle_slip_epochs;
+        read_records(count, ids, epoch, false);
+        continue;
+      }
+      read_records(count, ids, epoch, true);
+      if (!out.epochs.empty()) {
+        const double dt = epoch.t.seconds_since(out.epochs.back().t);
+        if (dt <= 0.0)
+          reader.fail(epoch.line, fmt::format("epoch time {} goes {} the epoch at line {} (epochs must increase)",
+                                              fmt::format("{} {:.7f}", epoch.t.week, epoch.t.sow), dt == 0.0 ? "no further than" : "back before",
+                                              out.epochs.back().line));
+      }
+      out.report.power_failure_epochs += flag == 1;
+      out.epochs.push_back(std::move(epoch));
+    }
+  }
+};
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
+void find_gaps(ObservationFile& f, std::optional<double> interval_s) {
+  std::vector<double> dts;
+  for (std::size_t i = 1; i < f.epochs.size(); ++i) dts.push_back(f.epochs[i].t.seconds_since(f.epochs[i - 1].t));
+  f.report.nominal_interval_s = interval_s.value_or(median(dts));
+  if (f.report.nominal_interval_s <= 0.0) return;
+  for (std::size_t i = 1; i < f.epochs.size(); ++i) {
+    const double dt = dts[i - 1];
+    if (dt <= 1.5 * f.report.nominal_interval_s) continue;
+    f.epochs[i].after_gap = true;
+    f.report.gaps.push_back({f.epochs[i].line, f.epochs[i - 1].t, f.epochs[i].t, dt});
+  }
+}
+
+/// Receiver clock re-settings: the median over common satellites of the pseudorange
+/// change minus what the Dopplers predict for it; a step beyond 1/10 ms of range (30 km:
+/// no motion or clock drift makes that in seconds) is a jump.
+void find_clock_jumps(ObservationFile& f) {
+  for (std::size_t i = 1; i < f.epochs.size(); ++i) {
+    const ObservationEpoch& a = f.epochs[i - 1];
+    ObservationEpoch& b = f.epochs[i];
+    const double dt = b.t.seconds_since(a.t);
+    std::vector<double> steps;
+    for (const GpsL1Observation& ob : b.gps) {
+      const auto it = std::find_if(a.gps.begin(), a.gps.end(), [&](const GpsL1Observation& o) { return o.prn == ob.prn; });
+      if (it == a.gps.end() || !it->pseudorange_m || !ob.pseudorange_m) continue;
+      double predicted = 0.0;
+      if (it->doppler_hz && ob.doppler_hz) predicted = -gps::kL1Wavelength_m * 0.5 * (*it->doppler_hz + *ob.doppler_hz) * dt;
+      steps.push_back(*ob.pseudorange_m - *it->pseudorange_m - predicted);
+    }
+    if (steps.empty()) continue;
+    const double step = median(steps);
+    if (std::abs(step) < 0.1 * kMillisecondRange_m) continue;
+    b.clock_jump_m = step;
+    f.report.clock_jumps.push_back({b.line, b.t, step, step / kMillisecondRange_m});
+  }
+}
+
+}  // namespace
+
+ObservationFile read_rinex_obs(std::istream& in, const std::string& name) {
+  LineReader reader(in, name);
+  Parser p{reader, read_header(reader), false, {}};
+  p.v2 = p.h.version < 2.5;
+  p.out.report.version = p.h.version;
+  p.out.report.approx_position_ecef_m = p.h.approx_position;
+  p.run();
+  if (p.out.epochs.empty()) reader.fail(reader.line_no(), "no observation epochs after the header");
+  p.out.report.epochs = static_cast<int>(p.out.epochs.size());
+  find_gaps(p.out, p.h.interval_s);
+  find_clock_jumps(p.out);
+  return std::move(p.out);
+}
+
+ObservationFile read_rinex_obs(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot open RINEX observation file '" + path + "'");
+  return read_rinex_obs(in, path);
+}
+
+}  // namespace deepnav

@@ -1,0 +1,96 @@
+#pragma once
+// Reader of RINEX observation files, versions 2.10/2.11 and 3.00-3.05, for GPS L1 C/A:
+// C1C L1C D1C S1C (RINEX 3) or C1 L1 D1 S1 (RINEX 2), as the RINEX writer of
+// receiver/products/ writes them. Everything else (other systems, other GPS signals) is
+// skipped and counted in the report.
+//
+// What recordings contain, and what the reader does with it:
+//  - loss-of-lock indicator (bit 0 of the LLI digit of any L1 C/A field): kept per
+//    satellite (the carrier phase may have slipped); an epoch flagged 1 (power failure
+//    since the previous epoch) marks every satellite so;
+//  - a missing pseudorange or Doppler: the field stays empty (nullopt), counted;
+//  - receiver clock jumps (a receiver that keeps its clock within a millisecond of GPS
+//    time re-sets it by whole milliseconds, and every pseudorange jumps by c x 1 ms): found
+//    from the pseudorange change between epochs against the Doppler's, reported per epoch
+//    (ObservationEpoch::clock_jump_m) and in the report; the data are left as recorded;
+//  - epoch flags 2-5 (moving antenna, new site, header records, external event) and 6
+//    (cycle slip records): their records are skipped and counted;
+//  - gaps (an interval over 1.5 times the nominal one) are reported, never interpolated.
+// Errors (not a RINEX observation file, an unsupported version, no GPS C1C/C1 type, a
+// malformed epoch or field, a truncated epoch, epochs going backwards) throw
+// std::runtime_error naming the file, the line and the field.
+#include <Eigen/Core>
+#include <iosfwd>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ins/gps_time.hpp"
+
+namespace deepnav {
+
+/// One GPS satellite's L1 C/A observables at an epoch (a missing one is nullopt).
+struct GpsL1Observation {
+  int prn = 0;
+  std::optional<double> pseudorange_m;
+  std::optional<double> carrier_phase_cycles;  ///< RINEX sign: grows with range
+  std::optional<double> doppler_hz;            ///< positive when the satellite approaches
+  std::optional<double> cn0_dbhz;
+  bool loss_of_lock = false;                   ///< LLI bit 0, or the epoch followed a power failure
+};
+
+struct ObservationEpoch {
+  GpsTime t;                                   ///< receiver time tag, as recorded
+  int line = 0;                                ///< line of the epoch record in the file
+  int flag = 0;                                ///< 0 OK, 1 power failure before this epoch
+  std::optional<double> receiver_clock_offset_s;
+  std::vector<GpsL1Observation> gps;           ///< satellites with any L1 C/A observable
+  /// The receiver clock was re-set since the previous epoch: every pseudorange moved by
+  /// this much more than the Dopplers say (m; 0 when it was not). clock_jump_m / c is the
+  /// step of the clock bias.
+  double clock_jump_m = 0.0;
+  bool after_gap = false;                      ///< more than 1.5 nominal intervals since the previous epoch
+};
+
+struct ObservationGap {
+  int line = 0;                                ///< line of the first epoch after the gap
+  GpsTime before, after;
+  double seconds = 0.0;
+};
+
+struct ClockJump {
+  int line = 0;
+  GpsTime t;
+  double jump_m = 0.0;
+  double jump_ms = 0.0;                        ///< jump_m / (c x 1 ms), whole for a millisecond reset
+};
+
+struct ObservationReport {
+  double version = 0.0;
+  int epochs = 0;                              ///< epochs with observations (flags 0 and 1)
+  double nominal_interval_s = 0.0;             ///< INTERVAL, else the median epoch spacing
+  std::optional<Eigen::Vector3d> approx_position_ecef_m;
+  std::map<std::string, int> skipped_satellite_records;  ///< by system ("E", "R", "S", "C", "J", "I")
+  std::map<std::string, int> skipped_gps_values;         ///< GPS observables of other signals, by type
+  int gps_satellite_records = 0;               ///< GPS satellite records with an L1 C/A observable
+  int missing_pseudorange = 0, missing_doppler = 0, missing_phase = 0, missing_cn0 = 0;
+  int loss_of_lock = 0;
+  int power_failure_epochs = 0;                ///< flag 1
+  int event_epochs = 0;                        ///< flags 2-5 (their records skipped)
+  int cycle_slip_epochs = 0;                   ///< flag 6 (their records skipped)
+  std::vector<ObservationGap> gaps;
+  std::vector<ClockJump> clock_jumps;
+};
+
+struct ObservationFile {
+  std::vector<ObservationEpoch> epochs;
+  ObservationReport report;
+};
+
+/// Reads a RINEX observation file (see the rules above).
+ObservationFile read_rinex_obs(const std::string& path);
+/// Same from a stream; `name` is used in error messages.
+ObservationFile read_rinex_obs(std::istream& in, const std::string& name);
+
+}  // namespace deepnav
