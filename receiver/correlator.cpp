@@ -112,7 +112,8 @@ const CodeTable& table_for(const CaCodeChips& code) {
   return *e.table;
 }
 
-KernelFn pick_kernel(CorrelatorKernel kernel, int taps, bool small, bool planar, bool noise) {
+KernelFn pick_kernel(CorrelatorKernel kernel, int taps, bool small, [[maybe_unused]] bool planar,
+                     [[maybe_unused]] bool noise) {
   switch (kernel) {
 #if defined(__x86_64__)
     case CorrelatorKernel::avx512:
