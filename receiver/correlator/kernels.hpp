@@ -8,9 +8,12 @@
 // instantiated there could be picked for a caller on a CPU without those instructions): the
 // kernel files keep everything in anonymous namespaces, use only this header's plain types
 // and intrinsics, and export one non-inline entry point per kernel.
+#include <complex>
 #include <cstdint>
 
-#include "receiver/sample_source.hpp"
+namespace deepnav {
+using Sample = std::complex<std::int16_t>;  // as in receiver/sample_source.hpp (kept out of the kernel files)
+}  // namespace deepnav
 
 namespace deepnav::correlator_detail {
 
