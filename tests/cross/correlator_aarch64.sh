@@ -17,7 +17,8 @@ command -v "$cxx" >/dev/null || missing+=("$cxx (package g++-aarch64-linux-gnu)"
 command -v "$qemu" >/dev/null || missing+=("$qemu (package qemu-user)")
 [[ -f $gtest/src/gtest-all.cc ]] || missing+=("$gtest (package libgtest-dev)")
 if ((${#missing[@]})); then
-  echo "SKIPPED: the AArch64 correlator test needs ${missing[*]}; tools/install_deps.sh installs them"
+  list=$(printf '%s, ' "${missing[@]}")
+  echo "SKIPPED: the AArch64 correlator test needs ${list%, }; tools/install_deps.sh installs them"
   exit 77
 fi
 mkdir -p "$work"
