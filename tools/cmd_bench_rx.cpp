@@ -255,7 +255,7 @@ void run_rx_bench(const RxBenchOptions& o) {
   report.add_note("notes", "receiver rows: whole receiver (acquisition, tracking, navigation data, PVT; assisted "
                            "ephemerides); channel_samples_per_s = realtime_factor x fs x channels; the *_cpu columns "
                            "use the process's CPU time instead of wall time (on a shared machine the one-thread figures "
-                           "an idle machine would give). Correlator rows: "
+                           "are closer to an idle machine's). Correlator rows: "
                            "E/P/L + noise taps (\"E/P/L\": without the noise tap, as the receiver runs most integrations) over 1 ms "
                            "spans, one core, input prepared once per block as in the receiver (magnitude scan; planar "
                            "copy for avx512).");

@@ -38,13 +38,23 @@ int sample_bits_impl(const Sample* x, int n) {
 }
 
 /// Adds the int32 lanes of v / 256 to out and clears v (the lanes hold multiples of 256).
-inline void drain(__m256i& v, std::int64_t& out) {
-  alignas(32) std::int32_t lanes[8];
-  _mm256_store_si256(reinterpret_cast<__m256i*>(lanes), v);
-  std::int64_t sum = 0;
-  for (std::int32_t l : lanes) sum += l;
-  out += sum / 256;
+/// Adds the int32 lanes of v to the four int64 lanes of `wide` and clears v.
+inline void drain(__m256i& v, __m256i& wide) {
+  const __m256i lo = _mm256_cvtepi32_epi64(_mm256_castsi256_si128(v));
+  const __m256i hi = _mm256_cvtepi32_epi64(_mm256_extracti128_si256(v, 1));
+  wide = _mm256_add_epi64(wide, _mm256_add_epi64(lo, hi));
   v = _mm256_setzero_si256();
+}
+
+/// Adds the drained sums / 256 to acc (every lane holds a multiple of 256).
+inline void finish(__m256i (&wide)[kTaps][2], Acc& acc) {
+  for (int t = 0; t < kTaps; ++t) {
+    for (int c = 0; c < 2; ++c) {
+      alignas(32) std::int64_t lanes[4];
+      _mm256_store_si256(reinterpret_cast<__m256i*>(lanes), wide[t][c]);
+      acc[t][c] += (lanes[0] + lanes[1] + lanes[2] + lanes[3]) / 256;
+    }
+  }
 }
 
 template <int kT, bool kSmall, bool kN>
@@ -83,6 +93,8 @@ void kernel_wide(const Input& in, int m, const Run& run, const Setup& su, Acc& a
   __m256i e_re = _mm256_setzero_si256(), e_im = e_re, p_re = e_re, p_im = e_re, l_re = e_re, l_im = e_re;
   __m256i ve_re = e_re, ve_im = e_re, vl_re = e_re, vl_im = e_re, n_re = e_re, n_im = e_re;
 
+  __m256i wide[kTaps][2];
+  for (auto& t : wide) t[0] = t[1] = _mm256_setzero_si256();
   std::int64_t pos = run.pos0;
   const std::int64_t block_inc = run.inc * 16;
   // Two passes per chunk of 64 blocks, so that neither needs more than the 16 registers:
@@ -160,23 +172,24 @@ void kernel_wide(const Input& in, int m, const Run& run, const Setup& su, Acc& a
       if (pos >= kCodeWrap) pos -= kCodeWrap;
     }
     // Each madd adds up to 2^24 per lane: 64 iterations stay within int32.
-    drain(e_re, acc[0][0]);
-    drain(e_im, acc[0][1]);
-    drain(p_re, acc[1][0]);
-    drain(p_im, acc[1][1]);
-    drain(l_re, acc[2][0]);
-    drain(l_im, acc[2][1]);
+    drain(e_re, wide[0][0]);
+    drain(e_im, wide[0][1]);
+    drain(p_re, wide[1][0]);
+    drain(p_im, wide[1][1]);
+    drain(l_re, wide[2][0]);
+    drain(l_im, wide[2][1]);
     if constexpr (kT == 5) {
-      drain(ve_re, acc[3][0]);
-      drain(ve_im, acc[3][1]);
-      drain(vl_re, acc[4][0]);
-      drain(vl_im, acc[4][1]);
+      drain(ve_re, wide[3][0]);
+      drain(ve_im, wide[3][1]);
+      drain(vl_re, wide[4][0]);
+      drain(vl_im, wide[4][1]);
     }
     if constexpr (kN) {
-      drain(n_re, acc[kNoise][0]);
-      drain(n_im, acc[kNoise][1]);
+      drain(n_re, wide[kNoise][0]);
+      drain(n_im, wide[kNoise][1]);
     }
   }
+  finish(wide, acc);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -230,6 +243,8 @@ void kernel_int8(const Input& in, int m, const Run& run, const Setup& su, Acc& a
   __m256i e_re = _mm256_setzero_si256(), e_im = e_re, p_re = e_re, p_im = e_re, l_re = e_re, l_im = e_re;
   __m256i ve_re = e_re, ve_im = e_re, vl_re = e_re, vl_im = e_re, n_re = e_re, n_im = e_re;
 
+  __m256i wide[kTaps][2];
+  for (auto& t : wide) t[0] = t[1] = _mm256_setzero_si256();
   std::int64_t pos = run.pos0;
   const std::int64_t block_inc = run.inc * 16;
   for (int k0 = 0; k0 < m; k0 += 64 * 16) {
@@ -292,23 +307,24 @@ void kernel_int8(const Input& in, int m, const Run& run, const Setup& su, Acc& a
       if (pos >= kCodeWrap) pos -= kCodeWrap;
     }
     // Each madd adds below 2^24 per lane: 64 iterations stay within int32.
-    drain(e_re, acc[0][0]);
-    drain(e_im, acc[0][1]);
-    drain(p_re, acc[1][0]);
-    drain(p_im, acc[1][1]);
-    drain(l_re, acc[2][0]);
-    drain(l_im, acc[2][1]);
+    drain(e_re, wide[0][0]);
+    drain(e_im, wide[0][1]);
+    drain(p_re, wide[1][0]);
+    drain(p_im, wide[1][1]);
+    drain(l_re, wide[2][0]);
+    drain(l_im, wide[2][1]);
     if constexpr (kT == 5) {
-      drain(ve_re, acc[3][0]);
-      drain(ve_im, acc[3][1]);
-      drain(vl_re, acc[4][0]);
-      drain(vl_im, acc[4][1]);
+      drain(ve_re, wide[3][0]);
+      drain(ve_im, wide[3][1]);
+      drain(vl_re, wide[4][0]);
+      drain(vl_im, wide[4][1]);
     }
     if constexpr (kN) {
-      drain(n_re, acc[kNoise][0]);
-      drain(n_im, acc[kNoise][1]);
+      drain(n_re, wide[kNoise][0]);
+      drain(n_im, wide[kNoise][1]);
     }
   }
+  finish(wide, acc);
 }
 
 template <int kT>
