@@ -13,11 +13,14 @@
 //   +-5.6 degrees, averaging out as the phase moves through the bins (mean amplitude loss
 //   0.16 %, 0.014 dB); a replica phase that repeats exactly (IF = fs/4 without Doppler)
 //   can keep up to that error in its sums.
-// - Wipe-off in int16. The span's largest |I| or |Q|, below 2^b, picks the scaling: for
-//   b <= 7 (|I|, |Q| <= 127: 1- to 8-bit converters) the table amplitude is 23170 / 2^b
-//   and the products are exact; larger inputs, up to full-scale int16, have their products
-//   rounded to 15 fraction bits (pmulhrsw) at table amplitude 23000. No int16 value can
-//   overflow for any input.
+// - Wipe-off. The span's largest |I| or |Q|, below 2^b, picks the scaling: for b <= 7
+//   (|I|, |Q| <= 127: 1- to 8-bit converters) the table has amplitude 127 (every entry
+//   fits int8, |c|, |s| <= 126) and the products are exact (|I c + Q s| <= 32004); larger
+//   inputs, up to full-scale int16, have their products rounded to 15 fraction bits
+//   (pmulhrsw) at table amplitude 23000. No int16 value can overflow for any input. The
+//   int8 table's rounding moves an entry by at most 0.2 degree and 0.4 % in amplitude;
+//   with the binning its mean amplitude loss is 0.11 % (0.010 dB; the amplitude-23000
+//   table's 0.16 %).
 // - Code: the prompt position is a 27-fraction-bit chip count (error below 1.6e-5 chip
 //   at the end of a run); the other taps sit at offsets rounded to 2^-11 chip (error at
 //   most 2.4e-4 chip, equal and opposite for early and late, so the early-late
@@ -25,8 +28,14 @@
 // - Sums: int16 x +-1 multiply-accumulate into int32 lanes (AVX-512: vpdpwssd), moved to
 //   int64 at the end of every run (AVX2: every 1024 samples), long before any lane could
 //   overflow; the result is the int64 sum times the table's scale.
+// - Kernels, one file each under receiver/correlator/, compiled with their own instruction
+//   set flags: portable (the definition), AVX2 (for b <= 7 an int8 pipeline: the samples
+//   packed to bytes, the carrier replica built as bytes, vpmaddubsw pair products with the
+//   samples' signs moved onto the replica; larger inputs in int16), AVX-512 (BW + VNNI) and
+//   NEON (AArch64). All give the same integers.
 #include <complex>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "receiver/sample_source.hpp"
@@ -51,17 +60,35 @@ struct CorrelatorSpan {
   /// set of samples holding the span (one scan of a block serves all its channels); it
   /// picks the fixed-point scaling and must not be below the span's own. -1: scanned here.
   int magnitude_bits = -1;
+  /// Whether the noise tap runs; without it CorrelatorSums::noise is zero (a tracking channel
+  /// needs the noise reference only now and then: the C/N0 estimate averages it over seconds).
+  bool noise_tap = true;
 };
 
 /// Instruction-set variants of the kernel; correlate() picks the best one the CPU supports.
-/// avx512 needs AVX-512BW and VNNI. The SIMD kernels take their chips from a 16 or 32 chip
-/// window per block of samples: with every tap within 1 chip of the prompt that holds for
-/// code steps up to 13/15 chip per sample (sample rates above 1.18 Msps); other spans go to
-/// the portable kernel, which gives the same integers.
-enum class CorrelatorKernel { portable, avx2, avx512 };
+/// avx512 needs AVX-512BW and VNNI; neon is AArch64's Advanced SIMD. The SIMD kernels take
+/// their chips from a 16 or 32 chip window per block of samples: with every tap within 1 chip
+/// of the prompt that holds for code steps up to 13/15 chip per sample (sample rates above
+/// 1.18 Msps); other spans go to the portable kernel, which gives the same integers.
+enum class CorrelatorKernel { portable, avx2, avx512, neon };
+/// The kernel correlate() uses without an explicit one: the fastest this CPU can run, unless
+/// the environment variable DEEPNAV_CORRELATOR_KERNEL (portable, avx2, avx512, neon) or
+/// use_correlator_kernel() chose another (to measure a CPU without the wider instructions:
+/// DEEPNAV_CORRELATOR_KERNEL=avx2). A named kernel the CPU cannot run throws
+/// std::invalid_argument.
 CorrelatorKernel best_correlator_kernel();
-/// The kernels this CPU can run (portable always), for tests and benchmarks.
+/// The fastest kernel this CPU can run, whatever was chosen.
+CorrelatorKernel fastest_correlator_kernel();
+/// Makes `kernel` the one correlate() uses from now on, in every thread (call it before
+/// processing starts). Throws std::invalid_argument if the CPU cannot run it.
+void use_correlator_kernel(CorrelatorKernel kernel);
+/// The kernels this CPU can run (portable always), slowest first, for tests and benchmarks.
 std::vector<CorrelatorKernel> available_correlator_kernels();
+/// "portable", "avx2", "avx512", "neon".
+const char* correlator_kernel_name(CorrelatorKernel kernel);
+/// The kernel of a name; throws std::invalid_argument for an unknown name or one this CPU
+/// cannot run.
+CorrelatorKernel correlator_kernel_named(const std::string& name);
 
 /// The samples of a span: interleaved I/Q, and optionally the same samples as planar I and Q
 /// arrays (deinterleave()), which the AVX-512 kernel reads without deinterleaving them

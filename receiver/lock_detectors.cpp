@@ -23,7 +23,8 @@ void hysteresis(bool& flag, int& count, bool above_on, bool below_off, int confi
 
 LockDetector::LockDetector(LockThresholds thresholds) : th_(thresholds) {}
 
-void LockDetector::add(const std::complex<double>& prompt, const std::complex<double>& noise, double t) {
+void LockDetector::add(const std::complex<double>& prompt, const std::complex<double>& noise, double t,
+                       double noise_s) {
   // A new integration length (1 ms -> 10 ms after bit sync) starts a new window; the one-
   // sample jitter of code-period lengths does not. The flags keep their state meanwhile.
   if (std::abs(t - integration_s_) > 0.25e-3) {
@@ -35,7 +36,8 @@ void LockDetector::add(const std::complex<double>& prompt, const std::complex<do
   }
   integration_s_ = t;
   window_ = std::max<std::size_t>(20, static_cast<std::size_t>(std::lround(th_.window_s / t)));
-  noise_power_.push(std::norm(noise) / t, kNoiseWindowFactor * window_);
+  if (noise_s < 0.0) noise_s = t;
+  if (noise_s > 0.0) noise_power_.push(std::norm(noise) / noise_s, kNoiseWindowFactor * window_);
   prompt_power_.push(std::norm(prompt), window_);
   abs_i_.push(std::abs(prompt.real()), window_);
   abs_q_.push(std::abs(prompt.imag()), window_);

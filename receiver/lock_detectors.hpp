@@ -7,7 +7,9 @@
 // density as the prompt, so the estimate needs no knowledge of the front-end scaling.
 // E|P|^2 is averaged over the window, E|N|^2 / T over ten windows and across changes of
 // the integration length: with 50 epochs alone the noise average has a 14 % (0.6 dB)
-// scatter that would dominate the estimate's error at high C/N0.
+// scatter that would dominate the estimate's error at high C/N0. The noise sum may cover
+// only part of an integration (its length T_N given): |N|^2 / T_N has the same mean and,
+// an exponential variable whatever T_N, the same relative scatter.
 // Phase lock: the window's mean |I| against its mean |Q| (data-bit insensitive). Locked,
 // |I| carries the signal amplitude and |Q| only noise; unlocked both are alike. Unlike
 // the cos(2 dphi) average (also reported) this stays usable near 30 dB-Hz with 1 ms
@@ -34,7 +36,10 @@ struct LockThresholds {
 class LockDetector {
  public:
   explicit LockDetector(LockThresholds thresholds = {});
-  void add(const std::complex<double>& prompt, const std::complex<double>& noise, double integration_s);
+  /// One integration: its prompt over integration_s, and the noise correlator over noise_s
+  /// (a part of it, or all of it when negative; 0: no noise sum this time).
+  void add(const std::complex<double>& prompt, const std::complex<double>& noise, double integration_s,
+           double noise_s = -1.0);
   /// Valid once the window is full.
   bool ready() const { return prompt_power_.size() >= window_; }
   double cn0_dbhz() const;

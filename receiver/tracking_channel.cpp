@@ -60,6 +60,7 @@ void TrackingChannel::reset_integration() {
   acc_samples_ = 0;
   acc_ms_ = 0;
   acc_e_ = acc_p_ = acc_l_ = acc_ve_ = acc_vl_ = acc_n_ = 0.0;
+  acc_n_samples_ = 0;
 }
 
 std::vector<PromptBit> TrackingChannel::take_bits() {
@@ -108,6 +109,7 @@ void TrackingChannel::process(const SampleBlock& block, const std::function<void
     span.spacing_chips = cfg_.spacing_chips;
     span.very_spacing_chips = cfg_.very_spacing_chips;
     span.magnitude_bits = block.magnitude_bits;
+    span.noise_tap = acc_ms_ == 0 || cfg_.noise_on_every_period;
     const auto offset = static_cast<std::size_t>(idx - block.first_sample_index);
     CorrelatorInput input{block.samples.data() + offset};
     if (block.planar.size() == 2 * block.samples.size()) {
@@ -121,7 +123,10 @@ void TrackingChannel::process(const SampleBlock& block, const std::function<void
     acc_l_ += s.late;
     acc_ve_ += s.very_early;
     acc_vl_ += s.very_late;
-    acc_n_ += s.noise;
+    if (span.noise_tap) {
+      acc_n_ += s.noise;
+      acc_n_samples_ += n;
+    }
     acc_samples_ += n;
     code_phase_chips_ += n * code_step;
     carrier_phase_cycles_ += n * nco_.carrier_doppler_hz / fs;
@@ -155,6 +160,7 @@ std::optional<CorrelatorEpoch> TrackingChannel::finish_code_period() {
   e.very_early = acc_ve_;
   e.very_late = acc_vl_;
   e.noise = acc_n_;
+  e.noise_samples = acc_n_samples_;
   e.code_phase_chips = code_phase_chips_;
   e.carrier_phase_cycles = carrier_phase_cycles_;
   e.carrier_doppler_hz = nco_.carrier_doppler_hz;
@@ -213,6 +219,7 @@ std::optional<double> TrackingChannel::mean_doppler_hz(double window_s) const {
 
 void TrackingChannel::bit_sync_step(const CorrelatorEpoch& e) {
   // The epoch covers code period e.code_period - 1 (counted from 0).
+  // 1 ms integrations: every one has its noise sum.
   if (const auto edge = bit_sync_.add(e.code_period - 1, e.prompt, e.noise)) {
     bit_edge_ = *edge;
     coherent_ms_ = cfg_.coherent_ms_after_bit_sync;
@@ -223,7 +230,7 @@ void TrackingChannel::bit_sync_step(const CorrelatorEpoch& e) {
 void TrackingChannel::monitor(const CorrelatorEpoch& e) {
   const bool synced_before = bit_edge_.has_value();
   tracked_s_ += e.integration_s;
-  lock_.add(e.prompt, e.noise, e.integration_s);
+  lock_.add(e.prompt, e.noise, e.integration_s, e.noise_samples / cfg_.sample_rate_hz);
   // Pull-in (FLL assistance) lasts a fixed time: long enough to bring an acquisition
   // frequency error of a few hundred hertz into the PLL's range, short enough that the FLL's
   // own noise (tens of hertz at 30 dB-Hz with 1 ms) does not keep the PLL from locking.

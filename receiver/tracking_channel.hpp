@@ -28,6 +28,11 @@ struct TrackingConfig {
   double lost_after_s = 1.0;
   double very_spacing_chips = 0.0;      ///< very-early/very-late spacing; 0: not computed
   double pull_in_s = 0.25;              ///< FLL-assisted pull-in time before bit synchronisation
+  /// The noise correlator (the C/N0 reference) runs on the first code period of each
+  /// integration only: one |N|^2 per integration is what the estimate averages, whatever
+  /// length it was integrated over, so longer integrations need no more (after bit sync,
+  /// with 10 ms integrations, it costs a tenth). true: on every code period.
+  bool noise_on_every_period = false;
   LockThresholds lock;                  ///< PLL and code lock flags (CorrelatorEpoch::pll_lock, code_lock)
 };
 
@@ -121,6 +126,7 @@ class TrackingChannel {
   NcoCommand nco_;
   // Integration in progress.
   std::complex<double> acc_e_, acc_p_, acc_l_, acc_ve_, acc_vl_, acc_n_;
+  int acc_n_samples_ = 0;  ///< samples the noise correlator covered in this integration
   std::int64_t acc_first_ = -1;
   int acc_samples_ = 0;
   int acc_ms_ = 0;

@@ -35,6 +35,7 @@ struct CorrelatorEpoch {
   std::complex<double> early, prompt, late;  ///< E/P/L at +-spacing/2 chips
   std::complex<double> very_early, very_late;  ///< at +-very_spacing/2 chips; zero when not configured
   std::complex<double> noise;           ///< a correlator on an unused PRN code: noise power reference
+  int noise_samples = 0;                ///< samples `noise` covers (the integration's first code period; 0: none)
   double code_phase_chips = 0.0;        ///< prompt code phase at the end, [0, 1023) (0 right after a period)
   double carrier_phase_cycles = 0.0;    ///< accumulated carrier NCO phase at the end (Doppler part, cycles)
   double carrier_doppler_hz = 0.0;      ///< NCO Doppler used over this integration

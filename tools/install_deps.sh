@@ -3,7 +3,8 @@
 set -euo pipefail
 packages=(build-essential cmake ninja-build pkg-config libeigen3-dev libfftw3-dev libboost-dev
           libyaml-cpp-dev nlohmann-json3-dev libfmt-dev libspdlog-dev libcli11-dev
-          libgtest-dev libbenchmark-dev python3-matplotlib rtklib)
+          libgtest-dev libbenchmark-dev python3-matplotlib rtklib
+          g++-aarch64-linux-gnu qemu-user)  # the last two: the AArch64 correlator test (tests/cross)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

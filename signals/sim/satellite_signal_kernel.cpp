@@ -8,9 +8,14 @@ namespace {
 
 constexpr int kLanes = 16;  // phasors advanced in parallel: a multiple of every SIMD width we target
 
-// The two inner loops are compiled for AVX-512, AVX2 and the baseline; the loader picks
-// the best one the CPU has (the code index becomes a vector gather on AVX2 and later).
+// On x86-64 the two inner loops are compiled for AVX-512, AVX2 and the baseline; the loader
+// picks the best one the CPU has (the code index becomes a vector gather on AVX2 and later).
+// Elsewhere (AArch64: NEON is baseline) they are compiled once.
+#if defined(__x86_64__)
 #define DEEPNAV_SIMD_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
+#else
+#define DEEPNAV_SIMD_CLONES
+#endif
 
 /// out[k] = amplitude * code[(acc + k inc) >> 32] for n samples that do not wrap the code.
 DEEPNAV_SIMD_CLONES

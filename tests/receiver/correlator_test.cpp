@@ -6,6 +6,7 @@
 #include <cmath>
 #include <random>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "signals/sim/satellite_signal_kernel.hpp"
@@ -112,6 +113,73 @@ TEST(Correlator, SimdKernelsAreBitExactWithThePortableKernel) {
       EXPECT_EQ(s.noise, p.noise);
     }
   }
+}
+
+/// Every kernel the project has, whether or not this CPU can run it: one that cannot run here
+/// is reported as skipped, not passed.
+class EveryKernel : public testing::TestWithParam<CorrelatorKernel> {
+ protected:
+  void SetUp() override {
+    const auto have = available_correlator_kernels();
+    if (std::find(have.begin(), have.end(), GetParam()) == have.end())
+      GTEST_SKIP() << "this CPU cannot run the " << correlator_kernel_name(GetParam())
+                   << " kernel: its bit-exactness is not tested on this machine";
+  }
+};
+
+TEST_P(EveryKernel, IsBitExactWithThePortableKernelWithAndWithoutTheNoiseTap) {
+  // Every offset into the vector widths and code phase, every tap layout and input scale;
+  // without the noise tap the other sums are the same and the noise sum is zero.
+  const CorrelatorKernel k = GetParam();
+  std::mt19937_64 rng(918273);
+  for (int trial = 0; trial < 200; ++trial) {
+    const int n = kLengths[trial % 6] + static_cast<int>(rng() % 64);
+    RandomCase c = random_case(rng, n);
+    const auto& code = ca_code_chips(c.prn);
+    const auto& noise = ca_code_chips(c.prn % 32 + 1);
+    c.span.noise_tap = trial % 2 == 0;
+    SCOPED_TRACE(testing::Message() << "trial " << trial << " n " << n << " noise tap " << c.span.noise_tap);
+    const CorrelatorSums p = correlate(CorrelatorKernel::portable, c.x.data(), n, c.span, code, noise);
+    const CorrelatorSums s = correlate(k, c.x.data(), n, c.span, code, noise);
+    EXPECT_EQ(s.early, p.early);
+    EXPECT_EQ(s.prompt, p.prompt);
+    EXPECT_EQ(s.late, p.late);
+    EXPECT_EQ(s.very_early, p.very_early);
+    EXPECT_EQ(s.very_late, p.very_late);
+    EXPECT_EQ(s.noise, p.noise);
+    if (!c.span.noise_tap) {
+      EXPECT_EQ(s.noise, std::complex<double>(0.0));
+      c.span.noise_tap = true;
+      const CorrelatorSums with = correlate(k, c.x.data(), n, c.span, code, noise);
+      EXPECT_EQ(with.prompt, s.prompt);
+      EXPECT_EQ(with.early, s.early);
+      EXPECT_EQ(with.late, s.late);
+    }
+  }
+}
+
+TEST_P(EveryKernel, CanBeChosenForTheWholeProgram) {
+  const CorrelatorKernel before = best_correlator_kernel();
+  use_correlator_kernel(GetParam());
+  EXPECT_EQ(best_correlator_kernel(), GetParam());
+  EXPECT_EQ(correlator_kernel_named(correlator_kernel_name(GetParam())), GetParam());
+  use_correlator_kernel(before);
+}
+
+INSTANTIATE_TEST_SUITE_P(Correlator, EveryKernel,
+                         testing::Values(CorrelatorKernel::portable, CorrelatorKernel::avx2, CorrelatorKernel::avx512,
+                                         CorrelatorKernel::neon),
+                         [](const testing::TestParamInfo<CorrelatorKernel>& info) {
+                           return std::string(correlator_kernel_name(info.param));
+                         });
+
+TEST(Correlator, TheFastestKernelIsTheNativeSimdOne) {
+#if defined(__aarch64__)
+  EXPECT_EQ(fastest_correlator_kernel(), CorrelatorKernel::neon);
+#else
+  EXPECT_EQ(fastest_correlator_kernel(), available_correlator_kernels().back());
+#endif
+  EXPECT_THROW(correlator_kernel_named("sse9"), std::invalid_argument);
 }
 
 TEST(Correlator, SpansOutsideTheSimdWindowsGiveTheSameIntegers) {
