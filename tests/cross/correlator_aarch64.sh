@@ -28,7 +28,7 @@ command -v ccache >/dev/null && launcher=(ccache)
 flags=(-O2 -std=c++20 -Wall -Wextra -Werror -I"$src")
 objects=()
 for f in receiver/correlator.cpp receiver/correlator/kernel_portable.cpp receiver/correlator/kernel_neon.cpp \
-         signals/ca_code.cpp signals/satellite_signal_kernel.cpp tests/receiver/correlator_test.cpp; do
+         signals/ca_code.cpp signals/sim/satellite_signal_kernel.cpp tests/receiver/correlator_test.cpp; do
   o=$(echo "$f" | tr / _).o
   "${launcher[@]}" "$cxx" "${flags[@]}" -c "$src/$f" -o "$o"
   objects+=("$o")
