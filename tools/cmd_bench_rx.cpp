@@ -7,8 +7,6 @@
 // variable DEEPNAV_CORRELATOR_KERNEL picks another, e.g. avx2 to measure as on a CPU
 // without AVX-512).
 #include <fmt/format.h>
-#include <sys/resource.h>
-#include <time.h>
 
 #include <algorithm>
 #include <chrono>
@@ -17,7 +15,7 @@
 #include <random>
 #include <thread>
 
-#include "aiding/aided_receiver.hpp"
+#include "aiding/navigation_session.hpp"
 #include "ins/imu_file.hpp"
 #include "receiver/correlator.hpp"
 #include "receiver/file_sample_source.hpp"
@@ -28,6 +26,7 @@
 #include "signals/sim/scenario.hpp"
 #include "tools/aided_scenario_run.hpp"
 #include "tools/bench_report.hpp"
+#include "tools/process_usage.hpp"
 #include "tools/command_registry.hpp"
 
 namespace deepnav::cli {
@@ -47,60 +46,34 @@ struct RunFigures {
   int max_tracking = 0;
 };
 
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-/// CPU seconds the process has used (all threads): on a shared machine the one-thread
-/// figures from it are what an idle machine would show.
-double process_cpu_s() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
-         1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-}
-
-/// CPU seconds of the calling thread.
-double thread_cpu_s() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+/// One run of the scenario through the pipeline every run uses; `tracking` reads an
+/// epoch's count of channels doing work (tracking, or steered and measuring).
+template <typename Tracking>
+RunFigures run_session(const Scenario& sc, const SynthesisSummary& s, aiding::NavigationSessionConfig cfg,
+                       Tracking tracking) {
+  FileSampleSource source(synthesized_source(sc, s));
+  std::optional<ImuLog> imu = scenario_imu_log(s, cfg.navigator.mode);
+  aiding::NavigationSession session(std::move(cfg), source, std::move(imu), sc.duration_s);
+  RunFigures f;
+  CallbackSink counter([&](const NavigationEpoch& e) { f.max_tracking = std::max(f.max_tracking, tracking(e)); });
+  const auto t0 = std::chrono::steady_clock::now();
+  const double c0 = process_cpu_s();
+  session.run({&counter});
+  f.wall_s = seconds_since(t0);
+  f.cpu_s = process_cpu_s() - c0;
+  return f;
 }
 
 RunFigures run_scalar(const Scenario& sc, const SynthesisSummary& s, int channels, unsigned threads) {
-  FileSampleSource source(synthesized_source(sc, s));
-  ReceiverConfig rc;
-  rc.channels = channels;
-  rc.threads = threads;
-  rc.reference_week = sc.start_time.week;
-  ScalarReceiver rx(rc, source);
-  rx.set_assisted_ephemerides(read_rinex_nav(sc.nav_file));
-  RunFigures f;
-  const auto t0 = std::chrono::steady_clock::now();
-  const double c0 = process_cpu_s();
-  rx.run([&](const ReceiverEpoch& ep) { f.max_tracking = std::max(f.max_tracking, ep.channels_tracking); });
-  f.wall_s = seconds_since(t0);
-  f.cpu_s = process_cpu_s() - c0;
-  return f;
+  aiding::NavigationSessionConfig cfg = scenario_session_config(sc, aiding::NavMode::scalar);
+  cfg.navigator.receiver.channels = channels;
+  cfg.navigator.receiver.threads = threads;
+  return run_session(sc, s, std::move(cfg), [](const NavigationEpoch& e) { return e.receiver.channels_tracking; });
 }
 
 RunFigures run_ultra(const Scenario& sc, const SynthesisSummary& s) {
-  FileSampleSource source(synthesized_source(sc, s));
-  aiding::AidedReceiverConfig cfg;
-  cfg.mode = aiding::NavMode::ultra;
-  cfg.receiver.reference_week = sc.start_time.week;
-  cfg.imu = load_imu_grade(sc.imu.grades_file, sc.imu.grade).model;
-  aiding::AidedReceiver rx(cfg, source, read_imu_csv(s.imu_path), sc.duration_s);
-  rx.receiver().set_assisted_ephemerides(read_rinex_nav(sc.nav_file));
-  RunFigures f;
-  const auto t0 = std::chrono::steady_clock::now();
-  const double c0 = process_cpu_s();
-  rx.run([&](const aiding::AidedEpoch& a) {
-    if (a.mode == aiding::NavMode::ultra) f.max_tracking = std::max(f.max_tracking, a.steered_channels);
-  });
-  f.wall_s = seconds_since(t0);
-  f.cpu_s = process_cpu_s() - c0;
-  return f;
+  return run_session(sc, s, scenario_session_config(sc, aiding::NavMode::ultra),
+                     [](const NavigationEpoch& e) { return e.mode == "ultra" ? e.gnss_measurements : 0; });
 }
 
 /// The run with the median wall time of `repeats` (a shared machine's noise, page cache

@@ -1,7 +1,6 @@
 // `deepnav bench sim`: synthesis speed (seconds of signal per second of wall time)
 // on one core and on all cores, and the peak resident memory of the process.
 #include <fmt/format.h>
-#include <sys/resource.h>
 
 #include <filesystem>
 #include <thread>
@@ -10,6 +9,7 @@
 #include "signals/rinex_nav.hpp"
 #include "signals/sim/scenario.hpp"
 #include "tools/bench_report.hpp"
+#include "tools/process_usage.hpp"
 #include "tools/command_registry.hpp"
 
 namespace deepnav::cli {
@@ -24,12 +24,6 @@ struct BenchSimOptions {
   std::string work_dir;
   std::string json_path;
 };
-
-double peak_rss_mib() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
-}
 
 void run_bench(const BenchSimOptions& o) {
   Scenario sc = load_scenario(o.scenario, DEEPNAV_SOURCE_DIR);

@@ -3,7 +3,6 @@
 // needs when the server paces the stream at real time, with the samples lost.
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
-#include <sys/resource.h>
 
 #include <chrono>
 #include <ctime>
@@ -11,7 +10,7 @@
 #include <thread>
 #include <unistd.h>
 
-#include "receiver/scalar_receiver.hpp"
+#include "aiding/navigation_session.hpp"
 #include "receiver/stream/stream_server.hpp"
 #include "receiver/stream/tcp_sample_source.hpp"
 #include "signals/if_file_stream.hpp"
@@ -19,6 +18,7 @@
 #include "signals/rinex_nav.hpp"
 #include "signals/sim/scenario.hpp"
 #include "tools/bench_report.hpp"
+#include "tools/process_usage.hpp"
 #include "tools/command_registry.hpp"
 #include "tools/sample_source_factory.hpp"
 
@@ -31,19 +31,6 @@ struct BenchStreamOptions {
   double paced_s = 10.0;
   std::string json_path;
 };
-
-double thread_cpu_s() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
-double process_cpu_s() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
-         1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-}
 
 struct StreamRun {
   double signal_s = 0.0, wall_s = 0.0, receiver_cpu_s = 0.0, process_cpu_s = 0.0;
@@ -94,10 +81,11 @@ StreamRun run_over_tcp(const Scenario& sc, const std::string& if_path, double pa
     StreamSourceSettings st;
     st.port = server.tcp_port();
     TcpSampleSource source(st);
-    ReceiverConfig rc;
-    rc.reference_week = sc.start_time.week;
-    ScalarReceiver receiver(rc, source);
-    receiver.run([&](const ReceiverEpoch& ep) { r.max_tracking = std::max(r.max_tracking, ep.channels_tracking); });
+    aiding::NavigationSessionConfig cfg;
+    cfg.navigator.receiver.reference_week = sc.start_time.week;
+    CallbackSink counter(
+        [&](const NavigationEpoch& e) { r.max_tracking = std::max(r.max_tracking, e.receiver.channels_tracking); });
+    aiding::NavigationSession(std::move(cfg), source, std::nullopt, std::nullopt).run({&counter});
     r.signal_s = static_cast<double>(source.next_sample_index()) / sc.sample_rate_hz;
     r.bytes = source.stats().bytes_received;
     r.lost_samples = source.lost_sample_count();

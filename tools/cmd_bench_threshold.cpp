@@ -11,6 +11,7 @@
 #include <map>
 #include <sstream>
 
+#include "aiding/navigation_session.hpp"
 #include "receiver/file_sample_source.hpp"
 #include "receiver/scalar_receiver.hpp"
 #include "signals/sim/if_synthesizer.hpp"
@@ -139,10 +140,10 @@ void run_threshold(const ThresholdOptions& o) {
   const SynthesisSummary s = IfSynthesizer(sc, read_rinex_nav(sc.nav_file)).run(work, so);
 
   FileSampleSource source(synthesized_source(sc, s));
-  ReceiverConfig rc;
-  rc.reacquire_interval_s = 1e9;  // a channel lost stays lost: the threshold is the loss point
-  rc.reference_week = sc.start_time.week;
-  ScalarReceiver receiver(rc, source);
+  aiding::NavigationSessionConfig cfg = scenario_session_config(sc, aiding::NavMode::scalar);
+  cfg.navigator.receiver.reacquire_interval_s = 1e9;  // a channel lost stays lost: the threshold is the loss point
+  cfg.assisted_iono.reset();  // the scalar sweep has always run unassisted
+  cfg.assisted_ephemerides.reset();
   // True Doppler per PRN at the truth rate (sat_truth.csv: t_s, prn, code, doppler_hz, ...).
   std::map<int, std::vector<std::pair<double, double>>> truth_doppler, truth_phase;
   {
@@ -168,15 +169,14 @@ void run_threshold(const ThresholdOptions& o) {
   };
   std::map<int, double> last_following_s, declared_lost_s;
   std::map<int, std::vector<std::pair<double, double>>> nco_phase;  // (t, accumulated Doppler phase) while tracking
-  receiver.run([](const ReceiverEpoch&) {},
-               [&](const CorrelatorEpoch& e, const ChannelSnapshot& ch) {
-                 const double t = static_cast<double>(e.first_sample + e.samples) / sc.sample_rate_hz;
-                 if (ch.state == ChannelState::tracking &&
-                     std::abs(e.carrier_doppler_hz - doppler_truth(e.prn, t)) < 5.0)
-                   last_following_s[e.prn] = t;
-                 if (ch.state == ChannelState::tracking) nco_phase[e.prn].emplace_back(t, e.carrier_phase_cycles);
-                 declared_lost_s[e.prn] = t;  // the last epoch the channel produced
-               });
+  CallbackSink follower({}, [&](const CorrelatorEpoch& e, const ChannelSnapshot& ch) {
+    const double t = static_cast<double>(e.first_sample + e.samples) / sc.sample_rate_hz;
+    if (ch.state == ChannelState::tracking && std::abs(e.carrier_doppler_hz - doppler_truth(e.prn, t)) < 5.0)
+      last_following_s[e.prn] = t;
+    if (ch.state == ChannelState::tracking) nco_phase[e.prn].emplace_back(t, e.carrier_phase_cycles);
+    declared_lost_s[e.prn] = t;  // the last epoch the channel produced
+  });
+  aiding::NavigationSession(std::move(cfg), source, std::nullopt, sc.duration_s).run({&follower});
   std::filesystem::remove_all(work);
 
   const auto cn0_at = [&](double t) {

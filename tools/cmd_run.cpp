@@ -15,6 +15,7 @@
 #include "signals/text_output_file.hpp"
 #include "tools/atmosphere_options.hpp"
 #include "tools/command_registry.hpp"
+#include "tools/process_usage.hpp"
 #include "tools/progress.hpp"
 #include "tools/sample_source_factory.hpp"
 #include "tools/yaml_config.hpp"
@@ -150,6 +151,9 @@ nlohmann::json run_summary(const RunOptions& o, const OpenedSource& opened, aidi
   }
   summary["interrupted"] = opened.interrupted();
   if (opened.is_stream) summary["stream"] = opened.report();
+  // What the run cost: peak memory stays flat with run length (products are written as
+  // the run goes), which a long stream can check from here.
+  summary["resources"] = {{"peak_rss_mib", peak_rss_mib()}, {"cpu_s", process_cpu_s()}};
   return summary;
 }
 
@@ -232,7 +236,7 @@ const bool registered = register_command([](CommandParents& parents) {
   cmd->add_option("--pll-order", o->pll_order, "Carrier loop order: 2, or 3 for high dynamics (follows Doppler ramps)")
       ->check(CLI::IsMember({2, 3}))
       ->capture_default_str();
-  cmd->add_option("--threads", o->receiver.threads, "Channel worker threads (0: all cores; the aided modes track on one)")
+  cmd->add_option("--threads", o->receiver.threads, "Channel worker threads (0: all cores; every mode's products are the same for any count)")
       ->capture_default_str();
   cmd->add_option("--rate", o->receiver.observation_rate_hz, "Observation/PVT rate (Hz, up to 50)")->capture_default_str();
   cmd->add_option("--doppler-max", o->receiver.acquisition.doppler_max_hz, "Acquisition Doppler half-width (Hz)")->capture_default_str();

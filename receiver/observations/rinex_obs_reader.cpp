@@ -13,40 +13,16 @@
 #include <string_view>
 
 #include "signals/gps_constants.hpp"
+#include "signals/rinex_fields.hpp"
 
 namespace deepnav {
 namespace {
 
 constexpr double kMillisecondRange_m = gps::kSpeedOfLight_mps * 1e-3;
 
-std::string_view column(std::string_view line, std::size_t start, std::size_t width) {
-  if (start >= line.size()) return {};
-  return line.substr(start, std::min(width, line.size() - start));
-}
-
-std::string_view trim(std::string_view s) {
-  const auto first = s.find_first_not_of(' ');
-  if (first == std::string_view::npos) return {};
-  const auto last = s.find_last_not_of(' ');
-  return s.substr(first, last - first + 1);
-}
-
-/// A number, or nullopt for a blank field; throws a bare invalid_argument otherwise.
-std::optional<double> parse_number(std::string_view field) {
-  const std::string_view text = trim(field);
-  if (text.empty()) return std::nullopt;
-  std::string buf(text);
-  for (char& ch : buf) {
-    if (ch == 'D' || ch == 'd') ch = 'E';
-    const bool allowed = (ch >= '0' && ch <= '9') || ch == '+' || ch == '-' || ch == '.' || ch == 'E' || ch == 'e';
-    if (!allowed) throw std::invalid_argument(fmt::format("expected a number, got '{}'", text));
-  }
-  char* end = nullptr;
-  const double value = std::strtod(buf.c_str(), &end);
-  if (end != buf.c_str() + buf.size() || !std::isfinite(value))
-    throw std::invalid_argument(fmt::format("expected a finite number, got '{}'", text));
-  return value;
-}
+using rinex::column;
+using rinex::parse_number;
+using rinex::trim;
 
 int parse_int(std::string_view field, const char* what, int lo, int hi) {
   const auto v = parse_number(field);

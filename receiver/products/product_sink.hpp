@@ -4,6 +4,7 @@
 // product writes as the run goes, to a file that takes its final name only in finish()
 // (text_output_file.hpp): memory stays flat with run length, and a run that fails leaves
 // no file that passes for complete.
+#include <functional>
 #include <string_view>
 
 #include "receiver/scalar_receiver.hpp"
@@ -34,6 +35,26 @@ class ProductSink {
   /// The run has ended: write what is left and give the file its final name.
   /// `decoded`: the navigation data the run ended with (ephemerides, ionosphere, UTC).
   virtual void finish(const NavData& decoded) { (void)decoded; }
+};
+
+/// A sink made of callables, for a caller that only watches the run (a benchmark counting
+/// channels, a sweep following each channel's integrations) and writes no file.
+class CallbackSink : public ProductSink {
+ public:
+  using EpochCallback = std::function<void(const NavigationEpoch&)>;
+  using CorrelationCallback = std::function<void(const CorrelatorEpoch&, const ChannelSnapshot&)>;
+  explicit CallbackSink(EpochCallback on_epoch, CorrelationCallback on_correlation = {})
+      : on_epoch_(std::move(on_epoch)), on_correlation_(std::move(on_correlation)) {}
+  void on_epoch(const NavigationEpoch& e) override {
+    if (on_epoch_) on_epoch_(e);
+  }
+  void on_correlation(const CorrelatorEpoch& e, const ChannelSnapshot& ch) override {
+    if (on_correlation_) on_correlation_(e, ch);
+  }
+
+ private:
+  EpochCallback on_epoch_;
+  CorrelationCallback on_correlation_;
 };
 
 }  // namespace deepnav

@@ -6,6 +6,7 @@
 # coast, are lost, re-acquired and given back.
 #   usage: aided_threads_identical.sh <deepnav binary> <source dir>
 set -uo pipefail
+source "$(dirname "$0")/lib/same_products.sh"
 deepnav=$1
 src=$2
 work=$(mktemp -d)
@@ -21,7 +22,7 @@ for mode in ultra tight; do
   done
   for f in "$work/$mode-1"/* "$work/$mode-1.stdout"; do
     other=${f/$mode-1/$mode-2}
-    if ! cmp -s "$f" "$other"; then
+    if ! same_product "$f" "$other"; then
       echo "FAIL $mode: $(basename "$f") differs between --threads 1 and --threads 2"
       status=1
     fi

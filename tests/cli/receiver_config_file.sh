@@ -6,6 +6,7 @@
 # the default IMU grades resolve from any working directory.
 #   usage: receiver_config_file.sh <deepnav binary> <source dir>
 set -uo pipefail
+source "$(dirname "$0")/lib/same_products.sh"
 deepnav=$1
 src=$2
 work=$(mktemp -d)
@@ -25,7 +26,7 @@ grep -q '^imu-lever-arm: \[0.8, -0.3, 0.4\]$' run.yaml || fail "run.yaml lacks t
 grep -q '^mode: ultra$' run.yaml || fail "run.yaml lacks the mode"
 "$deepnav" -q run --config run.yaml > /dev/null || fail "run --config run.yaml"
 for f in flags/*; do
-  cmp -s "$f" "from_file/$(basename "$f")" || fail "--config run differs from the flags' run in $(basename "$f")"
+  same_product "$f" "from_file/$(basename "$f")" || fail "--config run differs from the flags' run in $(basename "$f")"
 done
 [[ $(ls flags | wc -l) -eq $(ls from_file | wc -l) ]] || fail "the runs wrote different files"
 # A flag on the command line wins over the file.
