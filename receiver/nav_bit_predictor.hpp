@@ -107,6 +107,8 @@ class NavBitPredictor {
   /// Sign of absolute data bit `bit`: +1 (bit 0), -1 (bit 1, IS-GPS-200 3.2.2), 0 unknown.
   /// Transmitted polarity: multiply by the channel's polarity to compare with its prompt.
   int sign(std::int64_t bit) const;
+  /// Sign of the bit transmitted at GPS time t (satellite time; see nav_bit_index).
+  int sign_at(const GpsTime& t) const { return sign(nav_bit_index(t)); }
   /// Signs of bits first_bit, first_bit + 1, ... into out (out.size() bits).
   void signs(std::int64_t first_bit, std::span<std::int8_t> out) const;
   /// Whether the source data of word 0..9 of the subframe at subframe_of_week is known.

@@ -10,6 +10,7 @@
 
 #include "receiver/nav_bit_monitor.hpp"
 #include "receiver/nav_decoder.hpp"
+#include "signals/lnav_parity.hpp"
 #include "signals/rinex_nav.hpp"
 #include "signals/sim/lnav_broadcast.hpp"
 
@@ -187,6 +188,37 @@ TEST(NavBitPredictor, LearnsFromTheNavDecoder) {
   const Tally t = compare(predictor, table, s0 + 12, 5);
   EXPECT_EQ(t.wrong, 0);
   EXPECT_EQ(t.unknown, 2 * (kSfBits - 60));
+}
+
+TEST(NavBitPredictor, AWordIsPredictedWithTheChainItWasReceivedWith) {
+  const Ephemeris& eph = ephemeris(10, 525600.0);
+  std::int64_t s1 = subframe_at(2190, 526000.0);
+  while (id_of(s1) != 2) ++s1;
+  const LnavSignTable table = stream(eph, s1, s1 + 10);
+  const lnav::DecodedSubframe sf = decoded(table, s1);
+  const lnav::Subframe words = lnav::encode_words(sf.data);
+  NavBitPredictor predictor;
+  // Word 6 alone (its previous word unknown), with the D29*, D30* of word 5 as received.
+  ASSERT_TRUE(predictor.learn_word(s1, 5, sf.data[5], lnav::word_d29(words[4]), lnav::word_d30(words[4])));
+  EXPECT_EQ(predictor.body_words_known(2), 1);
+  for (const std::int64_t s : {s1, s1 + 5}) {  // this subframe 2 and the next frame's
+    for (int i = 8; i < kSfBits; ++i) {
+      const std::int64_t b = s * kSfBits + i;
+      EXPECT_EQ(predictor.sign(b), i / 30 == 5 ? table.sign_of_bit(b) : 0) << i;
+    }
+  }
+  // A HOW is taken only with the TOW count due at that subframe.
+  EXPECT_FALSE(predictor.learn_word(s1 + 1, 1, sf.data[1]));
+  EXPECT_EQ(predictor.how_mismatches(), 1);
+  EXPECT_TRUE(predictor.learn_word(s1, 1, sf.data[1]));
+  EXPECT_FALSE(predictor.learn_word(s1, 0, sf.data[0] ^ 0x800000u));  // no preamble
+  EXPECT_FALSE(predictor.tlm_known());
+  EXPECT_TRUE(predictor.learn_word(s1, 0, sf.data[0]));
+  const std::int64_t b = (s1 + 5) * kSfBits + 45;  // in the next subframe 2's HOW
+  EXPECT_EQ(predictor.sign(b), table.sign_of_bit(b));
+  // Addressed by GPS time: the middle of that bit.
+  const double t = static_cast<double>(b % lnav::kBitsPerWeek) * 0.02 + 0.01;
+  EXPECT_EQ(predictor.sign_at(GpsTime{static_cast<int>(b / lnav::kBitsPerWeek), t}), table.sign_of_bit(b));
 }
 
 /// Feeds the stream's bits [first, last) with independent sign errors of probability p to
