@@ -68,6 +68,7 @@ void NavDecoder::try_decode() {
         anchor_ = Anchor{bit_start_period_.front(), decoded->tlm_how.tow_count};
         polarity_ = normal ? 1 : -1;
         assembler_.add(*decoded);
+        last_decoded_ = *decoded;
         ++subframes_;
         bits_.erase(bits_.begin(), bits_.begin() + kSubframeBits);
         bit_start_period_.erase(bit_start_period_.begin(), bit_start_period_.begin() + kSubframeBits);

@@ -40,6 +40,10 @@ class NavDecoder {
   /// at which that subframe's first bit starts.
   std::optional<std::pair<double, std::int64_t>> last_subframe_start() const;
   int subframes_decoded() const { return subframes_; }
+  /// The last subframe decoded (every word's parity checked), with its source data words:
+  /// what a NavBitPredictor learns from. Replaced at each decode; subframes_decoded() tells
+  /// a caller polling after each bit that a new one arrived (at most one per bit).
+  const std::optional<lnav::DecodedSubframe>& last_decoded() const { return last_decoded_; }
   /// Bit polarity found by the preamble: +1 upright, -1 inverted (Costas ambiguity); 0 unknown.
   int polarity() const { return polarity_; }
   int parity_failures() const { return failures_; }
@@ -59,6 +63,7 @@ class NavDecoder {
   std::deque<std::uint8_t> bits_;
   std::deque<std::int64_t> bit_start_period_;
   std::optional<Anchor> anchor_;
+  std::optional<lnav::DecodedSubframe> last_decoded_;
   int subframes_ = 0;
   int failures_ = 0;
   int polarity_ = 0;

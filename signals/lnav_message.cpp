@@ -13,8 +13,7 @@
 namespace deepnav::lnav {
 namespace {
 
-// Source data d1..d24 of the ten words of a subframe, before parity and complementing.
-using DataWords = std::array<std::uint32_t, 10>;
+using DataWords = SubframeData;
 
 constexpr double kSemicircle = gps::kPi;  // message unit of angles -> radians
 constexpr int kDataIdLnav = 1;            // binary 01: the NAV data structure of this appendix
@@ -222,18 +221,16 @@ void check_page(int subframe_id, int page) {
 
 // ---- Subframe bodies ----
 void fill_tlm_how(DataWords& d, int subframe_id, const LnavContent& c, int tow_count_next) {
-  write_raw(d, kPreambleField, kPreamble);
-  encode_value(d, kTlmMessage, c.tlm_message, subframe_id);
-  write_raw(d, kIntegrity, c.integrity_flag ? 1 : 0);
-  write_raw(d, kTlmReserved, 0);
-  if (tow_count_next < 0 || tow_count_next >= kTowCountsPerWeek) {
-    throw std::invalid_argument(
-        fmt::format("LNAV subframe {} HOW: TOW count {} is not in 0..{}", subframe_id, tow_count_next, kTowCountsPerWeek - 1));
-  }
-  write_raw(d, kTow, static_cast<std::uint64_t>(tow_count_next));
-  write_raw(d, kAlert, c.alert ? 1 : 0);
-  write_raw(d, kAntiSpoof, c.anti_spoof ? 1 : 0);
-  write_raw(d, kSubframeId, static_cast<std::uint64_t>(subframe_id));
+  TlmHow th;
+  th.tlm_message = c.tlm_message;
+  th.integrity_flag = c.integrity_flag;
+  th.tow_count = tow_count_next;
+  th.alert = c.alert;
+  th.anti_spoof = c.anti_spoof;
+  th.subframe_id = subframe_id;
+  const auto words = tlm_how_data(th);
+  d[0] = words[0];
+  d[1] = words[1];
 }
 
 void fill_subframe1(DataWords& d, const Ephemeris& e) {
@@ -462,6 +459,50 @@ double quantized(double si_value, const Field& f) {
 
 }  // namespace
 
+std::array<std::uint32_t, 2> tlm_how_data(const TlmHow& th) {
+  DataWords d{};
+  write_raw(d, kPreambleField, kPreamble);
+  encode_value(d, kTlmMessage, th.tlm_message, th.subframe_id);
+  write_raw(d, kIntegrity, th.integrity_flag ? 1 : 0);
+  write_raw(d, kTlmReserved, th.tlm_reserved ? 1 : 0);
+  if (th.tow_count < 0 || th.tow_count >= kTowCountsPerWeek) {
+    throw std::invalid_argument(fmt::format("LNAV subframe {} HOW: TOW count {} is not in 0..{}", th.subframe_id,
+                                            th.tow_count, kTowCountsPerWeek - 1));
+  }
+  write_raw(d, kTow, static_cast<std::uint64_t>(th.tow_count));
+  write_raw(d, kAlert, th.alert ? 1 : 0);
+  write_raw(d, kAntiSpoof, th.anti_spoof ? 1 : 0);
+  encode_value(d, kSubframeId, th.subframe_id, th.subframe_id);
+  return {d[0], d[1]};
+}
+
+TlmHow tlm_how_from_data(std::uint32_t tlm_data24, std::uint32_t how_data24) {
+  DataWords d{};
+  d[0] = tlm_data24 & kDataMask;
+  d[1] = how_data24 & kDataMask;
+  TlmHow th;
+  th.tlm_message = decode_int(d, kTlmMessage);
+  th.integrity_flag = decode_int(d, kIntegrity) != 0;
+  th.tlm_reserved = decode_int(d, kTlmReserved) != 0;
+  th.tow_count = decode_int(d, kTow);
+  th.alert = decode_int(d, kAlert) != 0;
+  th.anti_spoof = decode_int(d, kAntiSpoof) != 0;
+  th.subframe_id = decode_int(d, kSubframeId);
+  return th;
+}
+
+Subframe encode_words(const SubframeData& data, bool prev_d29, bool prev_d30) {
+  Subframe words{};
+  bool d29 = prev_d29, d30 = prev_d30;
+  for (int w = 0; w < 10; ++w) {
+    const std::uint32_t d = (w == 1 || w == 9) ? with_noninformation_bits(data[w], d29, d30) : data[w];
+    words[w] = encode_word(d, d29, d30);
+    d29 = word_d29(words[w]);
+    d30 = word_d30(words[w]);
+  }
+  return words;
+}
+
 int subframe_id_at(std::int64_t subframe_of_week) {
   return static_cast<int>(((subframe_of_week % 5) + 5) % 5) + 1;
 }
@@ -491,15 +532,7 @@ Subframe encode_subframe(int subframe_id, const LnavContent& content, int tow_co
     case 3: fill_subframe3(d, content.eph); break;
     default: fill_subframe45(d, subframe_id, page, content); break;
   }
-  Subframe words{};
-  bool d29 = prev_d29, d30 = prev_d30;
-  for (int w = 0; w < 10; ++w) {
-    const std::uint32_t data = (w == 1 || w == 9) ? with_noninformation_bits(d[w], d29, d30) : d[w];
-    words[w] = encode_word(data, d29, d30);
-    d29 = word_d29(words[w]);
-    d30 = word_d30(words[w]);
-  }
-  return words;
+  return encode_words(d, prev_d29, prev_d30);
 }
 
 Subframe subframe_of_week(const LnavContent& content, std::int64_t subframe_of_week) {
@@ -544,14 +577,9 @@ std::optional<DecodedSubframe> decode_subframe(const Subframe& words) {
     d29 = word_d29(word);
     d30 = word_d30(word);
   }
-  auto& th = out.tlm_how;
-  th.tlm_message = decode_int(d, kTlmMessage);
-  th.integrity_flag = decode_int(d, kIntegrity) != 0;
-  th.tlm_reserved = decode_int(d, kTlmReserved) != 0;
-  th.tow_count = decode_int(d, kTow);
-  th.alert = decode_int(d, kAlert) != 0;
-  th.anti_spoof = decode_int(d, kAntiSpoof) != 0;
-  th.subframe_id = decode_int(d, kSubframeId);
+  out.data = d;
+  out.tlm_how = tlm_how_from_data(d[0], d[1]);
+  const auto& th = out.tlm_how;
   if (th.subframe_id < 1 || th.subframe_id > 5 || th.tow_count >= kTowCountsPerWeek) return std::nullopt;
   out.sv_health.fill(-1);
   out.sv_config.fill(-1);

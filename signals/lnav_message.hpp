@@ -17,6 +17,9 @@
 namespace deepnav::lnav {
 
 using Subframe = std::array<std::uint32_t, 10>;
+/// Source data d1..d24 of the ten words of a subframe (d1 at bit 23), before parity and
+/// before the D30* complementing of the transmitted word.
+using SubframeData = std::array<std::uint32_t, 10>;
 
 inline constexpr int kBitsPerWord = 30;
 inline constexpr int kBitsPerSubframe = 300;
@@ -83,6 +86,22 @@ int page_sv_id(int subframe_id, int page);
 Subframe encode_subframe(int subframe_id, const LnavContent& content, int tow_count_next, int page,
                          bool prev_d29 = false, bool prev_d30 = false);
 
+/// Parity and polarity of a subframe from its source data (20.3.5): each word is encoded with the
+/// D29*, D30* of the word before it (prev_d29/prev_d30 for word 1), and the non-information
+/// bits d23, d24 of words 2 and 10 are set so that those words end in D29 = D30 = 0 (whatever
+/// `data` holds there is replaced). So word 3 never depends on the HOW's content and word 1
+/// never on the previous subframe's.
+Subframe encode_words(const SubframeData& data, bool prev_d29 = false, bool prev_d30 = false);
+
+/// Source data of the TLM and HOW words (words 1 and 2) carrying these fields; the HOW's d23,
+/// d24 are left 0 (encode_words sets them). Throws std::invalid_argument naming the field when
+/// a value does not fit (TLM message 14 bits, TOW count 0..100799, subframe ID 3 bits).
+std::array<std::uint32_t, 2> tlm_how_data(const TlmHow& tlm_how);
+
+/// The fields of TLM and HOW source data (the inverse of tlm_how_data; the preamble is not
+/// checked here).
+TlmHow tlm_how_from_data(std::uint32_t tlm_data24, std::uint32_t how_data24);
+
 /// The subframe a satellite transmits starting at subframe count k of the week (bits 300k ...).
 Subframe subframe_of_week(const LnavContent& content, std::int64_t subframe_of_week);
 
@@ -112,6 +131,7 @@ class LnavBitSource {
 /// A subframe checked and decoded. Fields of the other subframe types keep their defaults.
 struct DecodedSubframe {
   TlmHow tlm_how;
+  SubframeData data{};     ///< d1..d24 of every word, polarity and complementing undone
   bool inverted = false;   ///< the stream arrived with inverted polarity
   int page = 0;            ///< 1..25 for subframes 4 and 5, from the TOW count
   /// Subframes 1-3: the fields they carry. eph.week holds the 10-bit WN of subframe 1.

@@ -25,6 +25,7 @@
 #include "signals/gps_constants.hpp"
 #include "signals/sim/line_of_sight.hpp"
 #include "signals/lnav_message.hpp"
+#include "signals/sim/lnav_broadcast.hpp"
 #include "signals/sim/multipath_channel.hpp"
 #include "signals/sim/receiver_clock_model.hpp"
 #include "signals/sim/satellite_selection.hpp"
@@ -42,37 +43,10 @@ constexpr double kChip_m = gps::kSpeedOfLight_mps / gps::kCodeRate_cps;
 /// sat_truth.csv's multipath_m is the error of an ideal E-L DLL with this (the receiver's default) spacing.
 constexpr double kTruthDllSpacing_chips = 0.5;
 
-/// The LNAV data-bit signs (+1/-1) a satellite transmits over a span of its own time,
-/// indexed by the absolute 1 ms code period (counted from the GPS time origin).
-class DataBitTable {
- public:
-  DataBitTable(const lnav::LnavContent& content, std::int64_t first_ms, std::int64_t last_ms) {
-    first_subframe_ = first_ms / 6000;
-    const std::int64_t last_subframe = last_ms / 6000;
-    signs_.reserve(static_cast<std::size_t>((last_subframe - first_subframe_ + 1) * 300));
-    for (std::int64_t g = first_subframe_; g <= last_subframe; ++g) {
-      const lnav::Subframe sf = lnav::subframe_of_week(content, g % lnav::kTowCountsPerWeek);
-      for (int i = 0; i < lnav::kBitsPerSubframe; ++i) signs_.push_back(lnav::subframe_bit(sf, i) ? -1 : 1);
-    }
-  }
-  /// Sign of the data bit that modulates code period `ms` (1 ms periods, 20 per bit).
-  int sign_at_ms(std::int64_t ms) const {
-    const std::int64_t bit = ms / 20 - first_subframe_ * 300;
-    if (bit < 0 || bit >= static_cast<std::int64_t>(signs_.size())) {
-      throw std::logic_error("LNAV bit outside the precomputed span");
-    }
-    return signs_[static_cast<std::size_t>(bit)];
-  }
-
- private:
-  std::int64_t first_subframe_ = 0;
-  std::vector<std::int8_t> signs_;
-};
-
 struct SatelliteRun {
   Ephemeris eph;
   const CaCodeChips* code = nullptr;
-  std::unique_ptr<DataBitTable> bits;
+  std::unique_ptr<LnavSignTable> bits;
 };
 
 /// Receiver-side state at an epoch boundary plus every satellite's signal there.
@@ -182,14 +156,6 @@ struct IfSynthesizer::Impl {
       throw std::runtime_error(fmt::format("{}: no healthy satellite of '{}' is above the elevation mask at the start",
                                            sc.source_path, sc.nav_file));
     }
-    lnav::LnavContent content_template;
-    content_template.iono = nav.iono;
-    content_template.utc = nav.utc;
-    for (const auto& eph : nav.ephemerides) {
-      if (eph.prn >= 1 && eph.prn <= 32 && !content_template.almanac[eph.prn - 1]) {
-        content_template.almanac[eph.prn - 1] = lnav::almanac_from_ephemeris(eph);
-      }
-    }
     // The satellite transmitted what arrives during the run between ~90 ms (plus the
     // receiver clock bias) before the start and the end; a second of margin each side.
     const double clock_span_s = std::abs(sc.clock.bias_s) + std::abs(sc.clock.drift_sps) * sc.duration_s + 1.0;
@@ -199,9 +165,7 @@ struct IfSynthesizer::Impl {
       SatelliteRun run;
       run.eph = *c.ephemeris;
       run.code = &ca_code_chips(c.prn);
-      lnav::LnavContent content = content_template;
-      content.eph = run.eph;
-      run.bits = std::make_unique<DataBitTable>(content, first_ms, last_ms);
+      run.bits = std::make_unique<LnavSignTable>(synthesized_lnav_content(nav, run.eph), first_ms, last_ms);
       runs.push_back(std::move(run));
       info.push_back(SynthesizedSatellite{c.prn, c.elevation_rad * kRadToDeg, c.azimuth_rad * kRadToDeg, 0, 0, 0});
     }

@@ -281,6 +281,38 @@ TEST(LnavMessage, TlmAndHowFields) {
   }
 }
 
+TEST(LnavMessage, SourceDataWordsReencodeToTheTransmittedSubframe) {
+  auto c = content_with(real_ephemeris_prn1());
+  c.anti_spoof = true;
+  for (std::int64_t k : {std::int64_t{0}, std::int64_t{3}, std::int64_t{4}, std::int64_t{87612}, std::int64_t{100799}}) {
+    const Subframe words = subframe_of_week(c, k);
+    const auto sf = decode_subframe(words);
+    ASSERT_TRUE(sf.has_value()) << k;
+    EXPECT_EQ(encode_words(sf->data), words) << k;
+    // d23, d24 of words 2 and 10 are recomputed from the chain, whatever the data holds there.
+    SubframeData cleared = sf->data;
+    cleared[1] &= ~0x3u;
+    cleared[9] |= 0x3u;
+    EXPECT_EQ(encode_words(cleared), words) << k;
+    // TLM and HOW source data from their fields and back.
+    const auto th = tlm_how_data(sf->tlm_how);
+    EXPECT_EQ(th[0], sf->data[0]) << k;
+    EXPECT_EQ(th[1], sf->data[1] & ~0x3u) << k;
+    const TlmHow back = tlm_how_from_data(th[0], th[1]);
+    EXPECT_EQ(back.tlm_message, c.tlm_message);
+    EXPECT_EQ(back.tow_count, static_cast<int>((k + 1) % kTowCountsPerWeek));
+    EXPECT_EQ(back.subframe_id, subframe_id_at(k));
+    EXPECT_TRUE(back.anti_spoof);
+    EXPECT_EQ(back.integrity_flag, c.integrity_flag);
+  }
+  TlmHow bad;
+  bad.tow_count = kTowCountsPerWeek;
+  EXPECT_THROW(tlm_how_data(bad), std::invalid_argument);
+  bad.tow_count = 0;
+  bad.tlm_message = 1 << 14;
+  EXPECT_THROW(tlm_how_data(bad), std::invalid_argument);
+}
+
 TEST(LnavMessage, PageIdsFollowTable20V) {
   EXPECT_EQ(page_sv_id(4, 1), 57);
   EXPECT_EQ(page_sv_id(4, 2), 25);
