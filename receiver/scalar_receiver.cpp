@@ -425,6 +425,10 @@ std::vector<int> ScalarReceiver::acquired_prns() const { return impl_->acquired;
 std::vector<NavigationStatus> ScalarReceiver::navigation_status() const {
   std::map<int, NavigationStatus> all = impl_->finished_status;
   for (const auto& ch : impl_->channels) Impl::add_status(all, ch);
+      // No epoch inside the gap: it has no samples. The observation grid resumes at its first
+      // point at or after the samples come back (one step, however long the gap).
+      if (next_obs >= 0 && next_obs < block.first_sample_index)
+        next_obs += (block.first_sample_index - next_obs + obs_step - 1) / obs_step * obs_step;
   std::vector<NavigationStatus> out;
   for (const auto& [prn, s] : all) out.push_back(s);
   return out;
