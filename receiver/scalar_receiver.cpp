@@ -2,8 +2,6 @@
 
 #include <spdlog/spdlog.h>
 
-#include <boost/asio/post.hpp>
-#include <boost/asio/thread_pool.hpp>
 #include <exception>
 #include <latch>
 #include <thread>
@@ -16,6 +14,7 @@
 #include "receiver/correlator.hpp"
 #include "receiver/nav_decoder.hpp"
 #include "receiver/sample_history.hpp"
+#include "receiver/worker_threads.hpp"
 #include "signals/gps_constants.hpp"
 
 namespace deepnav {
@@ -65,7 +64,7 @@ struct ScalarReceiver::Impl {
     bool new_ephemeris = false;
   };
   std::vector<std::vector<EpochRecord>> records;  ///< per channel, for the block being tracked
-  std::unique_ptr<boost::asio::thread_pool> pool;  ///< channel workers (ReceiverConfig::threads > 1)
+  std::unique_ptr<WorkerThreads> pool;  ///< channel workers (ReceiverConfig::threads > 1)
   unsigned thread_count = 1;
   std::map<int, NavigationStatus> finished_status;  ///< of channels already dropped
 
@@ -90,7 +89,7 @@ struct ScalarReceiver::Impl {
       throw std::invalid_argument("observation rate must be in (0, 50] Hz");
     const unsigned threads = cfg.threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : cfg.threads;
     // The calling thread takes one share of the channels itself: threads - 1 workers.
-    if (threads > 1) pool = std::make_unique<boost::asio::thread_pool>(threads - 1);
+    if (threads > 1) pool = std::make_unique<WorkerThreads>(threads - 1, "channel worker");
     thread_count = threads;
   }
 
@@ -216,7 +215,7 @@ struct ScalarReceiver::Impl {
       std::latch done(static_cast<std::ptrdiff_t>(shares - 1));
       std::vector<std::exception_ptr> errors(shares);
       for (std::size_t g = 1; g < shares; ++g) {
-        boost::asio::post(*pool, [&, g] {
+        pool->post([&, g] {
           try {
             share(g);
           } catch (...) {
