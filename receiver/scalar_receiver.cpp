@@ -1,5 +1,6 @@
 #include "receiver/scalar_receiver.hpp"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <exception>
@@ -85,8 +86,19 @@ struct ScalarReceiver::Impl {
     cfg.tracking.sample_rate_hz = fs;
     cfg.tracking.if_hz = src.intermediate_frequency_hz();
     if (cfg.reference_week == 0) cfg.reference_week = this_week();
-    if (!(cfg.observation_rate_hz > 0.0 && cfg.observation_rate_hz <= 50.0))
-      throw std::invalid_argument("observation rate must be in (0, 50] Hz");
+    if (!(fs >= kMinSampleRate_hz && fs <= kMaxSampleRate_hz))
+      throw std::invalid_argument(fmt::format("sample rate {} Hz is outside the receiver's [{:g}, {:g}] Hz", fs,
+                                              kMinSampleRate_hz, kMaxSampleRate_hz));
+    if (!(std::abs(src.intermediate_frequency_hz()) < fs / 2))
+      throw std::invalid_argument(fmt::format("intermediate frequency {} Hz is not below half the sample rate ({} Hz)",
+                                              src.intermediate_frequency_hz(), fs / 2));
+    if (!(cfg.observation_rate_hz >= 0.01 && cfg.observation_rate_hz <= 50.0))
+      throw std::invalid_argument(fmt::format("observation rate {} Hz is outside [0.01, 50] Hz", cfg.observation_rate_hz));
+    if (cfg.channels < 1 || cfg.channels > gps::kMaxPrn)
+      throw std::invalid_argument(fmt::format("{} tracking channels: expected 1 to {}", cfg.channels, gps::kMaxPrn));
+    if (cfg.threads > kMaxReceiverThreads)
+      throw std::invalid_argument(fmt::format("{} channel threads asked for: at most {} (0: one per core)", cfg.threads,
+                                              kMaxReceiverThreads));
     const unsigned threads = cfg.threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : cfg.threads;
     // The calling thread takes one share of the channels itself: threads - 1 workers.
     if (threads > 1) pool = std::make_unique<WorkerThreads>(threads - 1, "channel worker");
@@ -351,6 +363,8 @@ void ScalarReceiver::run(const std::function<void(const ReceiverEpoch&)>& on_epo
     expected_first = block.first_sample_index + static_cast<std::int64_t>(block.samples.size());
     prepare_for_correlation(block);
     if (first) {
+      if (const std::string problem = if_sample_problem(block.samples, m.src.is_real()); !problem.empty())
+        spdlog::warn("the first {} samples: {}", block.samples.size(), problem);
       m.acquire(block.samples, block.first_sample_index);
       next_obs = block.first_sample_index + obs_step;
       first = false;

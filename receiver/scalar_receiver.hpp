@@ -26,6 +26,13 @@
 
 namespace deepnav {
 
+/// More channel threads than this is a mistake (a receiver has at most a few dozen channels).
+inline constexpr unsigned kMaxReceiverThreads = 256;
+/// The sample rates the receiver takes: the C/A code needs about 1 Msps, and no L1 front
+/// end samples faster than 200 Msps (a 10 ms block would then be 2 million samples).
+inline constexpr double kMinSampleRate_hz = 1.0e6;
+inline constexpr double kMaxSampleRate_hz = 2.0e8;
+
 struct ReceiverConfig {
   int channels = 12;
   unsigned threads = 1;                 ///< channel worker threads (0: all cores); 1 tracks inline
