@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "receiver/build_date.hpp"
 #include "receiver/mitigation/mitigation_config.hpp"
 #include "receiver/products/file_products.hpp"
 #include "receiver/products/run_statistics.hpp"
@@ -168,6 +169,16 @@ class SummarySink : public ProductSink {
   std::function<nlohmann::json()> summary_;
 };
 
+/// --week names a week near the data: from the first GPS week to 1024 weeks (about 20
+/// years) after this program was built.
+void check_week_option(int week) {
+  const int last = build_time().week + 1024;
+  if (week < 1 || week > last)
+    throw UserError(fmt::format("--week {} is not a GPS week of any recording: expected 1 (1980) to {} (1024 weeks after "
+                                "this program's build date)",
+                                week, last));
+}
+
 void run_receiver(RunOptions o) {
   std::optional<TruthFile> truth;
   try {
@@ -276,10 +287,14 @@ const bool registered = register_command([](CommandParents& parents) {
   cmd->add_option("--imu-lever-arm", o->imu_lever_arm_m, "IMU position from the antenna, body axes x y z (m), as a scenario's imu.lever_arm_m")
       ->expected(3)
       ->check(finite_in(-100.0, 100.0, "metres"));
-  cmd->add_option("--week", o->receiver.reference_week, "GPS week near the data (resolves the 10-bit week; default: today)");
+  cmd->add_option("--week", o->receiver.reference_week,
+                  "GPS week near the data: resolves the week number the satellites broadcast modulo 1024, and must "
+                  "agree with it (default: the --ephemeris-from file's epoch, else the build date)");
   add_print_config(*cmd, o->print_config);
   cmd->callback([o, cmd] {
     if (o->print_config) return fmt::print("{}", effective_config(*cmd));
+    if (cmd->get_option("--week")->count() > 0) check_week_option(o->receiver.reference_week);
+    o->receiver.reference_week_origin = "--week";
     run_receiver(*o);
   });
 });
