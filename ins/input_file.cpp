@@ -12,7 +12,7 @@ namespace deepnav {
 void check_input_file(const std::string& path, const std::string& what, std::uintmax_t max_bytes) {
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0)
-    throw std::runtime_error(fmt::format("{} '{}': {}", what, path, std::strerror(errno)));
+    throw std::runtime_error(fmt::format("cannot open {} '{}': {}", what, path, std::strerror(errno)));
   const char* kind = nullptr;
   if (S_ISDIR(st.st_mode))
     kind = "a directory";

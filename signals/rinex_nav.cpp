@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <initializer_list>
 #include <istream>
@@ -536,7 +537,7 @@ NavData read_rinex_nav(std::istream& in, const std::string& name) {
 }
 
 NavData read_rinex_nav(const std::string& path) {
-  check_input_file(path, "RINEX navigation file", kMaxTextInputBytes);
+  if (std::filesystem::exists(path)) check_input_file(path, "RINEX navigation file", kMaxTextInputBytes);
   std::ifstream file(path);
   if (!file) throw std::runtime_error(fmt::format("{}: cannot open RINEX navigation file", path));
   return read_rinex_nav(file, path);

@@ -556,7 +556,7 @@ TEST(RinexNavErrors, EveryBroadcastFieldIsChecked) {
   }
   // Lines 1-4 but IODE, e and toe (their own checks come first), and IDOT and TGD of lines
   // 5 and 6; the other fields there are integers with their own checks, and URA.
-  EXPECT_EQ(rejected, 14);
+  EXPECT_EQ(rejected, 15);
 }
 
 }  // namespace
