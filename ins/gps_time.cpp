@@ -42,6 +42,18 @@ void civil_from_days(long z, int& y, int& m, int& d) {
 constexpr long kGpsEpochDays = 3657;  // 1980-01-06 in days since 1970-01-01
 }  // namespace
 
+int days_in_month(int year, int month) {
+  static constexpr int kDays[] = {31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
+  if (month < 1 || month > 12) return 0;
+  const bool leap = (year % 4 == 0 && year % 100 != 0) || year % 400 == 0;
+  return kDays[month - 1] + (month == 2 && leap ? 1 : 0);
+}
+
+bool is_valid_calendar(const CalendarTime& c) {
+  return c.month >= 1 && c.month <= 12 && c.day >= 1 && c.day <= days_in_month(c.year, c.month) && c.hour >= 0 &&
+         c.hour <= 23 && c.minute >= 0 && c.minute <= 59 && c.second >= 0.0 && c.second < 60.0;
+}
+
 GpsTime gps_time_from_calendar(const CalendarTime& c) {
   const long days = days_from_civil(c.year, static_cast<unsigned>(c.month), static_cast<unsigned>(c.day)) -
                     kGpsEpochDays;

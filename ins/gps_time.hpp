@@ -27,6 +27,12 @@ struct CalendarTime {
   double second = 0.0;
 };
 
+/// Days in a month of the Gregorian calendar (month 1..12; 0 for any other month).
+int days_in_month(int year, int month);
+/// Whether the fields name a real instant: month 1..12, day within that month (Feb 29 in
+/// leap years only), hour 0..23, minute 0..59, second in [0, 60).
+bool is_valid_calendar(const CalendarTime& c);
+
 GpsTime gps_time_from_calendar(const CalendarTime& c);
 CalendarTime calendar_from_gps_time(const GpsTime& t);
 

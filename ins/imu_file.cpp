@@ -4,10 +4,13 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
 #include <string_view>
+
+#include "ins/input_file.hpp"
 
 namespace deepnav {
 namespace {
@@ -93,6 +96,28 @@ double median_interval(const std::vector<Row>& rows) {
   return dts[dts.size() / 2];
 }
 
+/// A row whose rate or specific force (over `dt` for increments) no sensor could measure.
+void check_sensor_range(const std::string& path, const Row& row, ImuFileForm form, double dt) {
+  const bool rates = form == ImuFileForm::kRates;
+  const auto& columns = rates ? kRateColumns : kIncrementColumns;
+  if (!rates && !(dt > 0.0)) return;  // a single sample: no interval to divide by
+  for (int i = 0; i < 6; ++i) {
+    const double value = i < 3 ? row.a[i] : row.b[i - 3];
+    const double per_second = rates ? value : value / dt;
+    const double limit = i < 3 ? kMaxImuRate_radps : kMaxImuSpecificForce_mps2;
+    if (std::abs(per_second) <= limit) continue;
+    char text[200];
+    if (rates)
+      std::snprintf(text, sizeof text, "%g is beyond any %s's range (%g %s)", value, i < 3 ? "gyro" : "accelerometer",
+                    limit, i < 3 ? "rad/s, 10000 deg/s" : "m/s^2, about 1000 g");
+    else
+      std::snprintf(text, sizeof text, "%g over %g s is %s of %g %s, beyond any %s's range (%g)", value, dt,
+                    i < 3 ? "an angular rate" : "a specific force", per_second, i < 3 ? "rad/s" : "m/s^2",
+                    i < 3 ? "gyro" : "accelerometer", limit);
+    fail(path, row.line, "column '" + std::string(columns[static_cast<std::size_t>(1 + i)]) + "': " + text);
+  }
+}
+
 }  // namespace
 
 void write_imu_csv(const std::string& path, const std::vector<ImuSample>& samples, ImuFileForm form,
@@ -135,6 +160,7 @@ void write_imu_csv(const std::string& path, const std::vector<ImuSample>& sample
 }
 
 ImuLog read_imu_csv(const std::string& path) {
+  check_input_file(path, "IMU file", kMaxTextInputBytes);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("cannot open IMU file '" + path + "'");
   ImuLog log;
@@ -192,6 +218,7 @@ ImuLog read_imu_csv(const std::string& path) {
       }
     }
     const double scale = log.form == ImuFileForm::kRates ? dt : 1.0;
+    check_sensor_range(path, rows[i], log.form, dt);
     log.samples.push_back({rows[i].t_s, rows[i].a * scale, rows[i].b * scale});
   }
   return log;

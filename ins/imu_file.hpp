@@ -9,7 +9,7 @@
 //
 // Reader rules: wrong header (names or units), wrong column count, unparsable,
 // NaN or infinite values, and timestamps that repeat or go backwards are errors
-// that name the file and line. A gap (an interval longer than 1.5x the nominal one)
+// that name the file and line, and so are samples beyond any sensor's range (below). A gap (an interval longer than 1.5x the nominal one)
 // is not an error: it is listed in ImuLog::gaps and never interpolated across; for
 // rate files the sample after a gap is integrated over one nominal interval only.
 #include <cstddef>
@@ -21,6 +21,13 @@
 namespace deepnav {
 
 enum class ImuFileForm { kIncrements, kRates };
+
+/// Beyond what any inertial sensor measures, per axis: 10000 deg/s of angular rate (gyros
+/// reach a few thousand) and 10000 m/s^2 of specific force (about 1000 g; tactical and
+/// navigation accelerometers stop at 50-100 g). A sample beyond either is corrupt data and
+/// an error naming the file, line and column.
+inline constexpr double kMaxImuRate_radps = 10000.0 * 3.14159265358979323846 / 180.0;
+inline constexpr double kMaxImuSpecificForce_mps2 = 1.0e4;
 
 struct ImuGap {
   std::size_t line = 0;     ///< line of the first sample after the gap (1-based)

@@ -6,6 +6,9 @@
 #include <set>
 #include <stdexcept>
 
+#include "ins/input_file.hpp"
+#include "ins/yaml_checks.hpp"
+
 namespace deepnav {
 namespace {
 
@@ -147,12 +150,16 @@ ImuGrade parse_grade(const std::string& name, const YAML::Node& node, const std:
 
 std::vector<ImuGrade> load_imu_grades(const std::string& yaml_path) {
   YAML::Node root;
+  check_input_file(yaml_path, "IMU grade file", kMaxTextInputBytes);
   try {
     root = YAML::LoadFile(yaml_path);
+    check_unique_keys(root, yaml_path);
   } catch (const YAML::BadFile&) {
     throw std::runtime_error(yaml_path + ": cannot open IMU grade file");
   } catch (const YAML::Exception& e) {
     throw std::runtime_error(yaml_path + ": YAML syntax error: " + e.what());
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(e.what());
   }
   const YAML::Node grades = root["grades"];
   if (!grades || !grades.IsMap()) {

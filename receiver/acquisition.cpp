@@ -1,6 +1,7 @@
 #include "receiver/acquisition.hpp"
 
 #include <fftw3.h>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <array>
@@ -114,9 +115,21 @@ struct Acquisition::Impl {
   std::vector<int> stretch_source;           ///< sample of the block each of the nf FFT inputs takes
 
   explicit Impl(AcquisitionConfig c) : cfg(std::move(c)), in(1), out(1) {
-    if (!(cfg.sample_rate_hz >= 1.023e6)) throw std::invalid_argument("acquisition: sample rate must be at least 1.023 MHz");
+    if (!(cfg.sample_rate_hz >= 1.023e6 && cfg.sample_rate_hz <= kMaxAcquisitionSampleRate_hz))
+      throw std::invalid_argument(fmt::format("acquisition: sample rate {} Hz must be in [1.023 MHz, {:g} Hz]",
+                                              cfg.sample_rate_hz, kMaxAcquisitionSampleRate_hz));
+    if (!std::isfinite(cfg.if_hz) || std::abs(cfg.if_hz) >= cfg.sample_rate_hz / 2)
+      throw std::invalid_argument(fmt::format("acquisition: IF {} Hz must be below half the sample rate ({} Hz)",
+                                              cfg.if_hz, cfg.sample_rate_hz / 2));
     if (cfg.coherent_ms < 1 || cfg.coherent_ms > 10) throw std::invalid_argument("acquisition: coherent_ms must be 1..10");
-    if (cfg.noncoherent < 1) throw std::invalid_argument("acquisition: noncoherent must be at least 1");
+    if (cfg.noncoherent < 1 || cfg.noncoherent > kMaxNoncoherent)
+      throw std::invalid_argument(fmt::format("acquisition: noncoherent {} must be 1..{} (the search holds every block)",
+                                              cfg.noncoherent, kMaxNoncoherent));
+    if (!(cfg.doppler_step_hz >= 0.0 && cfg.doppler_step_hz <= 10000.0))
+      throw std::invalid_argument(fmt::format("acquisition: doppler_step {} Hz must be in [0, 10000] Hz (0: automatic)",
+                                              cfg.doppler_step_hz));
+    if (!(cfg.pfa > 0.0 && cfg.pfa < 1.0))
+      throw std::invalid_argument(fmt::format("acquisition: pfa {} must be in (0, 1)", cfg.pfa));
     if (!(cfg.doppler_max_hz >= 0.0 && cfg.doppler_max_hz <= 50000.0))
       throw std::invalid_argument("acquisition: doppler_max must be in [0, 50000] Hz");
     if (cfg.prns.empty())
@@ -134,7 +147,12 @@ struct Acquisition::Impl {
     for (int j = 0; j < nf; ++j)
       stretch_source[static_cast<std::size_t>(j)] =
           std::min(n - 1, static_cast<int>(std::lround(static_cast<double>(j) * n / nf)));
-    const int half = static_cast<int>(std::floor(cfg.doppler_max_hz / cfg.doppler_step_hz + 1e-9));
+    const double half_bins = std::floor(cfg.doppler_max_hz / cfg.doppler_step_hz + 1e-9);
+    if (half_bins > 5000.0)
+      throw std::invalid_argument(fmt::format("acquisition: a Doppler step of {} Hz over +-{} Hz is {:g} bins, at most "
+                                              "10001",
+                                              cfg.doppler_step_hz, cfg.doppler_max_hz, 2 * half_bins + 1));
+    const int half = static_cast<int>(half_bins);
     for (int k = -half; k <= half; ++k) dopplers.push_back(k * cfg.doppler_step_hz);
     in = FftwBuffer(static_cast<std::size_t>(nf));  // nf >= n: holds a mixed block too
     out = FftwBuffer(static_cast<std::size_t>(nf));
@@ -407,6 +425,29 @@ struct Acquisition::Impl {
     return r;
   }
 };
+
+std::string if_sample_problem(std::span<const Sample> samples, bool real) {
+  if (samples.empty()) return "no samples";
+  const auto n = static_cast<double>(samples.size());
+  for (int component = 0; component < (real ? 1 : 2); ++component) {
+    double sum = 0.0, sum_sq = 0.0;
+    for (const Sample& s : samples) {
+      const double x = component == 0 ? s.real() : s.imag();
+      sum += x;
+      sum_sq += x * x;
+    }
+    const double mean = sum / n;
+    const double spread = std::sqrt(std::max(0.0, sum_sq / n - mean * mean));
+    const char* name = component == 0 ? "I" : "Q";
+    if (spread == 0.0)
+      return fmt::format("every {} sample is {}: not IF samples (a blank file, or the wrong format)", name, mean);
+    if (std::abs(mean) > spread)
+      return fmt::format("the {} samples average {:.3g} with a spread of only {:.3g}: a front end's samples are noise "
+                         "around zero, so this is not an IF file of this format (a text file? unsigned samples?)",
+                         name, mean, spread);
+  }
+  return {};
+}
 
 Acquisition::Acquisition(AcquisitionConfig config) : impl_(std::make_unique<Impl>(std::move(config))) {}
 Acquisition::~Acquisition() = default;

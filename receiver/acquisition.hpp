@@ -22,11 +22,16 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "receiver/sample_source.hpp"
 
 namespace deepnav {
+
+/// Limits of a search: non-coherent blocks (each is held in memory) and the sample rate.
+inline constexpr int kMaxNoncoherent = 1000;
+inline constexpr double kMaxAcquisitionSampleRate_hz = 2.0e8;
 
 struct AcquisitionConfig {
   double sample_rate_hz = 4.092e6;
@@ -57,6 +62,12 @@ struct AcquisitionResult {
   double threshold = 0.0;
   bool cross_correlation_suspect = false;  ///< over the threshold but rejected (see the config)
 };
+
+/// Why `samples` cannot be IF samples of a GPS front end, or empty when they can be: a
+/// front end delivers noise (the satellites lie below it) around zero, so constant samples,
+/// or a mean further from zero than the samples spread (a text file read as int8, unsigned
+/// samples read as signed), mean a wrong file or --format. `real`: only I carries samples.
+std::string if_sample_problem(std::span<const Sample> samples, bool real);
 
 class Acquisition {
  public:

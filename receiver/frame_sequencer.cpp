@@ -62,7 +62,10 @@ void FrameSequencer::declare_lost_until(std::uint64_t sequence) {
   if (sequence <= next_) return;
   on_lost_(next_, sequence - 1);
   lost_ += static_cast<std::int64_t>(sequence - next_);
-  for (std::uint64_t s = next_; s < sequence; ++s) {
+  // Only the last kLostMemory numbers can be remembered: start there, so a long run of
+  // losses costs that many steps at most, not one per lost number.
+  const std::uint64_t from = sequence - next_ > kLostMemory ? sequence - kLostMemory : next_;
+  for (std::uint64_t s = from; s < sequence; ++s) {
     recently_lost_.insert(s);
     if (recently_lost_.size() > kLostMemory) recently_lost_.erase(recently_lost_.begin());
   }

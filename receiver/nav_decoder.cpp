@@ -66,6 +66,10 @@ void NavDecoder::try_decode() {
       }
       if (const auto decoded = lnav::decode_subframe(sf)) {
         anchor_ = Anchor{bit_start_period_.front(), decoded->tlm_how.tow_count};
+        if (decoded->tlm_how.subframe_id == 1)
+          // A TOW count of 0 (the next subframe starts the week): this one began 6 s before.
+          week_number_ = WeekNumber{decoded->eph.week & 0x3FF,
+                                    decoded->tlm_how.tow_count == 0 ? 604794.0 : (decoded->tlm_how.tow_count - 1) * 6.0};
         polarity_ = normal ? 1 : -1;
         assembler_.add(*decoded);
         last_decoded_ = *decoded;

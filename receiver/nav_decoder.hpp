@@ -39,6 +39,14 @@ class NavDecoder {
   /// HOW TOW (seconds of week) at the start of the last subframe decoded and the code period
   /// at which that subframe's first bit starts.
   std::optional<std::pair<double, std::int64_t>> last_subframe_start() const;
+  /// The week number of the last subframe 1 decoded: its 10 bits as broadcast (WN, the
+  /// week the subframe was sent in, modulo 1024) and the seconds of week at that subframe's
+  /// start. nullopt before a subframe 1.
+  struct WeekNumber {
+    int wn10 = 0;
+    double subframe_start_sow = 0.0;
+  };
+  const std::optional<WeekNumber>& week_number() const { return week_number_; }
   int subframes_decoded() const { return subframes_; }
   /// The last subframe decoded (every word's parity checked), with its source data words:
   /// what a NavBitPredictor learns from. Replaced at each decode; subframes_decoded() tells
@@ -64,6 +72,7 @@ class NavDecoder {
   std::deque<std::int64_t> bit_start_period_;
   std::optional<Anchor> anchor_;
   std::optional<lnav::DecodedSubframe> last_decoded_;
+  std::optional<WeekNumber> week_number_;
   int subframes_ = 0;
   int failures_ = 0;
   int polarity_ = 0;

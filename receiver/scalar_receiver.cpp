@@ -1,9 +1,8 @@
 #include "receiver/scalar_receiver.hpp"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
-#include <boost/asio/post.hpp>
-#include <boost/asio/thread_pool.hpp>
 #include <exception>
 #include <latch>
 #include <thread>
@@ -13,22 +12,17 @@
 #include <cmath>
 #include <set>
 
+#include "receiver/build_date.hpp"
 #include "receiver/correlator.hpp"
 #include "receiver/nav_decoder.hpp"
 #include "receiver/sample_history.hpp"
+#include "receiver/worker_threads.hpp"
 #include "signals/gps_constants.hpp"
 
 namespace deepnav {
 namespace {
 
 constexpr double c = gps::kSpeedOfLight_mps;
-
-int this_week() {
-  const auto now = std::chrono::system_clock::now();
-  const double unix_s = std::chrono::duration<double>(now.time_since_epoch()).count();
-  // GPS epoch 1980-01-06 is Unix 315964800 (leap seconds are irrelevant at week scale).
-  return static_cast<int>((unix_s - 315964800.0) / kSecondsPerWeek);
-}
 
 struct Channel {
   std::unique_ptr<TrackingChannel> trk;
@@ -65,7 +59,7 @@ struct ScalarReceiver::Impl {
     bool new_ephemeris = false;
   };
   std::vector<std::vector<EpochRecord>> records;  ///< per channel, for the block being tracked
-  std::unique_ptr<boost::asio::thread_pool> pool;  ///< channel workers (ReceiverConfig::threads > 1)
+  std::unique_ptr<WorkerThreads> pool;  ///< channel workers (ReceiverConfig::threads > 1)
   unsigned thread_count = 1;
   std::map<int, NavigationStatus> finished_status;  ///< of channels already dropped
 
@@ -79,18 +73,93 @@ struct ScalarReceiver::Impl {
   }
   std::optional<NavData> assisted;
 
+  // The GPS week (see ReceiverConfig::reference_week).
+  struct SignalWeek {
+    int week;              ///< resolved full week
+    int wn10;              ///< as broadcast
+    int prn;               ///< the satellite it came from
+    double subframe_sow;   ///< start of that subframe 1
+  };
+  std::optional<SignalWeek> signal_week;
+  /// A GPS time near the data that may set the clock before the signal's week is decoded
+  /// (from reference_week or the assisted ephemerides), and what it came from.
+  std::optional<GpsTime> reference_epoch() const {
+    if (cfg.reference_week > 0) return GpsTime{cfg.reference_week, kSecondsPerWeek / 2};
+    if (assisted && !assisted->ephemerides.empty()) {
+      const Ephemeris& e = assisted->ephemerides.front();
+      return GpsTime{e.week, e.toe_s};
+    }
+    return std::nullopt;
+  }
+  std::string reference_origin() const {
+    if (cfg.reference_week > 0) return fmt::format("{} {}", cfg.reference_week_origin, cfg.reference_week);
+    if (const auto r = reference_epoch())
+      return fmt::format("the assisted ephemerides ({}, week {})", assisted->source.empty() ? "assistance" : assisted->source,
+                         r->week);
+    return fmt::format("the build date (week {})", build_time().week);
+  }
+  /// The week LNAV's 10-bit week numbers are resolved against.
+  int resolution_week() const {
+    const auto r = reference_epoch();
+    return r ? r->week : build_time().week;
+  }
+
+  /// Takes the week from the first subframe 1 any channel decoded; checks it against the
+  /// reference given and against the clock when that was set before.
+  void take_signal_week(std::int64_t now) {
+    if (signal_week) return;
+    for (const Channel& ch : channels) {
+      const auto& wn = ch.nav->week_number();
+      if (!wn) continue;
+      const int week = lnav::resolve_week(wn->wn10, resolution_week());
+      signal_week = SignalWeek{week, wn->wn10, ch.trk->prn(), wn->subframe_start_sow};
+      spdlog::info("GPS week {} (PRN {:2d} broadcasts week number {} modulo 1024; resolved against {})", week,
+                   ch.trk->prn(), wn->wn10, reference_origin());
+      const GpsTime sent{week, wn->subframe_start_sow};
+      const auto contradiction = [&](double off_s) {
+        return fmt::format("the GPS week of {} contradicts the signal: PRN {} broadcasts week number {} (modulo 1024), "
+                           "i.e. week {} ({:.1f} days off){}",
+                           reference_origin(), ch.trk->prn(), wn->wn10, week, off_s / 86400.0,
+                           cfg.reference_week > 0 ? fmt::format(": give {} {} or leave it out",
+                                                                cfg.reference_week_origin, week)
+                                                  : std::string(": a navigation file of another day?"));
+      };
+      // A week either side is the data crossing a week boundary, not a contradiction.
+      if (cfg.reference_week > 0 && std::abs(week - cfg.reference_week) > 1)
+        throw std::runtime_error(contradiction((week - cfg.reference_week) * kSecondsPerWeek));
+      if (time_ref) {
+        // The clock set from the reference, now: some seconds after the subframe was sent.
+        const double off_s = time_ref->plus_seconds(static_cast<double>(now - sample_ref) / fs).seconds_since(sent);
+        if (std::abs(off_s) > kSecondsPerWeek / 2) throw std::runtime_error(contradiction(off_s));
+      }
+      return;
+    }
+  }
+
   Impl(ReceiverConfig c, SampleSource& s)
       : cfg(std::move(c)), src(s), fs(s.sample_rate_hz()), pvt(cfg.pvt, cfg.atmosphere) {
     cfg.acquisition.sample_rate_hz = fs;
     cfg.acquisition.if_hz = src.intermediate_frequency_hz();
     cfg.tracking.sample_rate_hz = fs;
     cfg.tracking.if_hz = src.intermediate_frequency_hz();
-    if (cfg.reference_week == 0) cfg.reference_week = this_week();
-    if (!(cfg.observation_rate_hz > 0.0 && cfg.observation_rate_hz <= 50.0))
-      throw std::invalid_argument("observation rate must be in (0, 50] Hz");
+    if (!(fs >= kMinSampleRate_hz && fs <= kMaxSampleRate_hz))
+      throw std::invalid_argument(fmt::format("sample rate {} Hz is outside the receiver's [{:g}, {:g}] Hz", fs,
+                                              kMinSampleRate_hz, kMaxSampleRate_hz));
+    if (!(std::abs(src.intermediate_frequency_hz()) < fs / 2))
+      throw std::invalid_argument(fmt::format("intermediate frequency {} Hz is not below half the sample rate ({} Hz)",
+                                              src.intermediate_frequency_hz(), fs / 2));
+    if (!(cfg.observation_rate_hz >= 0.01 && cfg.observation_rate_hz <= 50.0))
+      throw std::invalid_argument(fmt::format("observation rate {} Hz is outside [0.01, 50] Hz", cfg.observation_rate_hz));
+    if (cfg.channels < 1 || cfg.channels > gps::kMaxPrn)
+      throw std::invalid_argument(fmt::format("{} tracking channels: expected 1 to {}", cfg.channels, gps::kMaxPrn));
+    if (cfg.reference_week < 0)
+      throw std::invalid_argument(fmt::format("{} {} is negative", cfg.reference_week_origin, cfg.reference_week));
+    if (cfg.threads > kMaxReceiverThreads)
+      throw std::invalid_argument(fmt::format("{} channel threads asked for: at most {} (0: one per core)", cfg.threads,
+                                              kMaxReceiverThreads));
     const unsigned threads = cfg.threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : cfg.threads;
     // The calling thread takes one share of the channels itself: threads - 1 workers.
-    if (threads > 1) pool = std::make_unique<boost::asio::thread_pool>(threads - 1);
+    if (threads > 1) pool = std::make_unique<WorkerThreads>(threads - 1, "channel worker");
     thread_count = threads;
   }
 
@@ -120,7 +189,7 @@ struct ScalarReceiver::Impl {
       ch.trk = std::make_unique<TrackingChannel>(cfg.tracking, ChannelStart{r.prn, r.doppler_hz, r.code_phase_chips, first});
       ch.loop = std::make_unique<ScalarChannelControl>(r.doppler_hz, cfg.pull_in, cfg.tracking_loops);
       if (steering) ch.steered = steering->controller_for(r.prn);
-      ch.nav = std::make_unique<NavDecoder>(r.prn, cfg.reference_week);
+      ch.nav = std::make_unique<NavDecoder>(r.prn, resolution_week());
       ch.last_doppler_hz = r.doppler_hz;
       ch.start_t_s = static_cast<double>(first) / fs;
       spdlog::debug("PRN {:2d} acquired: {:.1f} Hz, {:.2f} chips, {:.1f} dB-Hz", r.prn, r.doppler_hz, r.code_phase_chips, r.cn0_dbhz);
@@ -216,7 +285,7 @@ struct ScalarReceiver::Impl {
       std::latch done(static_cast<std::ptrdiff_t>(shares - 1));
       std::vector<std::exception_ptr> errors(shares);
       for (std::size_t g = 1; g < shares; ++g) {
-        boost::asio::post(*pool, [&, g] {
+        pool->post([&, g] {
           try {
             share(g);
           } catch (...) {
@@ -277,11 +346,19 @@ struct ScalarReceiver::Impl {
       const auto t = ch.nav->transmit_time_sow(period, chips - static_cast<double>(period) * gps::kCodeLength_chips);
       if (t) tx.push_back({&ch, *t});
     }
-    if (!time_ref && tx.size() >= 4) {
+    // The clock needs the week: the signal's own, else a reference near the data (never a
+    // guess that would put a product years off).
+    const std::optional<GpsTime> near =
+        signal_week ? std::optional<GpsTime>(GpsTime{signal_week->week, signal_week->subframe_sow}) : reference_epoch();
+    if (!time_ref && tx.size() >= 4 && near) {
       double latest = tx.front().t_tx_sow;
       for (const auto& x : tx) latest = std::max(latest, x.t_tx_sow);
-      time_ref = GpsTime::normalized(cfg.reference_week, latest + 0.068);
-      if (!ephs.empty()) time_ref->week = ephs.begin()->second.week;  // the data's week, not today's
+      // The week of `near` or a neighbour, whichever puts the time closest to it.
+      GpsTime t = GpsTime::normalized(near->week, latest + 0.068);
+      const double off_s = t.seconds_since(*near);
+      if (off_s > kSecondsPerWeek / 2) t.week -= 1;
+      if (off_s < -kSecondsPerWeek / 2) t.week += 1;
+      time_ref = t;
       sample_ref = s;
     }
     if (!time_ref) return ep;
@@ -348,10 +425,16 @@ void ScalarReceiver::run(const std::function<void(const ReceiverEpoch&)>& on_epo
       // re-acquisition window restarts after it and the next observables are flagged.
       recent.clear();
       m.gap_since_epoch = true;
+      // No epoch inside the gap: it has no samples. The observation grid resumes at its first
+      // point at or after the samples come back (one step, however long the gap).
+      if (next_obs >= 0 && next_obs < block.first_sample_index)
+        next_obs += (block.first_sample_index - next_obs + obs_step - 1) / obs_step * obs_step;
     }
     expected_first = block.first_sample_index + static_cast<std::int64_t>(block.samples.size());
     prepare_for_correlation(block);
     if (first) {
+      if (const std::string problem = if_sample_problem(block.samples, m.src.is_real()); !problem.empty())
+        spdlog::warn("the first {} samples: {}", block.samples.size(), problem);
       m.acquire(block.samples, block.first_sample_index);
       next_obs = block.first_sample_index + obs_step;
       first = false;
@@ -362,6 +445,7 @@ void ScalarReceiver::run(const std::function<void(const ReceiverEpoch&)>& on_epo
     }
     m.track(block, on_correlation);
     const std::int64_t end = block.first_sample_index + static_cast<std::int64_t>(block.samples.size());
+    m.take_signal_week(end);
     if (m.steering) {
       m.steering->after_block(m.snapshot(end));
       m.collect_published();
@@ -421,6 +505,11 @@ IonoParameters ScalarReceiver::iono() const { return impl_->iono; }
 const AtmosphereModels& ScalarReceiver::atmosphere() const { return impl_->cfg.atmosphere; }
 UtcParameters ScalarReceiver::utc() const { return impl_->utc; }
 std::vector<int> ScalarReceiver::acquired_prns() const { return impl_->acquired; }
+
+std::optional<int> ScalarReceiver::signal_week() const {
+  if (!impl_->signal_week) return std::nullopt;
+  return impl_->signal_week->week;
+}
 
 std::vector<NavigationStatus> ScalarReceiver::navigation_status() const {
   std::map<int, NavigationStatus> all = impl_->finished_status;

@@ -13,6 +13,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "receiver/acquisition.hpp"
@@ -26,11 +27,26 @@
 
 namespace deepnav {
 
+/// More channel threads than this is a mistake (a receiver has at most a few dozen channels).
+inline constexpr unsigned kMaxReceiverThreads = 256;
+/// The sample rates the receiver takes: the C/A code needs about 1 Msps, and no L1 front
+/// end samples faster than 200 Msps (a 10 ms block would then be 2 million samples).
+inline constexpr double kMinSampleRate_hz = 1.0e6;
+inline constexpr double kMaxSampleRate_hz = 2.0e8;
+
 struct ReceiverConfig {
   int channels = 12;
   unsigned threads = 1;                 ///< channel worker threads (0: all cores); 1 tracks inline
   double observation_rate_hz = 1.0;     ///< up to 50
-  int reference_week = 0;               ///< resolves LNAV's 10-bit week (0: today's week)
+  /// GPS week near the data (0: none given). The signal broadcasts its week modulo 1024
+  /// (LNAV's 10-bit WN, in subframe 1): a reference resolves it to the full week. This one,
+  /// else the epoch of the assisted ephemerides, else the build date (data within about
+  /// ten years of it). Given here or by assistance, the receiver clock is set as soon as four
+  /// transmit times exist and checked against the first subframe 1; otherwise it waits for
+  /// that subframe, so that no product carries a guessed week. A signal whose week differs
+  /// from this one by more than a week is an error naming reference_week_origin.
+  int reference_week = 0;
+  std::string reference_week_origin = "reference week";
   double reacquire_interval_s = 5.0;
   AcquisitionConfig acquisition;        ///< sample rate and IF are taken from the source
   TrackingConfig tracking;
@@ -132,6 +148,9 @@ class ScalarReceiver {
   const AtmosphereModels& atmosphere() const;
   UtcParameters utc() const;
   std::vector<int> acquired_prns() const;
+  /// The full GPS week the signal broadcast (the first subframe 1 decoded, resolved against
+  /// the reference), once known.
+  std::optional<int> signal_week() const;
   /// Per PRN, over every channel that tracked it (dropped ones included).
   std::vector<NavigationStatus> navigation_status() const;
 

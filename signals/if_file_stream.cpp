@@ -9,6 +9,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "ins/input_file.hpp"
+
 namespace deepnav {
 
 IfFileStream::IfFileStream(IfFileStreamOptions options) : options_(std::move(options)) {
@@ -16,6 +18,8 @@ IfFileStream::IfFileStream(IfFileStreamOptions options) : options_(std::move(opt
   if (!(options_.sample_rate_hz > 0.0) || !std::isfinite(options_.sample_rate_hz))
     throw std::invalid_argument(fmt::format("sample file '{}': sample rate must be a positive number of Hz, got {}",
                                             name, options_.sample_rate_hz));
+  // A FIFO or device would block or never end; the reader needs the size and seeking.
+  check_input_file(name, "sample file");
   file_ = std::fopen(name.c_str(), "rb");
   if (file_ == nullptr)
     throw std::runtime_error(fmt::format("cannot open sample file '{}': {}", name, std::strerror(errno)));

@@ -622,6 +622,20 @@ Almanac almanac_from_ephemeris(const Ephemeris& eph) {
   return a;
 }
 
+FieldLimits field_limits(std::string_view name) {
+  static const std::array<const Field*, 29> kFields = {
+      &kAf0,     &kAf1,    &kAf2,     &kTgd,     &kCrs,     &kDeltaN,  &kM0,      &kCuc,     &kE,      &kCus,
+      &kSqrtA,   &kCic,    &kOmega0,  &kCis,     &kI0,      &kCrc,     &kOmega,   &kOmegaDot, &kIdot,  &kAlpha[0],
+      &kAlpha[1], &kAlpha[2], &kAlpha[3], &kBeta[0], &kBeta[1], &kBeta[2], &kBeta[3], &kA0,     &kA1};
+  for (const Field* f : kFields) {
+    if (name != f->name) continue;
+    const double lo = f->is_signed ? -std::ldexp(1.0, f->bits - 1) : 0.0;
+    const double hi = f->is_signed ? std::ldexp(1.0, f->bits - 1) - 1.0 : std::ldexp(1.0, f->bits) - 1.0;
+    return {lo * f->lsb * f->unit, hi * f->lsb * f->unit};
+  }
+  throw std::invalid_argument(fmt::format("LNAV: no broadcast field named '{}'", name));
+}
+
 int resolve_week(int wn10, int reference_week) {
   const int base = reference_week - ((reference_week % 1024) + 1024) % 1024;
   int week = base + (wn10 & 0x3FF);

@@ -8,6 +8,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -153,6 +154,19 @@ std::optional<DecodedSubframe> decode_subframe(const Subframe& words);
 /// Almanac from an ephemeris: elements carried to toa (the multiple of 4096 s nearest toe in
 /// the same week) and quantized to the almanac's scale factors.
 Almanac almanac_from_ephemeris(const Ephemeris& eph);
+
+/// The values (SI units: s, m, rad, rad/s, s/semicircle^n) an LNAV field can carry: its bit
+/// width, sign and scale factor (IS-GPS-200 Tables 20-I, 20-III, 20-IX and 20-X). Every real
+/// broadcast lies inside; a navigation file value far outside is corrupt.
+struct FieldLimits {
+  double min = 0.0;
+  double max = 0.0;
+};
+/// By the field's name as the message layout spells it: "af0", "af1", "af2", "TGD", "Crs",
+/// "delta n", "M0", "Cuc", "e", "Cus", "sqrt A", "Cic", "OMEGA0", "Cis", "i0", "Crc", "omega",
+/// "OMEGADOT", "IDOT", "alpha0".."alpha3", "beta0".."beta3", "A0", "A1". Throws
+/// std::invalid_argument for any other name.
+FieldLimits field_limits(std::string_view name);
 
 /// Full week closest to reference_week whose 10 LSBs equal wn10.
 int resolve_week(int wn10, int reference_week);

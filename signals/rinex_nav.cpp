@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <initializer_list>
 #include <istream>
@@ -14,8 +15,10 @@
 #include <stdexcept>
 #include <string_view>
 
+#include "ins/input_file.hpp"
 #include "signals/gps_constants.hpp"
 #include "signals/rinex_fields.hpp"
+#include "signals/lnav_message.hpp"
 
 namespace deepnav {
 
@@ -154,17 +157,38 @@ void read_leap_seconds(const LineReader& reader, std::string_view line, NavData&
   }
 }
 
+/// A header value (ionosphere, UTC) against its LNAV field; the error names the line.
+void check_header_field(const LineReader& reader, const char* label, const char* field, double value) {
+  const lnav::FieldLimits lim = lnav::field_limits(field);
+  const double slack = (lim.max - lim.min) * 0x1p-32;  // one LSB: 12 digits may round full scale up
+  if (value >= lim.min - slack && value <= lim.max + slack) return;
+  reader.fail(fmt::format("{}: {} = {:g} is outside [{:.6g}, {:.6g}], the range a GPS satellite can broadcast "
+                          "(IS-GPS-200 LNAV field): a corrupt navigation file",
+                          label, field, value, lim.min, lim.max));
+}
+
+std::array<double, 4> iono_numbers(const LineReader& reader, std::string_view line, std::size_t start,
+                                   const char* label, bool alpha) {
+  static constexpr const char* kAlpha[] = {"alpha0", "alpha1", "alpha2", "alpha3"};
+  static constexpr const char* kBeta[] = {"beta0", "beta1", "beta2", "beta3"};
+  const std::array<double, 4> v = four_numbers(reader, line, start, 12, label);
+  for (std::size_t i = 0; i < 4; ++i) check_header_field(reader, label, alpha ? kAlpha[i] : kBeta[i], v[i]);
+  return v;
+}
+
 void read_header_line_v2(const LineReader& reader, std::string_view line, std::string_view label, NavData& nav,
                          Header& header) {
   if (label == "ION ALPHA") {
-    nav.iono.alpha = four_numbers(reader, line, 2, 12, "ION ALPHA");
+    nav.iono.alpha = iono_numbers(reader, line, 2, "ION ALPHA", true);
     header.has_alpha = true;
   } else if (label == "ION BETA") {
-    nav.iono.beta = four_numbers(reader, line, 2, 12, "ION BETA");
+    nav.iono.beta = iono_numbers(reader, line, 2, "ION BETA", false);
     header.has_beta = true;
   } else if (label == "DELTA-UTC: A0,A1,T,W") {
     nav.utc.a0_s = header_double(reader, line, 3, 19, "DELTA-UTC A0");
     nav.utc.a1_sps = header_double(reader, line, 22, 19, "DELTA-UTC A1");
+    check_header_field(reader, "DELTA-UTC", "A0", nav.utc.a0_s);
+    check_header_field(reader, "DELTA-UTC", "A1", nav.utc.a1_sps);
     nav.utc.tot_s = header_int(reader, line, 41, 9, "DELTA-UTC T", 0, 604800);
     nav.utc.wnt = header_int(reader, line, 50, 9, "DELTA-UTC W", 0, 100000);
     nav.utc.valid = true;
@@ -177,14 +201,16 @@ void read_header_line_v3(const LineReader& reader, std::string_view line, std::s
                          Header& header) {
   const std::string_view kind = trim(column(line, 0, 4));
   if (label == "IONOSPHERIC CORR" && kind == "GPSA") {
-    nav.iono.alpha = four_numbers(reader, line, 5, 12, "IONOSPHERIC CORR GPSA");
+    nav.iono.alpha = iono_numbers(reader, line, 5, "IONOSPHERIC CORR GPSA", true);
     header.has_alpha = true;
   } else if (label == "IONOSPHERIC CORR" && kind == "GPSB") {
-    nav.iono.beta = four_numbers(reader, line, 5, 12, "IONOSPHERIC CORR GPSB");
+    nav.iono.beta = iono_numbers(reader, line, 5, "IONOSPHERIC CORR GPSB", false);
     header.has_beta = true;
   } else if (label == "TIME SYSTEM CORR" && kind == "GPUT") {
     nav.utc.a0_s = header_double(reader, line, 5, 17, "TIME SYSTEM CORR GPUT a0");
     nav.utc.a1_sps = header_double(reader, line, 22, 16, "TIME SYSTEM CORR GPUT a1");
+    check_header_field(reader, "TIME SYSTEM CORR GPUT", "A0", nav.utc.a0_s);
+    check_header_field(reader, "TIME SYSTEM CORR GPUT", "A1", nav.utc.a1_sps);
     nav.utc.tot_s = header_int(reader, line, 38, 7, "TIME SYSTEM CORR GPUT T", 0, 604800);
     nav.utc.wnt = header_int(reader, line, 45, 5, "TIME SYSTEM CORR GPUT W", 0, 100000);
     nav.utc.valid = true;
@@ -265,6 +291,11 @@ EpochLine parse_epoch_line(const LineReader& reader, std::string_view line, doub
     if (!v || *v < 0.0 || *v >= 61.0) throw std::invalid_argument("expected seconds in [0, 61)");
     return *v;
   });
+  if (ep.toc.day > days_in_month(ep.toc.year, ep.toc.month)) {
+    reader.fail(fmt::format("epoch line, day (columns {}-{}): {:04d}-{:02d}-{:02d} is not a date ({:04d}-{:02d} has {} days)",
+                            base + 4, base + 6, ep.toc.year, ep.toc.month, ep.toc.day, ep.toc.year, ep.toc.month,
+                            days_in_month(ep.toc.year, ep.toc.month)));
+  }
   const Layout lay = layout_for(version);
   for (std::size_t i = 0; i < 3; ++i) {
     const auto v = with_context(reader, fmt::format("epoch line, clock field {}", i + 1),
@@ -306,6 +337,57 @@ std::array<double, 4> read_orbit_line(LineReader& reader, double version, int in
     reader.fail(fmt::format("expected {} numbers in broadcast orbit line {}, got '{}'", required, index, line));
   }
   return out;
+}
+
+/// A broadcast value of a record with where it stands: the record's line offset (0: the
+/// epoch line, i: broadcast orbit line i) and field (1-based), and its LNAV field name.
+struct BroadcastValue {
+  const char* name;
+  int line_offset;
+  int field;
+  double value;
+  const char* unit;
+};
+
+/// Checks every broadcast value of a record against what its LNAV field can carry (the
+/// range every real broadcast lies in, IS-GPS-200 Tables 20-I and 20-III); angles may come
+/// in any normalisation, so they need only lie within one turn either way. A value outside
+/// (a corrupt file: af0 = 1e300, Cuc = 1e29) is an error naming the line, satellite and field.
+void check_broadcast_ranges(const LineReader& reader, int record_line, int prn, const Ephemeris& e) {
+  constexpr double kTurn = 2.0 * gps::kPi;
+  const BroadcastValue values[] = {
+      {"af0", 0, 1, e.af0_s, "s"},           {"af1", 0, 2, e.af1_sps, "s/s"},
+      {"af2", 0, 3, e.af2_sps2, "s/s^2"},    {"Crs", 1, 2, e.crs_m, "m"},
+      {"delta n", 1, 3, e.delta_n_radps, "rad/s"}, {"M0", 1, 4, e.m0_rad, "rad"},
+      {"Cuc", 2, 1, e.cuc_rad, "rad"},       {"e", 2, 2, e.e, ""},
+      {"Cus", 2, 3, e.cus_rad, "rad"},       {"sqrt A", 2, 4, e.sqrt_a, "sqrt(m)"},
+      {"Cic", 3, 2, e.cic_rad, "rad"},       {"OMEGA0", 3, 3, e.omega0_rad, "rad"},
+      {"Cis", 3, 4, e.cis_rad, "rad"},       {"i0", 4, 1, e.i0_rad, "rad"},
+      {"Crc", 4, 2, e.crc_m, "m"},           {"omega", 4, 3, e.omega_rad, "rad"},
+      {"OMEGADOT", 4, 4, e.omega_dot_radps, "rad/s"}, {"IDOT", 5, 1, e.idot_radps, "rad/s"},
+      {"TGD", 6, 3, e.tgd_s, "s"}};
+  for (const BroadcastValue& v : values) {
+    lnav::FieldLimits lim = lnav::field_limits(v.name);
+    const std::string_view name(v.name);
+    if (name == "M0" || name == "OMEGA0" || name == "omega" || name == "i0") lim = {-kTurn, kTurn};
+    // One LSB of slack either way: a file's 12 digits may round a full-scale value up.
+    const double slack = (lim.max - lim.min) * 0x1p-32;
+    if (v.value >= lim.min - slack && v.value <= lim.max + slack) continue;
+    const std::string where =
+        v.line_offset == 0 ? fmt::format("epoch line, clock field {}", v.field)
+                           : fmt::format("broadcast orbit line {}, field {}", v.line_offset, v.field);
+    reader.fail(record_line + v.line_offset,
+                fmt::format("PRN {} (record at line {}), {}: {} = {:g} {} is outside [{:.6g}, {:.6g}], the range a GPS "
+                            "satellite can broadcast (IS-GPS-200 LNAV field): a corrupt navigation file",
+                            prn, record_line, where, v.name, v.value, v.unit, lim.min, lim.max));
+  }
+  // sqrt(A) within what LNAV carries may still put the orbit inside the Earth.
+  constexpr double kMinSqrtA = 2525.0;  // sqrt of the Earth's equatorial radius, 6378137 m
+  if (e.sqrt_a < kMinSqrtA) {
+    reader.fail(record_line + 2, fmt::format("PRN {} (record at line {}), broadcast orbit line 2, field 4: sqrt A = {:g} "
+                                             "sqrt(m) puts the orbit inside the Earth (at least {} expected)",
+                                             prn, record_line, e.sqrt_a, kMinSqrtA));
+  }
 }
 
 /// The week of toe as RINEX gives it is continuous; a file that wrote it modulo 1024 is
@@ -367,6 +449,7 @@ Ephemeris read_gps_record(LineReader& reader, std::string_view first_line, doubl
     }
     return 0;
   });
+  check_broadcast_ranges(reader, record_line, ep.prn, eph);
   eph.week = reconcile_week(eph.week, eph.toe_s, toc);
   return eph;
 }
@@ -403,6 +486,7 @@ double ura_metres_from_index(int ura_index) {
 NavData read_rinex_nav(std::istream& in, const std::string& name) {
   LineReader reader(in, name);
   NavData nav;
+  nav.source = name;
   const Header header = read_header(reader, nav);
   std::string line;
   while (reader.next_nonblank(line)) {
@@ -426,6 +510,7 @@ NavData read_rinex_nav(std::istream& in, const std::string& name) {
 }
 
 NavData read_rinex_nav(const std::string& path) {
+  if (std::filesystem::exists(path)) check_input_file(path, "RINEX navigation file", kMaxTextInputBytes);
   std::ifstream file(path);
   if (!file) throw std::runtime_error(fmt::format("{}: cannot open RINEX navigation file", path));
   return read_rinex_nav(file, path);

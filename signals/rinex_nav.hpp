@@ -21,6 +21,7 @@ struct NavData {
   bool leap_seconds_valid = false;
   double rinex_version = 0.0;
   int skipped_records = 0;  ///< records of other satellite systems in mixed files
+  std::string source;       ///< the file (or stream name) it was read from, for messages
 
   /// The healthy ephemeris of `prn` with the toe closest to t among those whose fit
   /// interval contains t. Data sets whose transmission time is known and later than t

@@ -9,6 +9,7 @@
 
 #include "receiver/acquisition.hpp"
 #include "receiver/file_sample_source.hpp"
+#include "tools/cli_checks.hpp"
 #include "tools/command_registry.hpp"
 
 namespace deepnav::cli {
@@ -85,6 +86,8 @@ void run_acquire(AcquireOptions o) {
       got += n;
     }
     samples.resize(got);
+    if (const std::string problem = if_sample_problem(samples, source.is_real()); !problem.empty())
+      throw UserError(fmt::format("{}: {}", o.input, problem));
     if (got < samples.capacity()) spdlog::warn("{}: only {} samples available, the non-coherent sum is shorter", o.input, got);
     results = acquisition.search(samples);
   } catch (const std::invalid_argument& e) {
@@ -123,15 +126,31 @@ const bool registered = register_command([](CommandParents& parents) {
   CLI::App* cmd = parents.root.add_subcommand("acquire", "Cold-start FFT acquisition of an IF file: detected PRNs, Doppler, code delay");
   cmd->add_option("--input", o->input, "IF sample file")->required()->check(CLI::ExistingFile);
   cmd->add_option("--format", o->format, "ibyte|cs8, ishort|cs16, gr_complex|cf32, byte|s8")->capture_default_str();
-  cmd->add_option("--fs", o->fs_hz, "Sample rate (Hz)")->required();
-  cmd->add_option("--if", o->if_hz, "Intermediate frequency (Hz), 0 for complex baseband")->capture_default_str();
-  cmd->add_option("--skip", o->skip_s, "Seconds skipped at the start of the file")->capture_default_str();
+  cmd->add_option("--fs", o->fs_hz, "Sample rate (Hz)")
+      ->required()
+      ->check(finite_in(1.023e6, kMaxAcquisitionSampleRate_hz, "a sample rate in Hz"));
+  cmd->add_option("--if", o->if_hz, "Intermediate frequency (Hz), 0 for complex baseband")
+      ->check(finite_in(-kMaxAcquisitionSampleRate_hz / 2, kMaxAcquisitionSampleRate_hz / 2, "a frequency in Hz"))
+      ->capture_default_str();
+  cmd->add_option("--skip", o->skip_s, "Seconds skipped at the start of the file")
+      ->check(finite_in(0.0, 1e7, "seconds"))
+      ->capture_default_str();
   cmd->add_flag("--inverted-spectrum", o->inverted, "The front end delivers I - jQ");
-  cmd->add_option("--doppler-max", o->acq.doppler_max_hz, "Doppler search half-width (Hz)")->capture_default_str();
-  cmd->add_option("--doppler-step", o->acq.doppler_step_hz, "Doppler bin (Hz); 0: 2/(3 T)")->capture_default_str();
-  cmd->add_option("--coherent-ms", o->acq.coherent_ms, "Coherent integration (1-10 ms)")->capture_default_str();
-  cmd->add_option("--noncoherent", o->acq.noncoherent, "Coherent blocks summed non-coherently")->capture_default_str();
-  cmd->add_option("--pfa", o->acq.pfa, "False-alarm probability per PRN")->capture_default_str();
+  cmd->add_option("--doppler-max", o->acq.doppler_max_hz, "Doppler search half-width (Hz)")
+      ->check(finite_in(0.0, 50000.0, "a Doppler in Hz"))
+      ->capture_default_str();
+  cmd->add_option("--doppler-step", o->acq.doppler_step_hz, "Doppler bin (Hz); 0: 2/(3 T)")
+      ->check(finite_in(0.0, 10000.0, "a Doppler step in Hz"))
+      ->capture_default_str();
+  cmd->add_option("--coherent-ms", o->acq.coherent_ms, "Coherent integration (1-10 ms)")
+      ->check(CLI::Range(1, 10))
+      ->capture_default_str();
+  cmd->add_option("--noncoherent", o->acq.noncoherent, "Coherent blocks summed non-coherently")
+      ->check(CLI::Range(1, kMaxNoncoherent))
+      ->capture_default_str();
+  cmd->add_option("--pfa", o->acq.pfa, "False-alarm probability per PRN")
+      ->check(finite_above(0.0, 0.5, "a probability"))
+      ->capture_default_str();
   cmd->add_option("--prn", o->prn_list, "Only these PRNs, e.g. 1,5,31");
   cmd->add_option("--json", o->json_path, "Write every searched PRN as JSON to FILE ('-': stdout instead of the table)");
   cmd->callback([o] { run_acquire(*o); });

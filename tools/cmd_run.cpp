@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "receiver/build_date.hpp"
 #include "receiver/mitigation/mitigation_config.hpp"
 #include "receiver/products/file_products.hpp"
 #include "receiver/products/run_statistics.hpp"
@@ -14,6 +15,7 @@
 #include "signals/rinex_nav.hpp"
 #include "signals/text_output_file.hpp"
 #include "tools/atmosphere_options.hpp"
+#include "tools/cli_checks.hpp"
 #include "tools/command_registry.hpp"
 #include "tools/process_usage.hpp"
 #include "tools/progress.hpp"
@@ -171,6 +173,16 @@ class SummarySink : public ProductSink {
   std::function<nlohmann::json()> summary_;
 };
 
+/// --week names a week near the data: from the first GPS week to 1024 weeks (about 20
+/// years) after this program was built.
+void check_week_option(int week) {
+  const int last = build_time().week + 1024;
+  if (week < 1 || week > last)
+    throw UserError(fmt::format("--week {} is not a GPS week of any recording: expected 1 (1980) to {} (1024 weeks after "
+                                "this program's build date)",
+                                week, last));
+}
+
 void run_receiver(RunOptions o) {
   std::optional<TruthFile> truth;
   try {
@@ -221,25 +233,39 @@ const bool registered = register_command([](CommandParents& parents) {
   CLI::App* cmd = parents.root.add_subcommand("run", "Run the receiver on an IF file: PVT and products in --out");
   cmd->add_option("--input", o->input, "IF sample file, tcp://HOST:PORT, udp://HOST:PORT (subscribe) or udp://@HOST:PORT (listen)")->required();
   cmd->add_option("--format", o->format, "ibyte|cs8, ishort|cs16, gr_complex|cf32, byte|s8")->capture_default_str();
-  cmd->add_option("--fs", o->fs_hz, "Sample rate (Hz); a framed stream's header carries it");
+  cmd->add_option("--fs", o->fs_hz, "Sample rate (Hz); a framed stream's header carries it")
+      ->check(finite_in(kMinSampleRate_hz, kMaxSampleRate_hz, "a sample rate in Hz"));
   cmd->add_flag("--raw", o->raw, "The stream is bare samples (no deepnav framing): needs --format and --fs");
-  cmd->add_option("--reconnect-timeout", o->reconnect_timeout_s, "Seconds a dropped stream is retried (with backoff)")->capture_default_str();
-  cmd->add_option("--if", o->if_hz, "Intermediate frequency (Hz)")->capture_default_str();
-  cmd->add_option("--skip", o->skip_s, "Seconds skipped at the start")->capture_default_str();
+  cmd->add_option("--reconnect-timeout", o->reconnect_timeout_s, "Seconds a dropped stream is retried (with backoff)")
+      ->check(finite_in(0.0, 86400.0, "seconds"))
+      ->capture_default_str();
+  cmd->add_option("--if", o->if_hz, "Intermediate frequency (Hz)")
+      ->check(finite_in(-kMaxSampleRate_hz / 2, kMaxSampleRate_hz / 2, "a frequency in Hz, below half the sample rate"))
+      ->capture_default_str();
+  cmd->add_option("--skip", o->skip_s, "Seconds skipped at the start")
+      ->check(finite_in(0.0, 1e7, "seconds"))
+      ->capture_default_str();
   cmd->add_flag("--inverted-spectrum", o->inverted, "The front end delivers I - jQ");
   cmd->add_option("--mitigation", o->mitigation, "Interference mitigation: none, notch, excision, blanking, auto (blanking then excision)")
       ->check(CLI::IsMember(mitigation_mode_names()))
       ->capture_default_str();
   cmd->add_option("--out", o->out_dir, "Output folder")->required();
   cmd->add_option("--truth", o->truth_path, "Synthesizer truth.csv: adds error statistics to summary.json");
-  cmd->add_option("--channels", o->receiver.channels, "Tracking channels")->capture_default_str();
+  cmd->add_option("--channels", o->receiver.channels, "Tracking channels")
+      ->check(CLI::Range(1, 32).description("1 to 32 (one per GPS PRN at most)"))
+      ->capture_default_str();
   cmd->add_option("--pll-order", o->pll_order, "Carrier loop order: 2, or 3 for high dynamics (follows Doppler ramps)")
       ->check(CLI::IsMember({2, 3}))
       ->capture_default_str();
   cmd->add_option("--threads", o->receiver.threads, "Channel worker threads (0: all cores; every mode's products are the same for any count)")
+      ->check(CLI::Range(0u, kMaxReceiverThreads))
       ->capture_default_str();
-  cmd->add_option("--rate", o->receiver.observation_rate_hz, "Observation/PVT rate (Hz, up to 50)")->capture_default_str();
-  cmd->add_option("--doppler-max", o->receiver.acquisition.doppler_max_hz, "Acquisition Doppler half-width (Hz)")->capture_default_str();
+  cmd->add_option("--rate", o->receiver.observation_rate_hz, "Observation/PVT rate (Hz, up to 50)")
+      ->check(finite_in(0.01, 50.0, "a rate in Hz"))
+      ->capture_default_str();
+  cmd->add_option("--doppler-max", o->receiver.acquisition.doppler_max_hz, "Acquisition Doppler half-width (Hz)")
+      ->check(finite_in(100.0, 50000.0, "a Doppler in Hz"))
+      ->capture_default_str();
   cmd->add_option("--iono-from", o->assist_nav,
                   "RINEX navigation file whose ionosphere parameters are used until the broadcast ones are decoded")
       ->check(CLI::ExistingFile);
@@ -263,11 +289,16 @@ const bool registered = register_command([](CommandParents& parents) {
                 "Tight/ultra: exclude a satellite whose pseudorange innovations disagree with the filter")
       ->default_str("true");  // flags capture no default: --print-config reads this one
   cmd->add_option("--imu-lever-arm", o->imu_lever_arm_m, "IMU position from the antenna, body axes x y z (m), as a scenario's imu.lever_arm_m")
-      ->expected(3);
-  cmd->add_option("--week", o->receiver.reference_week, "GPS week near the data (resolves the 10-bit week; default: today)");
+      ->expected(3)
+      ->check(finite_in(-100.0, 100.0, "metres"));
+  cmd->add_option("--week", o->receiver.reference_week,
+                  "GPS week near the data: resolves the week number the satellites broadcast modulo 1024, and must "
+                  "agree with it (default: the --ephemeris-from file's epoch, else the build date)");
   add_print_config(*cmd, o->print_config);
   cmd->callback([o, cmd] {
     if (o->print_config) return fmt::print("{}", effective_config(*cmd));
+    if (cmd->get_option("--week")->count() > 0) check_week_option(o->receiver.reference_week);
+    o->receiver.reference_week_origin = "--week";
     run_receiver(*o);
   });
 });

@@ -12,6 +12,7 @@
 #include "signals/rinex_nav.hpp"
 #include "signals/sim/scenario.hpp"
 #include "signals/text_output_file.hpp"
+#include "tools/cli_checks.hpp"
 #include "tools/command_registry.hpp"
 #include "tools/progress.hpp"
 
@@ -104,8 +105,10 @@ const bool registered = register_command([](CommandParents& parents) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--out", opts->out_dir, "Output folder (created if missing)")->required();
   cmd->add_option("--threads", opts->threads, "Worker threads for the satellite signals (0: all cores)")
+      ->check(CLI::Range(0u, 256u))
       ->capture_default_str();
-  cmd->add_option("--duration", opts->duration_s, "Override the scenario's duration (s)");
+  cmd->add_option("--duration", opts->duration_s, "Override the scenario's duration (s)")
+      ->check(finite_in(1e-3, 86400.0, "seconds"));
   cmd->callback([opts] { run_sim(*opts); });
 });
 

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "ins/yaml_checks.hpp"
 #include "tools/command_registry.hpp"
 
 namespace deepnav::cli {
@@ -136,6 +137,11 @@ std::vector<CLI::ConfigItem> YamlConfig::from_config(std::istream& input) const 
     root = YAML::Load(input);
   } catch (const YAML::Exception& e) {
     throw UserError(fmt::format("{}:{}: not valid YAML: {}", file, e.mark.line + 1, e.msg));
+  }
+  try {
+    check_unique_keys(root, file);
+  } catch (const std::invalid_argument& e) {
+    throw UserError(e.what());
   }
   if (root.IsNull()) return {};
   if (!root.IsMap())

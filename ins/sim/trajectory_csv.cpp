@@ -1,5 +1,7 @@
 #include "ins/sim/trajectory_csv.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <fstream>
 #include <optional>
@@ -17,6 +19,11 @@ namespace deepnav {
 namespace {
 
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
+// What a GPS receiver's trajectory can be: from below the Dead Sea shore (and the deepest
+// mines) to beyond the GPS orbits, at most 12 km/s (faster than escape velocity).
+constexpr double kMinHeight_m = -12000.0;
+constexpr double kMaxHeight_m = 1.0e8;
+constexpr double kMaxSpeed_mps = 1.2e4;
 
 std::vector<std::string> split(const std::string& line) {
   std::vector<std::string> out;
@@ -138,9 +145,27 @@ std::unique_ptr<Trajectory> load_csv_trajectory(const std::string& path) {
     times.push_back(v[0]);
     if (is_geo) {
       if (std::abs(v[1]) > 90.0) fail(line_no, "lat_deg out of [-90, 90]");
+      if (!(v[3] >= kMinHeight_m && v[3] <= kMaxHeight_m))
+        fail(line_no, fmt::format("height_m {:g} is outside [{:g}, {:g}] m", v[3], kMinHeight_m, kMaxHeight_m));
       positions.push_back(wgs84::llh_to_ecef(wgs84::Llh{v[1] * kDeg, v[2] * kDeg, v[3]}));
     } else {
       positions.emplace_back(v[1], v[2], v[3]);
+      const double r = positions.back().norm();
+      const double r_min = wgs84::kSemiMinorAxis_m + kMinHeight_m, r_max = wgs84::kSemiMajorAxis_m + kMaxHeight_m;
+      if (!(r >= r_min && r <= r_max))
+        fail(line_no, fmt::format("position is {:.6g} m from the Earth's centre, not in [{:g}, {:g}] m (near the Earth)",
+                                  r, r_min, r_max));
+    }
+    // Rows are samples of one motion: a jump between two of them (a wrong sign, a lost
+    // digit) would make the receiver faster than anything that carries one.
+    if (positions.size() >= 2) {
+      const double dt = times.back() - times[times.size() - 2];
+      const double speed = (positions.back() - positions[positions.size() - 2]).norm() / dt;
+      if (!(speed <= kMaxSpeed_mps))
+        fail(line_no, fmt::format("the position moves {:.6g} m in {:g} s from the previous row ({:.4g} m/s), faster "
+                                  "than {:g} m/s",
+                                  (positions.back() - positions[positions.size() - 2]).norm(), dt, speed,
+                                  kMaxSpeed_mps));
     }
     if (has_att) {
       Eigen::Vector3d e(v[4] * kDeg, v[5] * kDeg, v[6] * kDeg);

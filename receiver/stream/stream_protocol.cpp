@@ -133,6 +133,11 @@ StreamHeader decode_header(std::span<const std::byte, kHeaderBytes> bytes) {
   h.start_sample_index = get<std::int64_t>(b + 32);
   if (h.start_sample_index < 0)
     throw ProtocolError(fmt::format("stream header: start sample index {} is negative", h.start_sample_index));
+  // Sample indices become times as doubles: past 2^53 they no longer hold whole samples
+  // (and 2^53 samples are 71 years at 4 Msps).
+  if (h.start_sample_index > kMaxSampleIndex)
+    throw ProtocolError(fmt::format("stream header: start sample index {} is beyond 2^53 ({})", h.start_sample_index,
+                                    kMaxSampleIndex));
   if ((flags & kHeaderFlagGpsTime) != 0) {
     const auto week = get<std::int32_t>(b + 40);
     const auto sow = get<double>(b + 48);
@@ -168,6 +173,23 @@ FrameHeader decode_frame_header(std::span<const std::byte, kFrameHeaderBytes> by
   if (f.first_sample_index < header.start_sample_index)
     throw ProtocolError(fmt::format("frame {}: first sample index {} is before the stream's start {}", f.sequence,
                                     f.first_sample_index, header.start_sample_index));
+  // Frames 0 .. sequence - 1 came before this one, each with at least one sample and at
+  // most the header's maximum payload: so the sequence number bounds where this frame can
+  // start, and a sequence number or sample index beyond that is corrupt (it would make the
+  // client declare 2^63 frames lost, or wait for 10^15 samples).
+  const std::int64_t offset = f.first_sample_index - header.start_sample_index;
+  const auto max_samples = static_cast<std::uint64_t>(header.max_payload_bytes / bps);
+  if (f.sequence > static_cast<std::uint64_t>(offset))
+    throw ProtocolError(fmt::format("frame {}: sequence number {} is beyond what its first sample index {} allows "
+                                    "(at most {}: every earlier frame carries at least one sample from the start {})",
+                                    f.sequence, f.sequence, f.first_sample_index, offset, header.start_sample_index));
+  if ((static_cast<std::uint64_t>(offset) + max_samples - 1) / max_samples > f.sequence ||
+      f.first_sample_index > kMaxSampleIndex)
+    throw ProtocolError(fmt::format("frame {}: first sample index {} is beyond what its sequence number allows (at "
+                                    "most the start {} + {} earlier frames x {} samples of a maximum payload, and at "
+                                    "most 2^53)",
+                                    f.sequence, f.first_sample_index, header.start_sample_index, f.sequence,
+                                    max_samples));
   return f;
 }
 

@@ -34,6 +34,8 @@ constexpr std::size_t kRequestBytes = 16;
 /// No frame payload may exceed this, whatever the header announces (bounds the memory a
 /// corrupt length field can make a client allocate).
 constexpr std::uint32_t kMaxPayloadLimit = 1u << 20;
+/// No sample index may exceed this (2^53: the last a double holds exactly).
+constexpr std::int64_t kMaxSampleIndex = std::int64_t{1} << 53;
 
 /// A violation of the protocol: the message names the field and what was expected.
 struct ProtocolError : std::runtime_error {
@@ -69,7 +71,10 @@ std::array<std::byte, kRequestBytes> encode(const ClientRequest& request);
 /// Each decoder validates every field (magic, version, lengths, enumerations, finite
 /// positive rates, flags) and throws ProtocolError naming the first bad one.
 StreamHeader decode_header(std::span<const std::byte, kHeaderBytes> bytes);
-/// `header` bounds the payload length and requires whole samples.
+/// `header` bounds the payload length and requires whole samples; with the sequence number
+/// it bounds the first sample index: start + sequence <= index <= start + sequence x the
+/// samples of a maximum payload (a session's frames are numbered 0, 1, ... and each carries
+/// 1 to that many samples, the lost ones of a datagram stream included).
 FrameHeader decode_frame_header(std::span<const std::byte, kFrameHeaderBytes> bytes, const StreamHeader& header);
 ClientRequest decode_request(std::span<const std::byte, kRequestBytes> bytes);
 

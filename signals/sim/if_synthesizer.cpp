@@ -9,7 +9,9 @@
 #include <complex>
 #include <filesystem>
 #include <fstream>
+#include <exception>
 #include <stdexcept>
+#include <system_error>
 #include <thread>
 
 #include "ins/frames.hpp"
@@ -227,6 +229,28 @@ struct IfSynthesizer::Impl {
     return b;
   }
 
+  /// Every satellite's code must advance at the chipping rate give or take the Doppler of
+  /// a physical range rate over the epoch k (1 ms) from boundary a to b. Anything else
+  /// (an orbit from absurd broadcast values, a trajectory that jumps) is an error naming
+  /// the satellite and time, before the signal kernels see it.
+  void check_signal_rates(std::int64_t k, const BoundaryState& a, const BoundaryState& b) const {
+    // Faster than anything that carries a GPS receiver, LEO satellites included, plus the
+    // satellite's own motion: 20 km/s on the line of sight.
+    // The receiver clock's drift scales the code rate as a range rate would.
+    constexpr double kMaxRangeRate_mps = 2.0e4;
+    const double limit_mps = kMaxRangeRate_mps + gps::kSpeedOfLight_mps * std::abs(a.rx.clock_drift_sps);
+    for (std::size_t s = 0; s < runs.size(); ++s) {
+      const double chips_per_ms = b.sats[s].code_chips - a.sats[s].code_chips;
+      const double range_rate_mps = (1.0 - chips_per_ms / 1023.0) * gps::kSpeedOfLight_mps;
+      if (std::isfinite(range_rate_mps) && std::abs(range_rate_mps) <= limit_mps) continue;
+      throw std::runtime_error(fmt::format(
+          "synthesizer: PRN {} at t = {:.3f} s: the signal implies a range rate of {:.4g} m/s (the code advanced {:.6g} "
+          "chips in 1 ms), beyond {:g} m/s: check the scenario's navigation file ({}, PRN {}) and trajectory ({})",
+          runs[s].eph.prn, static_cast<double>(k) * 1e-3, range_rate_mps, chips_per_ms, limit_mps,
+          sc.nav_file, runs[s].eph.prn, trajectory->description()));
+    }
+  }
+
   /// Adds one path of satellite s over an epoch of n samples whose code and carrier phases
   /// go linearly from (code_a, carrier_a) to (code_b, carrier_b): segments split where the
   /// code period (and possibly the data bit) changes, each with that period's bit.
@@ -385,15 +409,42 @@ struct IfChunkGenerator::State {
         body(0, total);
         return;
       }
+      // A worker's exception, or a thread that cannot be started, ends the chunk with an
+      // error once every started worker has been joined (never std::terminate).
+      std::vector<std::exception_ptr> errors(static_cast<std::size_t>(workers));
       std::vector<std::thread> pool;
-      for (int w = 0; w < workers; ++w) {
-        pool.emplace_back([&, w] { body(total * w / workers, total * (w + 1) / workers); });
+      std::exception_ptr start_error;
+      for (int w = 1; w < workers; ++w) {
+        try {
+          pool.emplace_back([&, w] {
+            try {
+              body(total * w / workers, total * (w + 1) / workers);
+            } catch (...) {
+              errors[static_cast<std::size_t>(w)] = std::current_exception();
+            }
+          });
+        } catch (const std::system_error& e) {
+          start_error = std::make_exception_ptr(std::runtime_error(
+              fmt::format("cannot start synthesis thread {} of {}: {}", w + 1, workers, e.what())));
+          break;
+        }
+      }
+      if (!start_error) {
+        try {
+          body(0, total / workers);
+        } catch (...) {
+          errors[0] = std::current_exception();
+        }
       }
       for (auto& t : pool) t.join();
+      if (start_error) std::rethrow_exception(start_error);
+      for (const auto& e : errors)
+        if (e) std::rethrow_exception(e);
     };
     parallel_for(count + 1, [&](int a, int b) {
       for (int j = a; j < b; ++j) boundaries[j] = m.boundary(k0 + j, clocks[j], bias0);
     });
+    for (int j = 0; j < count; ++j) m.check_signal_rates(k0 + j, boundaries[j], boundaries[j + 1]);
     parallel_for(count, [&](int a, int b) {
       std::vector<float> scratch(static_cast<std::size_t>(n));
       for (int j = a; j < b; ++j) {

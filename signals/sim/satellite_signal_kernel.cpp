@@ -1,7 +1,10 @@
 #include "signals/sim/satellite_signal_kernel.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <complex>
+#include <stdexcept>
 
 namespace deepnav {
 namespace {
@@ -50,6 +53,14 @@ void mix_carrier(float* __restrict i_out, float* __restrict q_out, int n, const 
 void fill_code(float* out, int n, double chip0, double step, const CaCodeChips& code, float amplitude) {
   constexpr double kOne = 4294967296.0;  // 2^32
   constexpr std::uint64_t kPeriod = 1023ULL << 32;
+  // The accumulator below advances by at least one unit and by less than a code period per
+  // sample only for a step in [2^-32, 1023) chips: anything else (a NaN, zero or negative step,
+  // or one beyond a whole code per sample) would never reach the period end.
+  if (!(step * kOne >= 1.0 && step < 1023.0) || !(chip0 >= 0.0 && chip0 < 1023.0)) {
+    throw std::invalid_argument(fmt::format("signal kernel: code phase {} chips advancing {} chips per sample is "
+                                            "outside [0, 1023) chips and (0, 1023) chips per sample",
+                                            chip0, step));
+  }
   float levels[1023];
   for (int c = 0; c < 1023; ++c) levels[c] = amplitude * static_cast<float>(code[c]);
   std::uint64_t acc = static_cast<std::uint64_t>(chip0 * kOne);

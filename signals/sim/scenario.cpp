@@ -2,6 +2,8 @@
 #include "signals/data_path.hpp"
 
 #include "ins/imu_model.hpp"
+#include "ins/input_file.hpp"
+#include "ins/yaml_checks.hpp"
 #include "signals/sim/multipath_presets.hpp"
 
 #include <fmt/format.h>
@@ -9,6 +11,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <regex>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -18,30 +21,44 @@ namespace deepnav {
 namespace {
 
 constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+constexpr std::uintmax_t kMaxScenarioBytes = std::uintmax_t{16} << 20;  // a scenario is a page of YAML
 
 /// A YAML node together with its dotted path, so that every error names the field.
 class Field {
  public:
-  Field(YAML::Node node, std::string path, const std::string* origin) : node_(std::move(node)), path_(std::move(path)), origin_(origin) {}
+  Field(YAML::Node node, std::string path, const std::string* origin, YAML::Mark parent_mark = YAML::Mark::null_mark())
+      : node_(std::move(node)), path_(std::move(path)), origin_(origin), parent_mark_(parent_mark) {}
 
   [[noreturn]] void fail(const std::string& what) const {
-    const auto mark = node_.Mark();
+    // A key that is not there has no place of its own: its mapping's is the nearest.
+    const auto mark = node_.IsDefined() ? node_.Mark() : parent_mark_;
     const std::string where = mark.line >= 0 ? fmt::format("{}:{}", *origin_, mark.line + 1) : *origin_;
     throw std::invalid_argument(fmt::format("{}: field '{}': {}", where, path_, what));
   }
-  bool has(const std::string& key) const { return node_.IsMap() && node_[key].IsDefined() && !node_[key].IsNull(); }
-  Field operator[](const std::string& key) const {
-    return Field(node_[key], path_.empty() ? key : path_ + "." + key, origin_);
+  bool has(const std::string& key) const {
+    return is_map() && node_[key].IsDefined() && !node_[key].IsNull();
   }
-  Field at(std::size_t i) const { return Field(node_[i], fmt::format("{}[{}]", path_, i), origin_); }
-  std::size_t size() const { return node_.size(); }
-  bool is_map() const { return node_.IsMap(); }
-  bool is_sequence() const { return node_.IsSequence(); }
-  bool is_scalar() const { return node_.IsScalar(); }
+  Field operator[](const std::string& key) const {
+    if (!node_.IsDefined()) fail("missing required field");
+    return Field(node_[key], path_.empty() ? key : path_ + "." + key, origin_, node_.Mark());
+  }
+  Field at(std::size_t i) const {
+    if (!node_.IsDefined()) fail("missing required field");
+    return Field(node_[i], fmt::format("{}[{}]", path_, i), origin_, node_.Mark());
+  }
+  /// A value that must be there (yaml-cpp would otherwise throw "invalid node", naming
+  /// neither the file nor the field).
+  void require() const {
+    if (!node_.IsDefined() || node_.IsNull()) fail("missing required field");
+  }
+  std::size_t size() const { return node_.IsDefined() ? node_.size() : 0; }
+  bool is_map() const { return node_.IsDefined() && node_.IsMap(); }
+  bool is_sequence() const { return node_.IsDefined() && node_.IsSequence(); }
+  bool is_scalar() const { return node_.IsDefined() && node_.IsScalar(); }
 
   /// Rejects keys that the schema does not know (typos would otherwise be ignored silently).
   void allow_only(std::initializer_list<const char*> keys) const {
-    if (!node_.IsMap()) fail("expected a mapping");
+    if (!is_map()) fail(node_.IsDefined() ? "expected a mapping" : "missing required field");
     const std::set<std::string> allowed(keys.begin(), keys.end());
     for (const auto& item : node_) {
       const auto key = item.first.as<std::string>();
@@ -54,6 +71,7 @@ class Field {
   }
 
   double number() const {
+    require();
     if (!node_.IsScalar()) fail("expected a number");
     try {
       const double v = node_.as<double>();
@@ -75,10 +93,12 @@ class Field {
     return static_cast<long long>(v);
   }
   std::string text() const {
+    require();
     if (!node_.IsScalar()) fail("expected a string");
     return node_.Scalar();
   }
   bool boolean() const {
+    require();
     if (!node_.IsScalar()) fail("expected true or false");
     try {
       return node_.as<bool>();
@@ -87,6 +107,7 @@ class Field {
     }
   }
   std::vector<int> prn_list() const {
+    require();
     if (!node_.IsSequence()) fail("expected a list of PRNs");
     std::vector<int> prns;
     for (std::size_t i = 0; i < size(); ++i) prns.push_back(static_cast<int>(at(i).integer_in(1, 32)));
@@ -97,6 +118,7 @@ class Field {
   YAML::Node node_;
   std::string path_;
   const std::string* origin_;
+  YAML::Mark parent_mark_;
 };
 
 /// start_time: "YYYY-MM-DDThh:mm:ss" (GPS time scale) or {week: W, sow: S}.
@@ -105,16 +127,23 @@ GpsTime parse_start_time(const Field& f) {
     f.allow_only({"week", "sow"});
     return GpsTime::normalized(static_cast<int>(f["week"].integer_in(0, 10000)), f["sow"].number_in(0, kSecondsPerWeek - 1e-9));
   }
-  CalendarTime c;
   const std::string s = f.text();
-  char t_sep = 0;
-  std::istringstream in(s);
-  char d1 = 0, d2 = 0, c1 = 0, c2 = 0;
-  in >> c.year >> d1 >> c.month >> d2 >> c.day >> t_sep >> c.hour >> c1 >> c.minute >> c2 >> c.second;
-  if (!in || d1 != '-' || d2 != '-' || (t_sep != 'T' && t_sep != ' ') || c1 != ':' || c2 != ':' || c.month < 1 ||
-      c.month > 12 || c.day < 1 || c.day > 31 || c.hour > 23 || c.minute > 59 || c.second >= 60.0 || c.year < 1980)
-    f.fail("expected a GPS time like \"2022-01-01T02:00:00\" or {week: 2190, sow: 525600}, got '" + s + "'");
-  return gps_time_from_calendar(c);
+  // Exactly "YYYY-MM-DDThh:mm:ss[.fff]" (or a space for the T): no signs, no trailing text.
+  static const std::regex kIso(R"((\d{4})-(\d{2})-(\d{2})[T ](\d{2}):(\d{2}):(\d{2}(\.\d+)?))");
+  std::smatch m;
+  const std::string expected = "expected a GPS time like \"2022-01-01T02:00:00\" or {week: 2190, sow: 525600}";
+  if (!std::regex_match(s, m, kIso)) f.fail(expected + ", got '" + s + "'");
+  CalendarTime c;
+  c.year = std::stoi(m[1]);
+  c.month = std::stoi(m[2]);
+  c.day = std::stoi(m[3]);
+  c.hour = std::stoi(m[4]);
+  c.minute = std::stoi(m[5]);
+  c.second = std::stod(m[6]);
+  if (!is_valid_calendar(c)) f.fail("'" + s + "' is not a real date and time (" + expected.substr(9) + ")");
+  const GpsTime t = gps_time_from_calendar(c);
+  if (t.week < 0) f.fail("'" + s + "' is before the GPS epoch (1980-01-06)");
+  return t;
 }
 
 TrajectorySpec parse_trajectory(const Field& f, const std::string& base_dir, const std::string& search_root) {
@@ -420,6 +449,7 @@ Scenario parse_scenario(const std::string& yaml_text, const std::string& origin,
   }
   const Field f(root, "", &origin);
   if (!root.IsMap()) throw std::invalid_argument(origin + ": expected a scenario mapping at the top level");
+  check_unique_keys(root, origin);
   f.allow_only({"name", "start_time", "duration_s", "sample_rate_hz", "if_hz", "format", "adc", "nav_file",
                 "trajectory", "elevation_mask_deg", "prns", "max_satellites", "cn0", "receiver_clock", "ionosphere",
                 "troposphere", "errors", "seed", "jammers", "outages", "imu", "truth_rate_hz", "sat_truth_rate_hz"});
@@ -514,6 +544,11 @@ void validate_scenario(const Scenario& s) {
 }
 
 Scenario load_scenario(const std::string& path, const std::string& search_root) {
+  try {
+    check_input_file(path, "scenario file", kMaxScenarioBytes);
+  } catch (const std::runtime_error& e) {
+    throw std::invalid_argument(e.what());
+  }
   std::ifstream in(path);
   if (!in) throw std::invalid_argument("cannot open scenario file '" + path + "'");
   std::stringstream text;

@@ -72,3 +72,26 @@ TEST(SampleClock, TimeFromIndexWithoutAccumulation) {
 
 }  // namespace
 }  // namespace deepnav
+
+namespace deepnav {
+namespace {
+
+TEST(GpsTime, CalendarValidity) {
+  EXPECT_EQ(days_in_month(2022, 2), 28);
+  EXPECT_EQ(days_in_month(2024, 2), 29);
+  EXPECT_EQ(days_in_month(2000, 2), 29);
+  EXPECT_EQ(days_in_month(2100, 2), 28);
+  EXPECT_EQ(days_in_month(2022, 4), 30);
+  EXPECT_EQ(days_in_month(2022, 13), 0);
+  EXPECT_TRUE(is_valid_calendar(CalendarTime{2022, 1, 1, 2, 0, 0.0}));
+  EXPECT_TRUE(is_valid_calendar(CalendarTime{2024, 2, 29, 23, 59, 59.5}));
+  EXPECT_FALSE(is_valid_calendar(CalendarTime{2022, 2, 31, 0, 0, 0.0}));
+  EXPECT_FALSE(is_valid_calendar(CalendarTime{2022, 2, 29, 0, 0, 0.0}));
+  EXPECT_FALSE(is_valid_calendar(CalendarTime{2022, 1, 1, -3, 0, 0.0}));
+  EXPECT_FALSE(is_valid_calendar(CalendarTime{2022, 1, 1, 0, 60, 0.0}));
+  EXPECT_FALSE(is_valid_calendar(CalendarTime{2022, 1, 1, 0, 0, 60.0}));
+  EXPECT_FALSE(is_valid_calendar(CalendarTime{2022, 0, 1, 0, 0, 0.0}));
+}
+
+}  // namespace
+}  // namespace deepnav

@@ -123,3 +123,40 @@ TEST(ImuFile, BadInputNamesTheLine) {
 
 }  // namespace
 }  // namespace deepnav
+
+namespace deepnav {
+namespace {
+
+TEST(ImuFile, SamplesBeyondAnySensorsRangeAreErrors) {
+  // One increment of dv = 1e100 m/s (or 1e8) in 10 ms: no accelerometer measures that; the
+  // sample once drove the aided filter to "valid" fixes 1e8 m up, or to a failure that named
+  // no file. The error names the file, line and column.
+  const std::string rows = "# sample_rate_hz=100\n" + kHeader + "0.01,0,0,0,0,0,-0.098\n";
+  for (const auto& [dv, shown] : std::vector<std::pair<std::string, std::string>>{
+           {"1e100", "1e+100"}, {"1e8", "1e+08"}, {"-200", "-200"}}) {
+    const auto path = write_text("spike.csv", rows + "0.02,0,0,0," + dv + ",0,-0.098\n0.03,0,0,0,0,0,-0.098\n");
+    const std::string e = read_error(path);
+    EXPECT_NE(e.find("spike.csv:4: column 'dv_x_mps': " + shown + " over 0.01 s is a specific force of"),
+              std::string::npos)
+        << e;
+    EXPECT_NE(e.find("beyond any accelerometer's range"), std::string::npos) << e;
+  }
+  const auto gyro = write_text("gyro.csv", rows + "0.02,5,0,0,0,0,-0.098\n");
+  EXPECT_NE(read_error(gyro).find("column 'dtheta_x_rad': 5 over 0.01 s is an angular rate of 500 rad/s"),
+            std::string::npos)
+      << read_error(gyro);
+  const auto rate = write_text("rate.csv", "t_s,wx_radps,wy_radps,wz_radps,fx_mps2,fy_mps2,fz_mps2\n0.01,0,0,0,0,0,-9.8\n"
+                                           "0.02,0,0,0,0,0,-2e4\n");
+  EXPECT_NE(read_error(rate).find("column 'fz_mps2': -20000 is beyond any accelerometer's range"), std::string::npos)
+      << read_error(rate);
+  // 100 g for 10 ms and 1000 deg/s are within what sensors measure.
+  const auto ok = write_text("ok.csv", rows + "0.02,0.17,0,0,9.8,0,-0.098\n");
+  EXPECT_EQ(read_error(ok), "");
+}
+
+TEST(ImuFile, NotARegularFileIsAnError) {
+  EXPECT_NE(read_error("/dev/zero").find("IMU file '/dev/zero' is a device"), std::string::npos) << read_error("/dev/zero");
+}
+
+}  // namespace
+}  // namespace deepnav

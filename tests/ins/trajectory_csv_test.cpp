@@ -91,5 +91,38 @@ TEST(TrajectoryCsv, BadInputNamesTheLine) {
   EXPECT_THROW(ok->at(3.5), std::out_of_range);
 }
 
+TEST(TrajectoryCsv, JumpsAndPositionsNoReceiverCanHaveAreErrors) {
+  // The reproducer: latitude 37.5 to -37.5 deg between two rows 10 ms apart (the
+  // synthesizer once spun forever on the range rate that made).
+  const std::string repro = std::string(DEEPNAV_SOURCE_DIR) + "/tests/data/repro/traj_teleport.csv";
+  try {
+    load_csv_trajectory(repro);
+    ADD_FAILURE() << "no error";
+  } catch (const std::runtime_error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("traj_teleport.csv:7: the position moves"), std::string::npos) << m;
+    EXPECT_NE(m.find("faster than 12000 m/s"), std::string::npos) << m;
+  }
+  const std::string h = "t_s,lat_deg,lon_deg,height_m\n";
+  const std::string e = "t_s,x_ecef_m,y_ecef_m,z_ecef_m\n";
+  for (const auto& [text, fragment] : std::vector<std::pair<std::string, std::string>>{
+           {h + "0,1,2,3\n1,1,2,3\n2,1,2,1e9\n3,1,2,3\n", ":4: height_m 1e+09 is outside [-12000, 1e+08] m"},
+           {h + "0,1,2,3\n1,1,2,3\n2,1,2,-20000\n3,1,2,3\n", ":4: height_m -20000 is outside"},
+           {e + "0,0,0,0\n1,0,0,0\n2,0,0,0\n3,0,0,0\n", ":2: position is 0 m from the Earth's centre"},
+           {h + "0,1,2,3\n1,1,2.2,3\n2,1,2,3\n3,1,2,3\n", ":3: the position moves"}}) {
+    try {
+      load_csv_trajectory(write_file("bad_motion", text));
+      ADD_FAILURE() << fragment << ": no error";
+    } catch (const std::runtime_error& err) {
+      EXPECT_NE(std::string(err.what()).find(fragment), std::string::npos) << err.what();
+    }
+  }
+  // An airliner (250 m/s) and a LEO satellite (7.7 km/s) are fine.
+  EXPECT_NO_THROW(load_csv_trajectory(write_file("fast", h + "0,0,0,10000\n1,0,0.00225,10000\n2,0,0.0045,10000\n"
+                                                              "3,0,0.00675,10000\n")));
+  EXPECT_NO_THROW(load_csv_trajectory(write_file("leo", h + "0,0,0,400000\n1,0,0.06,400000\n2,0,0.12,400000\n"
+                                                             "3,0,0.18,400000\n")));
+}
+
 }  // namespace
 }  // namespace deepnav

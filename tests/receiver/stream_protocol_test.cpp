@@ -2,6 +2,7 @@
 // ProtocolError naming the field, and the incremental parser survives random input.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <random>
 
 #include "receiver/frame_sequencer.hpp"
@@ -61,10 +62,10 @@ TEST(StreamProtocol, HeaderFrameAndRequestRoundTrip) {
   EXPECT_EQ(d.start_time->week, 2190);
   EXPECT_EQ(d.start_time->sow, 525600.5);
   EXPECT_EQ(d.max_payload_bytes, 4096u);
-  const FrameHeader f{77, 123456789, 4000, false};
+  const FrameHeader f{77, 4096 + 77 * 1000, 4000, false};
   const FrameHeader g = decode_frame_header(encode(f), h);
   EXPECT_EQ(g.sequence, 77u);
-  EXPECT_EQ(g.first_sample_index, 123456789);
+  EXPECT_EQ(g.first_sample_index, 4096 + 77 * 1000);
   EXPECT_EQ(g.payload_bytes, 4000u);
   const ClientRequest r = decode_request(encode(ClientRequest{987654321, true}));
   EXPECT_EQ(r.resume_from_sample, 987654321);
@@ -106,6 +107,33 @@ TEST(StreamProtocol, BadFramesAreClearErrors) {
     parser.feed(std::as_bytes(std::span<const char>(garbage.data(), garbage.size())), frames);
   });
   EXPECT_NE(e.find("magic is \"GET \", expected \"DNIF\""), std::string::npos) << e;
+}
+
+TEST(StreamProtocol, SequenceNumberAndSampleIndexBoundEachOther) {
+  // Frames of a session carry 1 to 1024 samples each (4096-byte payloads of ishort) from
+  // sample 4096: frame n starts between 4096 + n and 4096 + 1024 n.
+  const StreamHeader h = test_header();
+  EXPECT_EQ(error_of([&] { decode_frame_header(encode(FrameHeader{10, 4096 + 10, 4, false}), h); }), "");
+  EXPECT_EQ(error_of([&] { decode_frame_header(encode(FrameHeader{10, 4096 + 10240, 4, false}), h); }), "");
+  EXPECT_EQ(error_of([&] { decode_frame_header(encode(FrameHeader{0, 4096, 4, false}), h); }), "");
+  // A sequence number of 2^63 (the loss accounting would count 9e18 frames lost).
+  const std::string seq = error_of([&] { decode_frame_header(encode(FrameHeader{1ULL << 63, 1000000, 4, false}), h); });
+  EXPECT_NE(seq.find("sequence number 9223372036854775808 is beyond what its first sample index 1000000 allows"),
+            std::string::npos) << seq;
+  EXPECT_NE(error_of([&] { decode_frame_header(encode(FrameHeader{11, 4096 + 10, 4, false}), h); }).find("sequence number"),
+            std::string::npos);
+  // A sample index 1e15 ahead of what 500 frames can carry (the receiver would wait for it).
+  const std::string idx =
+      error_of([&] { decode_frame_header(encode(FrameHeader{500, 1000000000000000 + 500 * 1024, 4, false}), h); });
+  EXPECT_NE(idx.find("first sample index 1000000000512000 is beyond what its sequence number allows"),
+            std::string::npos) << idx;
+  EXPECT_NE(error_of([&] { decode_frame_header(encode(FrameHeader{10, 4096 + 10241, 4, false}), h); }).find("beyond"),
+            std::string::npos);
+  // Start indices past 2^53 are no longer whole samples as doubles.
+  StreamHeader late = h;
+  late.start_sample_index = std::int64_t{1} << 62;
+  EXPECT_NE(error_of([&] { decode_header(encode(late)); }).find("start sample index 4611686018427387904 is beyond 2^53"),
+            std::string::npos);
 }
 
 TEST(StreamProtocol, ParserReassemblesAnySplit) {
@@ -188,6 +216,24 @@ TEST(FrameSequencer, ClassifiesLostDuplicatedReorderedAndLateFrames) {
   EXPECT_EQ(seq.duplicated(), 1);  // the second 2
   EXPECT_EQ(seq.late(), 1);        // 5 after being declared lost
   EXPECT_EQ(seq.lost(), 1);
+}
+
+TEST(FrameSequencer, HugeJumpIsOneLostRangeInBoundedTime) {
+  // 2^62 numbers declared lost at once: reported as one range, remembered only as far as a
+  // late frame can be told apart (not one step per number, which would never end).
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> lost;
+  FrameSequencer seq(
+      4, [](Frame&&) {}, [&](std::uint64_t a, std::uint64_t b) { lost.emplace_back(a, b); });
+  const auto start = std::chrono::steady_clock::now();
+  for (std::uint64_t s : {std::uint64_t{0}, std::uint64_t{1} << 62}) {
+    Frame f;
+    f.header.sequence = s;
+    seq.add(std::move(f));
+  }
+  seq.flush();
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(2));
+  EXPECT_EQ(lost, (std::vector<std::pair<std::uint64_t, std::uint64_t>>{{1, (std::uint64_t{1} << 62) - 1}}));
+  EXPECT_EQ(seq.lost(), (std::int64_t{1} << 62) - 1);
 }
 
 }  // namespace

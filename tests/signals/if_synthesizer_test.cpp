@@ -320,5 +320,28 @@ TEST(IfSynthesizer, UnwritableOutputFolderIsAnErrorAndLeavesNothing) {
   std::filesystem::remove(blocker);
 }
 
+TEST(IfSynthesizer, AbsurdRangeRateIsAnErrorNamingTheSatellite) {
+  // An orbit no navigation file reader would pass (delta n = 1.23e19 rad/s, as in a corrupt
+  // file): the synthesizer stops with the PRN and time instead of spinning in the code fill.
+  const Scenario sc = short_scenario(0.01, SampleFormat::ibyte, 4);
+  NavData nav = read_rinex_nav(sc.nav_file);
+  for (Ephemeris& e : nav.ephemerides) e.delta_n_radps = 1.23456789012e19;
+  const auto dir = fresh_dir("absurd");
+  try {
+    IfSynthesizer(sc, nav).run(dir.string(), SynthesisOptions{});
+    FAIL() << "no error";
+  } catch (const std::runtime_error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("synthesizer: PRN "), std::string::npos) << m;
+    EXPECT_NE(m.find("at t = 0.000 s: the signal implies a range rate of"), std::string::npos) << m;
+    EXPECT_NE(m.find("brdc0010.22n, PRN "), std::string::npos) << m;
+  }
+  for (int threads : {1, 3}) {  // an error inside a worker thread too
+    SynthesisOptions o;
+    o.threads = static_cast<unsigned>(threads);
+    EXPECT_THROW(IfSynthesizer(sc, nav).run(fresh_dir("absurd_threads").string(), o), std::runtime_error);
+  }
+}
+
 }  // namespace
 }  // namespace deepnav

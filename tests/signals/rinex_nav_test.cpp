@@ -1,5 +1,6 @@
 #include "signals/rinex_nav.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -502,6 +503,60 @@ TEST(RinexNavErrors, RandomMutationsNeverCrash) {
   }
   EXPECT_GT(errors, 200);
   EXPECT_GT(parsed, 30);
+}
+
+std::string repro(const std::string& name) { return std::string(DEEPNAV_SOURCE_DIR) + "/tests/data/repro/" + name; }
+
+std::string file_error(const std::string& path) {
+  try {
+    read_rinex_nav(path);
+  } catch (const std::runtime_error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(RinexNavErrors, FieldsNoSatelliteCanBroadcastNameLineSatelliteAndField) {
+  // Finite but absurd values (the reproducers: one field each) used to pass, to hang the
+  // synthesizer (range rates of 1e19) or to fail later with a message naming no file.
+  struct Case {
+    const char* file;
+    const char* fragment;
+  };
+  for (const Case& c : std::vector<Case>{
+           {"nav_prn2_deltan_1.23e19.22n", "nav_prn2_deltan_1.23e19.22n:10: PRN 2 (record at line 9), broadcast orbit "
+                                           "line 1, field 3: delta n = 1.23457e+19 rad/s is outside [-1.1"},
+           {"nav_prn5_cuc_1e29.22n", "nav_prn5_cuc_1e29.22n:11: PRN 5 (record at line 9), broadcast orbit line 2, "
+                                     "field 1: Cuc = 1e+29 rad is outside"},
+           {"nav_af0_1e300.22n", "nav_af0_1e300.22n:9: PRN 1 (record at line 9), epoch line, clock field 1: af0 = "
+                                 "1e+300 s is outside [-0.00097656"},
+           {"nav_ion_alpha_1e301.22n", "nav_ion_alpha_1e301.22n:4: ION ALPHA: alpha0 = 1e+300 is outside"},
+           {"nav_epoch_feb31.22n", "nav_epoch_feb31.22n:9: epoch line, day (columns 9-11): 2022-02-31 is not a date "
+                                   "(2022-02 has 28 days)"}}) {
+    const std::string e = file_error(repro(c.file));
+    EXPECT_NE(e.find(c.fragment), std::string::npos) << c.file << ": " << e;
+  }
+  // The real file's values all lie inside (every LNAV field's range).
+  EXPECT_EQ(file_error(kBrdcPath), "");
+}
+
+TEST(RinexNavErrors, EveryBroadcastFieldIsChecked) {
+  // Replace one orbit field of the first record at a time by 1e10 (far beyond any field's
+  // range): each is rejected, naming its line and field.
+  const auto lines = split_lines(brdc_head(16));
+  int rejected = 0;
+  for (int orbit_line = 1; orbit_line <= 6; ++orbit_line) {
+    for (int field = 0; field < 4; ++field) {
+      auto edited = lines;
+      std::string& l = edited[static_cast<std::size_t>(8 + orbit_line)];
+      l.replace(static_cast<std::size_t>(3 + 19 * field), 19, " 0.100000000000D+11");
+      const std::string e = error_of(join_lines(edited));
+      if (e.find(fmt::format("broadcast orbit line {}, field {}:", orbit_line, field + 1)) != std::string::npos) ++rejected;
+    }
+  }
+  // Lines 1-4 but IODE, e and toe (their own checks come first), and IDOT and TGD of lines
+  // 5 and 6; the other fields there are integers with their own checks, and URA.
+  EXPECT_EQ(rejected, 15);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 namespace deepnav {
@@ -62,6 +63,24 @@ TEST(SatelliteSignalKernel, AddsToExistingSamplesAndHandlesShortTail) {
       EXPECT_NEAR(q[k], rq[k], 1e-5) << n << " " << k;
     }
   }
+}
+
+TEST(SatelliteSignalKernel, StepsThatCouldNeverReachTheCodeEndAreErrors) {
+  // A code step of zero, NaN, a negative one, or one of a whole code period per sample or
+  // more (an absurd range rate) once made the code fill loop spin forever.
+  for (double step : {0.0, -0.25, std::nan(""), 1023.0, 1e30, 1e-12}) {
+    SignalSegment s;
+    s.code_step_chips = step;
+    s.amplitude = 1.0f;
+    std::vector<float> i(64), q(64), scratch(64);
+    EXPECT_THROW(add_satellite_segment(i.data(), q.data(), 64, s, ca_code_chips(1), scratch.data()), std::invalid_argument)
+        << step;
+  }
+  SignalSegment s;
+  s.code_step_chips = 0.25;
+  s.code_phase_chips = std::nan("");
+  std::vector<float> i(64), q(64), scratch(64);
+  EXPECT_THROW(add_satellite_segment(i.data(), q.data(), 64, s, ca_code_chips(1), scratch.data()), std::invalid_argument);
 }
 
 }  // namespace

@@ -260,5 +260,30 @@ TEST(Scenario, MissingFileIsReported) {
   EXPECT_THROW(load_scenario("/nonexistent/scenario.yaml"), std::invalid_argument);
 }
 
+TEST(Scenario, ImpossibleStartTimesAreErrors) {
+  // Accepted before: Feb 31 (read as Mar 3), a negative hour, trailing text.
+  for (const char* bad : {"2022-02-31T02:00:00", "2022-01-01T-3:00:00", "2021-02-29T00:00:00", "2022-01-01T24:00:00",
+                          "2022-01-01T02:00:00junk", "2022-1-1T02:00:00", "1979-12-31T00:00:00", "2022-01-01T02:60:00"}) {
+    expect_error(std::string("start_time: \"") + bad + "\"\nduration_s: 1\n", {"test.yaml:1", "start_time", bad});
+  }
+  EXPECT_EQ(parse("start_time: \"2024-02-29T23:59:59.5\"\nduration_s: 1\n").start_time.week, 2303);
+  EXPECT_EQ(parse("start_time: \"2022-01-01 02:00:00\"\nduration_s: 1\n").start_time.week, 2190);
+}
+
+TEST(Scenario, DuplicateKeysAreErrors) {
+  expect_error(std::string(kMinimal) + "duration_s: 20\n", {"test.yaml:3: key 'duration_s' appears twice", "lines 2 and 3"});
+  expect_error(std::string(kMinimal) + "cn0: {dbhz: 40, dbhz: 45}\n", {"key 'dbhz' appears twice"});
+}
+
+TEST(Scenario, NotARegularFileIsAnErrorAtOnce) {
+  // /dev/zero used to be read until memory ran out.
+  try {
+    load_scenario("/dev/zero");
+    FAIL() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("scenario file '/dev/zero' is a device"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace deepnav

@@ -1,0 +1,41 @@
+#pragma once
+// A fixed set of worker threads taking posted tasks in order. Unlike a pool that starts
+// its threads inside a constructor it cannot unwind from, a thread that cannot be created
+// (a process or memory limit) is an error naming how many were asked for and how many
+// started: the threads already started are stopped and joined first, so nothing hangs.
+#include <condition_variable>
+#include <cstddef>
+#include <deque>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace deepnav {
+
+class WorkerThreads {
+ public:
+  /// Starts `count` threads; throws std::runtime_error, naming `what` (e.g. "channel
+  /// worker"), when one cannot be created.
+  WorkerThreads(std::size_t count, const char* what);
+  /// Finishes the tasks already posted, then joins every thread.
+  ~WorkerThreads();
+  WorkerThreads(const WorkerThreads&) = delete;
+  WorkerThreads& operator=(const WorkerThreads&) = delete;
+
+  /// Queues a task for the next free thread. Tasks must not throw (catch inside).
+  void post(std::function<void()> task);
+  std::size_t size() const { return threads_.size(); }
+
+ private:
+  void work();
+  void stop_and_join();
+
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::deque<std::function<void()>> tasks_;
+  bool stopping_ = false;
+  std::vector<std::thread> threads_;
+};
+
+}  // namespace deepnav

@@ -1,0 +1,15 @@
+#pragma once
+// CLI11 checks for numeric options. CLI::Range lets NaN through (every comparison with it is
+// false) and says nothing of infinities; these name the range and reject both.
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+namespace deepnav::cli {
+
+/// A finite number in [lo, hi] (in words: `what`, e.g. "a sample rate in Hz").
+CLI::Validator finite_in(double lo, double hi, const std::string& what = "a number");
+/// A finite number greater than lo and at most hi.
+CLI::Validator finite_above(double lo, double hi, const std::string& what = "a number");
+
+}  // namespace deepnav::cli
