@@ -60,6 +60,7 @@ nlohmann::json RecordedFusionReport::json() const {
           {"rows_rejected", rows_rejected},
           {"smoothing_restarts", smoothing_restarts},
           {"smoothing_slips", smoothing_slips},
+          {"smoothing_doppler_steps", smoothing_doppler_steps},
           {"ins_start", ins_start},
           {"ins_start_s", ins_start_t_s ? nlohmann::json(*ins_start_t_s) : nlohmann::json(nullptr)},
           {"seconds_in_mode", seconds_in_mode}};
@@ -165,7 +166,7 @@ void RecordedFusion::run(const std::vector<ProductSink*>& sinks) {
         code[o.prn] = *o.pseudorange_m;
         if (smoother) {
           const CarrierSmoother::Result r = smoother->add(o.prn, t, *o.pseudorange_m, o.carrier_phase_cycles,
-                                                          o.loss_of_lock, e.clock_jump_m != 0.0);
+                                                          o.doppler_hz, o.loss_of_lock, e.clock_jump_m);
           code[o.prn] = r.pseudorange_m;
           st.smoothing_epochs = r.epochs;
         }
@@ -321,6 +322,7 @@ void RecordedFusion::run(const std::vector<ProductSink*>& sinks) {
   if (smoother) {
     report_.smoothing_restarts = smoother->restarts();
     report_.smoothing_slips = smoother->slips();
+    report_.smoothing_doppler_steps = smoother->doppler_steps();
   }
   for (ProductSink* s : sinks) s->finish(nav_);
 }

@@ -98,7 +98,7 @@ struct RecordedFusionReport {
   int clock_jumps_followed = 0;
   int filter_restarts = 0;
   int rows_rejected = 0;
-  int smoothing_restarts = 0, smoothing_slips = 0;
+  int smoothing_restarts = 0, smoothing_slips = 0, smoothing_doppler_steps = 0;
   std::string ins_start;
   std::optional<double> ins_start_t_s;  ///< seconds since the first epoch
   std::map<std::string, double> seconds_in_mode;

@@ -30,7 +30,7 @@ struct FuseOptions {
   std::string imu_grade = "consumer-mems", imu_grades_file = "data/imu_grades.yaml";
   std::string reference, compare;
   bool zupt = true, smoothing = true;
-  double smoothing_window_s = 100.0;
+  double smoothing_window_s = 100.0, doppler_bridge_s = 1.0;
   double pseudorange_sigma_scale = 1.0, doppler_sigma_mps = 0.1;
   double elevation_mask_deg = 5.0;
   AtmosphereModels atmosphere;
@@ -131,6 +131,7 @@ void run_fuse(CLI::App& root, FuseOptions o) {
   c.doppler_sigma_mps = o.doppler_sigma_mps;
   c.carrier_smoothing = o.smoothing && o.smoothing_window_s > 0.0;
   c.smoothing.window_s = o.smoothing_window_s;
+  c.smoothing.max_doppler_bridge_s = o.doppler_bridge_s;
   c.stationarity.enabled = o.zupt;
 
   std::error_code ec;
@@ -301,6 +302,9 @@ const bool registered = register_command([](CommandParents& parents) {
   cmd->add_flag("--smoothing,!--no-smoothing", o->smoothing, "Carrier smoothing (Hatch filter) of the pseudoranges")
       ->default_str("true");
   cmd->add_option("--smoothing-window", o->smoothing_window_s, "Carrier smoothing window (s; restarts on loss of lock, slips, gaps)")
+      ->capture_default_str();
+  cmd->add_option("--doppler-bridge", o->doppler_bridge_s,
+                  "Carrier smoothing: longest phase break carried by the Dopplers instead of a restart (s; 0: none)")
       ->capture_default_str();
   cmd->add_option("--elevation-mask", o->elevation_mask_deg, "Elevation mask (deg)")->capture_default_str();
   add_atmosphere_options(*cmd, o->atmosphere);
