@@ -15,6 +15,8 @@ namespace {
 constexpr double kRestWindow_s = 5.0;
 constexpr double kRestSpeed_mps = 0.2;
 constexpr double kMovingSpeed_mps = 1.0;  ///< below this the direction of travel is too noisy for heading
+constexpr double kVelocityDifference_s = 1.0;  ///< the moving start's velocity difference spans at least this
+constexpr double kFixHistory_s = 3.0;
 
 /// Orthonormal triad of two vectors (first exact, second only in its plane).
 Eigen::Matrix3d triad(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
@@ -43,7 +45,8 @@ std::optional<InsStart> InsInitializer::add_fix(const GnssFix& fix) {
     if (speed < kRestSpeed_mps) start = at_rest(fix);
     if (!start && speed > kMovingSpeed_mps) start = moving(fix);
   }
-  previous_fix_ = fix;
+  fixes_.push_back(fix);
+  while (fixes_.size() > 1 && fix.t_s - fixes_.front().t_s > kFixHistory_s) fixes_.pop_front();
   return start;
 }
 
@@ -84,23 +87,26 @@ constexpr double kMaxTriadAngleMismatch_rad = 2.0 * M_PI / 180.0;
 }  // namespace
 
 std::optional<InsStart> InsInitializer::moving(const GnssFix& fix) const {
-  if (!previous_fix_ || fix.t_s - previous_fix_->t_s > 2.0 || fix.t_s <= previous_fix_->t_s) return std::nullopt;
+  // The latest fix at least a second before this one (and not more than two).
+  const GnssFix* previous = nullptr;
+  for (const GnssFix& f : fixes_)
+    if (fix.t_s - f.t_s >= kVelocityDifference_s - 1e-6 && fix.t_s - f.t_s <= 2.0) previous = &f;
+  if (previous == nullptr) return std::nullopt;
   const wgs84::Llh llh = wgs84::ecef_to_llh(fix.r_antenna_ecef_m);
   const Eigen::Vector3d v_n = ecef_to_ned_vector(llh, fix.v_antenna_ecef_mps);
   const Eigen::Vector3d a_n =
-      ecef_to_ned_vector(llh, fix.v_antenna_ecef_mps - previous_fix_->v_antenna_ecef_mps) / (fix.t_s - previous_fix_->t_s);
+      ecef_to_ned_vector(llh, fix.v_antenna_ecef_mps - previous->v_antenna_ecef_mps) / (fix.t_s - previous->t_s);
   const double g = wgs84::normal_gravity_mps2(llh.lat_rad, llh.height_m);
   const Eigen::Vector3d f_n = a_n - Eigen::Vector3d(0.0, 0.0, g);
-  // Mean specific force over the last second of IMU data, in body axes.
+  // Mean specific force over the same interval, in body axes.
   Eigen::Vector3d dv = Eigen::Vector3d::Zero();
   double span = 0.0;
-  for (auto it = recent_.rbegin(); it != recent_.rend() && span < 1.0; ++it) {
-    const auto next = std::next(it);
-    if (next == recent_.rend()) break;
-    dv += it->dv_b_mps;
-    span += it->t_s - next->t_s;
+  for (std::size_t k = 1; k < recent_.size(); ++k) {
+    if (recent_[k].t_s <= previous->t_s || recent_[k].t_s > fix.t_s + 1e-9) continue;
+    dv += recent_[k].dv_b_mps;
+    span += recent_[k].t_s - recent_[k - 1].t_s;
   }
-  if (span <= 0.0) return std::nullopt;
+  if (span < 0.5 * (fix.t_s - previous->t_s)) return std::nullopt;
   const Eigen::Vector3d f_b = dv / span;
   const Eigen::Vector3d v_b(v_n.norm(), 0.0, 0.0);
   // The two frames must agree on what TRIAD does not fit: the specific force's magnitude

@@ -3,7 +3,8 @@
 //  - at rest (GNSS speed below 0.2 m/s and the IMU passes the rest check over the last
 //    seconds): paper 000's two-step coarse alignment (levelling, then gyrocompassing);
 //  - moving: attitude from two vector pairs (TRIAD): the specific force, whose navigation-
-//    frame value a_n - g_n comes from the GNSS velocity change, and the direction of
+//    frame value a_n - g_n comes from the GNSS velocity change over about a second (the
+//    IMU's mean over the same interval gives the body-frame value), and the direction of
 //    travel, assumed along the body x axis (no sideslip). Level flight or driving gives
 //    roll/pitch to a few tenths of a degree and heading to about a degree; the filter
 //    refines both.
@@ -47,7 +48,9 @@ class InsInitializer {
   ImuErrorModel imu_;
   Eigen::Vector3d lever_b_m_;
   std::deque<ImuSample> recent_;
-  std::optional<GnssFix> previous_fix_;
+  /// The fixes of the last seconds: the moving start differences velocities about a second
+  /// apart whatever the fix rate (a 0.25 s difference at 4 Hz is four times noisier).
+  std::deque<GnssFix> fixes_;
 };
 
 }  // namespace deepnav::aiding

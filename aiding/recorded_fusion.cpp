@@ -58,6 +58,9 @@ nlohmann::json RecordedFusionReport::json() const {
           {"clock_jumps_followed", clock_jumps_followed},
           {"filter_restarts", filter_restarts},
           {"rows_rejected", rows_rejected},
+          {"smoothing_restarts", smoothing_restarts},
+          {"smoothing_slips", smoothing_slips},
+          {"smoothing_doppler_steps", smoothing_doppler_steps},
           {"ins_start", ins_start},
           {"ins_start_s", ins_start_t_s ? nlohmann::json(*ins_start_t_s) : nlohmann::json(nullptr)},
           {"seconds_in_mode", seconds_in_mode}};
@@ -124,6 +127,8 @@ void RecordedFusion::run(const std::vector<ProductSink*>& sinks) {
       (cfg_.imu.gyro.bias_sigma + cfg_.imu.gyro.bias_instability_sigma) < 0.5 * wgs84::kEarthRate_radps * std::cos(lat);
   const int leap = nav_.leap_seconds_valid ? nav_.utc.delta_t_ls : 18;
   const double interval = obs_.report.nominal_interval_s > 0.0 ? obs_.report.nominal_interval_s : 1.0;
+  std::optional<CarrierSmoother> smoother;
+  if (cfg_.carrier_smoothing) smoother.emplace(cfg_.smoothing, interval, gps::kL1Wavelength_m);
 
   for (const ObservationEpoch& e : obs_.epochs) {
     const double t = fusion_time_s(obs_, e.t);
@@ -138,7 +143,11 @@ void RecordedFusion::run(const std::vector<ProductSink*>& sinks) {
     ReceiverEpoch re;
     re.t_s = t - t_first;
     re.t_rx = e.t;
+    FusionEpochTrace trace;
+    trace.t_s = re.t_s;
+    trace.clock_jump_m = e.clock_jump_m;
     std::map<int, Ephemeris> ephemerides;
+    std::map<int, double> code;  // the pseudoranges the PVT and the filter take (smoothed or raw)
     std::vector<PseudorangeObservation> pvt_obs;
     bool dopplers = true;
     for (const GpsL1Observation& o : e.gps) {
@@ -150,15 +159,36 @@ void RecordedFusion::run(const std::vector<ProductSink*>& sinks) {
       c.cn0_dbhz = o.cn0_dbhz.value_or(0.0);
       c.after_gap = o.loss_of_lock;
       if (o.pseudorange_m) re.observations.push_back(c);
+      FusionSatelliteTrace st;
+      st.prn = o.prn;
+      st.cn0_dbhz = o.cn0_dbhz.value_or(0.0);
+      if (o.pseudorange_m) {
+        code[o.prn] = *o.pseudorange_m;
+        if (smoother) {
+          const CarrierSmoother::Result r = smoother->add(o.prn, t, *o.pseudorange_m, o.carrier_phase_cycles,
+                                                          o.doppler_hz, o.loss_of_lock, e.clock_jump_m);
+          code[o.prn] = r.pseudorange_m;
+          st.smoothing_epochs = r.epochs;
+        }
+      }
+      trace.satellites.push_back(st);
       const Ephemeris* eph = nav_.select(o.prn, e.t);
       if (eph == nullptr || !o.pseudorange_m) continue;
       ephemerides[o.prn] = *eph;
-      pvt_obs.push_back({o.prn, *o.pseudorange_m, o.doppler_hz.value_or(0.0), o.cn0_dbhz.value_or(40.0)});
+      pvt_obs.push_back({o.prn, code[o.prn], o.doppler_hz.value_or(0.0), o.cn0_dbhz.value_or(40.0)});
       dopplers = dopplers && o.doppler_hz.has_value();
     }
     re.channels_tracking = static_cast<int>(e.gps.size());
     re.pvt = solver.solve(e.t, pvt_obs, ephemerides, iono);
     if (re.pvt.valid) ++report_.fixes;
+    trace.pvt_valid = re.pvt.valid;
+    trace.pvt_satellites = static_cast<int>(re.pvt.used_prns.size());
+    const auto satellite_trace = [&](int prn) -> FusionSatelliteTrace& {
+      for (FusionSatelliteTrace& st : trace.satellites)
+        if (st.prn == prn) return st;
+      throw std::logic_error("no trace of PRN " + std::to_string(prn));
+    };
+    for (const auto& [prn, el] : re.pvt.elevation_rad) satellite_trace(prn).elevation_deg = el * 180.0 / M_PI;
 
     if (nav && e.clock_jump_m != 0.0) {
       nav->shift_clock_bias(e.clock_jump_m);
@@ -197,10 +227,13 @@ void RecordedFusion::run(const std::vector<ProductSink*>& sinks) {
       if (mode == NavMode::loose && re.pvt.valid) {
         const double h = std::max(1.0, re.pvt.dops.hdop * cfg_.pvt_position_sigma_scale_m / std::sqrt(2.0));
         const double v = std::max(1.5, re.pvt.dops.vdop * cfg_.pvt_position_sigma_scale_m);
-        const double vs = dopplers ? cfg_.pvt_velocity_sigma_mps : 100.0;
+        const double vh = dopplers ? re.pvt.dops.hdop * cfg_.doppler_sigma_mps / std::sqrt(2.0) : 100.0;
+        const double vv = dopplers ? re.pvt.dops.vdop * cfg_.doppler_sigma_mps : 100.0;
         const UpdateResult r = nav->update_position_velocity(re.pvt.r_ecef_m, re.pvt.v_ecef_mps, Eigen::Vector3d(h, h, v),
-                                                             Eigen::Vector3d::Constant(vs), dt, dt);
+                                                             Eigen::Vector3d(vh, vh, vv), dt, dt);
         report_.rows_rejected += r.rejected;
+        trace.rows += r.rows;
+        trace.rows_rejected += r.rejected;
         filter_satellites = static_cast<int>(re.pvt.used_prns.size());
       }
       if (mode == NavMode::tight) {
@@ -214,26 +247,45 @@ void RecordedFusion::run(const std::vector<ProductSink*>& sinks) {
           m.time_offset_s = dt;
           m.geometry = predict_range(eph->second, e.t, bias, nav->antenna_ecef_at(t), nav->antenna_velocity_ecef_mps(), iono,
                                      cfg_.atmosphere);
+          FusionSatelliteTrace& st = satellite_trace(o.prn);
+          st.elevation_deg = m.geometry.elevation_rad * 180.0 / M_PI;
           if (m.geometry.elevation_rad < cfg_.pvt.elevation_mask_rad) continue;
-          m.pseudorange_m = o.pseudorange_m;
+          m.pseudorange_m = code.at(o.prn);
           m.pseudorange_sigma_m = cfg_.pseudorange_sigma_scale *
                                   std::sqrt(cfg_.pvt.range_errors.pseudorange_variance_m2(m.geometry.elevation_rad,
                                                                                           o.cn0_dbhz.value_or(40.0)));
+          st.code_residual_m = *m.pseudorange_m - m.geometry.pseudorange_m(bias);
           if (o.doppler_hz) {
             m.rate_mps = -gps::kL1Wavelength_m * *o.doppler_hz;
             m.rate_sigma_mps = cfg_.doppler_sigma_mps;
+            st.rate_residual_mps = *m.rate_mps - m.geometry.pseudorange_rate_mps(nav->antenna_velocity_ecef_mps(),
+                                                                                  nav->clock_drift_mps());
           }
           rows.push_back(m);
         }
         if (!rows.empty()) {
           const UpdateResult r = nav->update_ranges(rows);
           report_.rows_rejected += r.rejected;
+          trace.rows += r.rows;
+          trace.rows_rejected += r.rejected;
+          // The rows in order: each measurement's pseudorange row, then its rate row.
+          std::size_t k = 0;
+          for (const RangeMeasurement& m : rows) {
+            FusionSatelliteTrace& st = satellite_trace(m.prn);
+            if (m.pseudorange_m && k < r.normalized_innovations.size()) {
+              st.code_normalized = -r.normalized_innovations[k];
+              st.code_rejected = r.row_rejected[k];
+              ++k;
+            }
+            if (m.rate_mps && k < r.row_rejected.size()) st.rate_rejected = r.row_rejected[k++];
+          }
         }
         filter_satellites = static_cast<int>(rows.size());
       }
       if (still.stationary()) {
         nav->update_zero_velocity(cfg_.stationarity.velocity_sigma_mps);
         ++report_.zero_velocity_updates;
+        trace.zero_velocity = true;
       }
       if (!nav->healthy()) {
         spdlog::error("t = {:.2f} s: navigation filter failed ({}); INS restarted from the next fix", re.t_s,
@@ -243,6 +295,9 @@ void RecordedFusion::run(const std::vector<ProductSink*>& sinks) {
         ++report_.filter_restarts;
       }
     }
+    if (nav) trace.position_sigma_ned_m = nav->position_sigma_ned_m();
+    trace.filter = nav.has_value();
+    if (trace_) trace_(trace);
 
     PvtSolution solution = re.pvt;
     const bool from_filter = nav.has_value();
@@ -263,6 +318,11 @@ void RecordedFusion::run(const std::vector<ProductSink*>& sinks) {
     const NavigationEpoch ne{re, solution, from_filter, mode_name,
                              from_filter ? filter_satellites : static_cast<int>(re.pvt.used_prns.size()), measurements, leap};
     for (ProductSink* s : sinks) s->on_epoch(ne);
+  }
+  if (smoother) {
+    report_.smoothing_restarts = smoother->restarts();
+    report_.smoothing_slips = smoother->slips();
+    report_.smoothing_doppler_steps = smoother->doppler_steps();
   }
   for (ProductSink* s : sinks) s->finish(nav_);
 }

@@ -28,6 +28,7 @@
 #include "aiding/mode_manager.hpp"
 #include "ins/imu_file.hpp"
 #include "ins/imu_model.hpp"
+#include "receiver/observations/carrier_smoothing.hpp"
 #include "receiver/observations/rinex_obs_reader.hpp"
 #include "receiver/products/product_sink.hpp"
 #include "receiver/pvt_solver.hpp"
@@ -51,14 +52,43 @@ struct RecordedFusionConfig {
   PvtConfig pvt;
   AtmosphereModels atmosphere;
   double pvt_position_sigma_scale_m = 2.0;  ///< loose: position sigma = DOP x this
-  double pvt_velocity_sigma_mps = 0.1;
   double pseudorange_sigma_scale = 1.0;     ///< tight: times the shared range weight model's sigma
-  double doppler_sigma_mps = 0.1;           ///< tight: pseudorange-rate sigma from a recorded Doppler
+  /// Sigma of one pseudorange rate from a recorded Doppler: a tight row's, and in loose
+  /// coupling the PVT velocity's per axis times its DOP (HDOP / sqrt 2 east and north, VDOP
+  /// up), the same satellites' Dopplers through the same geometry.
+  double doppler_sigma_mps = 0.1;
+  /// Carrier smoothing of the pseudoranges (both modes and the PVT); off: raw code.
+  bool carrier_smoothing = true;
+  CarrierSmoothingConfig smoothing;
   double gate_sigma = 5.0;
   StationarityConfig stationarity;
   /// Before the first fix's ionosphere parameters (a navigation file without ION ALPHA/BETA):
   /// none are applied.
   std::optional<IonoParameters> iono;
+};
+
+/// One satellite at one epoch, as the run used it (filter.csv / innovations.csv).
+struct FusionSatelliteTrace {
+  int prn = 0;
+  double elevation_deg = 0.0, cn0_dbhz = 0.0;
+  int smoothing_epochs = 0;                      ///< 0: raw code (no smoothing), else n
+  std::optional<double> code_residual_m;         ///< tight: measured minus predicted pseudorange (prior)
+  std::optional<double> code_normalized;         ///< its ratio to the innovation sigma
+  bool code_rejected = false;
+  std::optional<double> rate_residual_mps;       ///< tight: measured minus predicted rate (prior)
+  bool rate_rejected = false;
+};
+
+struct FusionEpochTrace {
+  double t_s = 0.0;                              ///< since the first epoch
+  bool filter = false;
+  int pvt_satellites = 0;
+  bool pvt_valid = false;
+  int rows = 0, rows_rejected = 0;
+  bool zero_velocity = false;
+  double clock_jump_m = 0.0;
+  Eigen::Vector3d position_sigma_ned_m = Eigen::Vector3d::Zero();
+  std::vector<FusionSatelliteTrace> satellites;
 };
 
 /// What the run did, for summary.json.
@@ -68,6 +98,7 @@ struct RecordedFusionReport {
   int clock_jumps_followed = 0;
   int filter_restarts = 0;
   int rows_rejected = 0;
+  int smoothing_restarts = 0, smoothing_slips = 0, smoothing_doppler_steps = 0;
   std::string ins_start;
   std::optional<double> ins_start_t_s;  ///< seconds since the first epoch
   std::map<std::string, double> seconds_in_mode;
@@ -81,6 +112,8 @@ class RecordedFusion {
   RecordedFusion(RecordedFusionConfig config, const ObservationFile& obs, const NavData& nav, ImuLog imu);
   /// Every epoch to every sink, then finish() on each (nav: passed through).
   void run(const std::vector<ProductSink*>& sinks);
+  /// Called after every epoch with what the filter did (diagnostics).
+  void set_trace(std::function<void(const FusionEpochTrace&)> trace) { trace_ = std::move(trace); }
   const RecordedFusionReport& report() const { return report_; }
 
  private:
@@ -89,6 +122,7 @@ class RecordedFusion {
   const NavData& nav_;
   ImuLog imu_;
   RecordedFusionReport report_;
+  std::function<void(const FusionEpochTrace&)> trace_;
 };
 
 /// The fusion axis: GPS seconds from the start of the first epoch's week.

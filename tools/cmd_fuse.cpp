@@ -29,8 +29,9 @@ struct FuseOptions {
   std::vector<double> imu_rpy_deg{0.0, 0.0, 0.0}, imu_position_m{0.0, 0.0, 0.0}, antenna_position_m{0.0, 0.0, 0.0};
   std::string imu_grade = "consumer-mems", imu_grades_file = "data/imu_grades.yaml";
   std::string reference, compare;
-  bool zupt = true;
-  double pseudorange_sigma_scale = 1.0, doppler_sigma_mps = 0.1, velocity_sigma_mps = 0.1;
+  bool zupt = true, smoothing = true;
+  double smoothing_window_s = 100.0, doppler_bridge_s = 1.0;
+  double pseudorange_sigma_scale = 1.0, doppler_sigma_mps = 0.1;
   double elevation_mask_deg = 5.0;
   AtmosphereModels atmosphere;
   bool print_config = false;
@@ -128,7 +129,9 @@ void run_fuse(CLI::App& root, FuseOptions o) {
   c.pvt.elevation_mask_rad = o.elevation_mask_deg * M_PI / 180.0;
   c.pseudorange_sigma_scale = o.pseudorange_sigma_scale;
   c.doppler_sigma_mps = o.doppler_sigma_mps;
-  c.pvt_velocity_sigma_mps = o.velocity_sigma_mps;
+  c.carrier_smoothing = o.smoothing && o.smoothing_window_s > 0.0;
+  c.smoothing.window_s = o.smoothing_window_s;
+  c.smoothing.max_doppler_bridge_s = o.doppler_bridge_s;
   c.stationarity.enabled = o.zupt;
 
   std::error_code ec;
@@ -149,7 +152,23 @@ void run_fuse(CLI::App& root, FuseOptions o) {
   RunStatistics stats(nullptr);
   SolutionCollector collected;
   std::vector<ProductSink*> sinks{&stats, &collected, &pvt_csv, &nmea, &track, &obs_out, &nav_out};
+  TextOutputFile filter_csv(path("filter.csv")), innovations_csv(path("innovations.csv"));
+  filter_csv.write("t_s,filter,pvt_valid,pvt_satellites,rows,rows_rejected,zero_velocity,clock_jump_m,sigma_n_m,sigma_e_m,sigma_d_m\n");
+  innovations_csv.write("t_s,prn,elevation_deg,cn0_dbhz,smoothing_epochs,code_residual_m,code_normalized,code_rejected,"
+                        "rate_residual_mps,rate_rejected\n");
+  const auto opt = [](const std::optional<double>& v) { return v ? fmt::format("{:.4f}", *v) : std::string(); };
+  fusion->set_trace([&](const aiding::FusionEpochTrace& t) {
+    filter_csv.write(fmt::format("{:.3f},{:d},{:d},{},{},{},{:d},{:.3f},{:.3f},{:.3f},{:.3f}\n", t.t_s, t.filter, t.pvt_valid,
+                                 t.pvt_satellites, t.rows, t.rows_rejected, t.zero_velocity, t.clock_jump_m,
+                                 t.position_sigma_ned_m.x(), t.position_sigma_ned_m.y(), t.position_sigma_ned_m.z()));
+    for (const aiding::FusionSatelliteTrace& st : t.satellites)
+      innovations_csv.write(fmt::format("{:.3f},{},{:.2f},{:.1f},{},{},{},{:d},{},{:d}\n", t.t_s, st.prn, st.elevation_deg,
+                                        st.cn0_dbhz, st.smoothing_epochs, opt(st.code_residual_m), opt(st.code_normalized),
+                                        st.code_rejected, opt(st.rate_residual_mps), st.rate_rejected));
+  });
   fusion->run(sinks);
+  filter_csv.commit();
+  innovations_csv.commit();
 
   const ObservationReport& r = obs.report;
   nlohmann::json gaps = nlohmann::json::array(), jumps = nlohmann::json::array(), imu_gaps = nlohmann::json::array();
@@ -277,9 +296,16 @@ const bool registered = register_command([](CommandParents& parents) {
   cmd->add_option("--pseudorange-sigma-scale", o->pseudorange_sigma_scale,
                   "tight: pseudorange sigma x this (the shared elevation and C/N0 model)")
       ->capture_default_str();
-  cmd->add_option("--doppler-sigma", o->doppler_sigma_mps, "tight: sigma of a pseudorange rate from a Doppler (m/s)")
+  cmd->add_option("--doppler-sigma", o->doppler_sigma_mps,
+                  "Sigma of a pseudorange rate from a Doppler (m/s): tight rows; loose: the PVT velocity's, times its DOP")
       ->capture_default_str();
-  cmd->add_option("--velocity-sigma", o->velocity_sigma_mps, "loose: sigma of the PVT velocity (m/s)")->capture_default_str();
+  cmd->add_flag("--smoothing,!--no-smoothing", o->smoothing, "Carrier smoothing (Hatch filter) of the pseudoranges")
+      ->default_str("true");
+  cmd->add_option("--smoothing-window", o->smoothing_window_s, "Carrier smoothing window (s; restarts on loss of lock, slips, gaps)")
+      ->capture_default_str();
+  cmd->add_option("--doppler-bridge", o->doppler_bridge_s,
+                  "Carrier smoothing: longest phase break carried by the Dopplers instead of a restart (s; 0: none)")
+      ->capture_default_str();
   cmd->add_option("--elevation-mask", o->elevation_mask_deg, "Elevation mask (deg)")->capture_default_str();
   add_atmosphere_options(*cmd, o->atmosphere);
   cmd->add_option("--reference", o->reference, "RTKLIB .pos reference: error statistics in summary.json");
