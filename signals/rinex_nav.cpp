@@ -17,8 +17,8 @@
 
 #include "ins/input_file.hpp"
 #include "signals/gps_constants.hpp"
-#include "signals/rinex_fields.hpp"
 #include "signals/lnav_message.hpp"
+#include "signals/rinex_fields.hpp"
 
 namespace deepnav {
 

@@ -49,16 +49,18 @@ PY
 )")
   rm -rf "$work/run_$d"
 done
-printf '%s\n' "${rows[@]}" | python3 -c '
+printf '%s\n' "${rows[@]}" > "$work/rows.jsonl"
+python3 - "$work/rows.jsonl" "$json" <<'PY'
 import json, sys
-rows = [json.loads(l) for l in sys.stdin]
+rows = [json.loads(l) for l in open(sys.argv[1])]
+cols = ["duration_s", "fixes", "peak_rss_mib", "cpu_s", "lost_samples", "products_mib"]
 print("Peak memory of a streamed run (deepnav run on tcp://, every product written)")
-print(f"{\"duration_s\":>10} {\"fixes\":>7} {\"peak_rss_mib\":>12} {\"cpu_s\":>8} {\"lost_samples\":>12} {\"products_mib\":>12}")
+print(" ".join(f"{c:>13}" for c in cols))
 for r in rows:
-    print(f"{r[\"duration_s\"]:10.0f} {r[\"fixes\"]:7d} {r[\"peak_rss_mib\"]:12.1f} {r[\"cpu_s\"]:8.1f} {r[\"lost_samples\"]:12d} {r[\"products_mib\"]:12.1f}")
+    print(" ".join(f"{r[c]:>13.1f}" if isinstance(r[c], float) else f"{r[c]:>13}" for c in cols))
 if len(rows) > 1:
-    print(f"peak RSS of the longest run / the shortest: {rows[-1][\"peak_rss_mib\"] / rows[0][\"peak_rss_mib\"]:.3f}")
-json_path = sys.argv[1] if len(sys.argv) > 1 else ""
-if json_path:
-    json.dump({"rows": rows}, open(json_path, "w"), indent=2)
-' ${json:+"$json"}
+    print(f"peak RSS, longest run / shortest run: {rows[-1]['peak_rss_mib'] / rows[0]['peak_rss_mib']:.3f}")
+if sys.argv[2]:
+    with open(sys.argv[2], "w") as f:
+        json.dump({"rows": rows}, f, indent=2)
+PY

@@ -25,7 +25,8 @@ mkdir -p "$work"
 cd "$work"
 launcher=()
 command -v ccache >/dev/null && launcher=(ccache)
-flags=(-O2 -std=c++20 -Wall -Wextra -Werror -I"$src")
+# fmt header-only: the cross toolchain has no aarch64 libfmt to link.
+flags=(-O2 -std=c++20 -Wall -Wextra -Werror -DFMT_HEADER_ONLY -I"$src")
 objects=()
 for f in receiver/correlator.cpp receiver/correlator/kernel_portable.cpp receiver/correlator/kernel_neon.cpp \
          signals/ca_code.cpp signals/sim/satellite_signal_kernel.cpp tests/receiver/correlator_test.cpp; do
