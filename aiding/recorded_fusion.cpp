@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "aiding/ins_initializer.hpp"
+#include "aiding/measurement_models.hpp"
 #include "ins/frames.hpp"
 #include "ins/rotations.hpp"
 #include "ins/wgs84.hpp"
@@ -195,11 +196,11 @@ void RecordedFusion::run(const std::vector<ProductSink*>& sinks) {
     } else if (nav) {
       const double dt = t - nav->time_s();
       if (mode == NavMode::loose && re.pvt.valid) {
-        const double h = std::max(1.0, re.pvt.dops.hdop * cfg_.pvt_position_sigma_scale_m / std::sqrt(2.0));
-        const double v = std::max(1.5, re.pvt.dops.vdop * cfg_.pvt_position_sigma_scale_m);
         const double vs = dopplers ? cfg_.pvt_velocity_sigma_mps : 100.0;
-        const UpdateResult r = nav->update_position_velocity(re.pvt.r_ecef_m, re.pvt.v_ecef_mps, Eigen::Vector3d(h, h, v),
-                                                             Eigen::Vector3d::Constant(vs), dt, dt);
+        const KalmanUpdate r = nav->update_position_velocity(
+            re.pvt.r_ecef_m, re.pvt.v_ecef_mps,
+            pvt_position_sigma_ned_m(re.pvt.dops.hdop, re.pvt.dops.vdop, cfg_.pvt_position_sigma_scale_m),
+            Eigen::Vector3d::Constant(vs), dt, dt);
         report_.rows_rejected += r.rejected;
         filter_satellites = static_cast<int>(re.pvt.used_prns.size());
       }
@@ -226,7 +227,7 @@ void RecordedFusion::run(const std::vector<ProductSink*>& sinks) {
           rows.push_back(m);
         }
         if (!rows.empty()) {
-          const UpdateResult r = nav->update_ranges(rows);
+          const KalmanUpdate r = nav->update_ranges(rows);
           report_.rows_rejected += r.rejected;
         }
         filter_satellites = static_cast<int>(rows.size());
