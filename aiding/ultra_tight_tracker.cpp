@@ -66,7 +66,7 @@ std::optional<RangeMeasurement> UltraTightTracker::to_measurement(const Discrimi
   m.pseudorange_m = gps::kSpeedOfLight_mps * seconds_of_week_difference(p->t_rx.sow, t_tx);
   // Discriminator noise plus what the range models leave, by elevation (the PVT's weights).
   m.pseudorange_sigma_m = discriminator_pseudorange_sigma_m(range_errors_, p->range.elevation_rad, d.cn0_dbhz,
-                                                            d.integration_s, cfg_.spacing_chips);
+                                                            d.integration_s, d.spacing_chips);
   if (d.doppler_hz) {
     // Predicted where the Doppler refers to (doppler_sample), not at mid_sample.
     const std::optional<SamplePrediction> at_rate = predict_at(d.ephemeris, d.doppler_sample, nav, block);
