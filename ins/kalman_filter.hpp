@@ -107,9 +107,12 @@ class KalmanFilter {
     check();
   }
 
-  /// Linear rows: z = H x + v, r_diag the variance of each row's v.
+  /// Linear rows: z = H x + v, r_diag the variance of each row's v. Throws
+  /// std::invalid_argument when the sizes of z, H and r_diag disagree with each other or
+  /// with the state.
   KalmanUpdate update(const Eigen::VectorXd& z, const Eigen::MatrixXd& H, const Eigen::VectorXd& r_diag,
                       const InnovationGate& gate = {}) {
+    check_sizes(z, H, r_diag);
     if (!healthy_ || z.size() == 0) return {};
     const Eigen::VectorXd nu = z - H * x_;
     return update_with(nu, H, r_diag, gate);
@@ -118,6 +121,7 @@ class KalmanFilter {
   /// Rows of an EKF: the caller's innovation nu = z - h(x) and the Jacobian H of h at x.
   KalmanUpdate update_innovation(const Eigen::VectorXd& nu, const Eigen::MatrixXd& H, const Eigen::VectorXd& r_diag,
                                  const InnovationGate& gate = {}) {
+    check_sizes(nu, H, r_diag);
     if (!healthy_ || nu.size() == 0) return {};
     return update_with(nu, H, r_diag, gate);
   }
@@ -151,6 +155,13 @@ class KalmanFilter {
   const std::string& reason() const { return reason_; }
 
  private:
+  void check_sizes(const Eigen::VectorXd& z, const Eigen::MatrixXd& H, const Eigen::VectorXd& r_diag) const {
+    if (H.rows() != z.size() || r_diag.size() != z.size() || H.cols() != x_.size())
+      throw std::invalid_argument("Kalman update: " + std::to_string(z.size()) + " rows, H " + std::to_string(H.rows()) +
+                                  " x " + std::to_string(H.cols()) + ", " + std::to_string(r_diag.size()) +
+                                  " variances for " + std::to_string(x_.size()) + " states");
+  }
+
   KalmanUpdate update_with(const Eigen::VectorXd& nu_all, const Eigen::MatrixXd& H, const Eigen::VectorXd& r_diag,
                            const InnovationGate& gate) {
     KalmanUpdate result;

@@ -206,6 +206,9 @@ TEST(KalmanFilter, ReopenedStateIsIndependentAndMismatchedSizesAreRefused) {
   kf.clear_state();
   EXPECT_EQ(kf.x(), Filter4::Vector::Zero());
   EXPECT_THROW(FilterX(vec({1.0, 2.0}), Eigen::MatrixXd::Identity(3, 3)), std::invalid_argument);
+  EXPECT_THROW(kf.update(vec({1.0}), Eigen::MatrixXd::Identity(1, 3), vec({1.0})), std::invalid_argument);
+  EXPECT_THROW(kf.update(vec({1.0, 2.0}), Eigen::MatrixXd::Identity(2, 4), vec({1.0})), std::invalid_argument);
+  EXPECT_THROW(kf.update_innovation(vec({1.0}), Eigen::MatrixXd::Identity(2, 4), vec({1.0})), std::invalid_argument);
 }
 
 }  // namespace
