@@ -3,8 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "aiding/measurement_models.hpp"
 #include "ins/frames.hpp"
-#include "ins/rotations.hpp"
 
 namespace deepnav::aiding {
 
@@ -85,17 +85,11 @@ Eigen::Vector3d AidedNavigator::position_sigma_ned_m() const {
   return kf_.P().diagonal().segment<3>(kPos).cwiseSqrt();
 }
 
-StateRow AidedNavigator::position_row(const Eigen::Vector3d& u_ned) const {
-  // d(antenna) = dr - [(C l) x] eps, so a row u^T on the antenna error is
-  // u^T on dr and -u^T [(C l) x] on eps.
-  const Eigen::Vector3d lever_ned = ins_.state().q_b_n * cfg_.lever_arm_imu_to_antenna_b_m;
-  StateRow h = StateRow::Zero();
-  h.segment<3>(kPos) = u_ned.transpose();
-  h.segment<3>(kAtt) = -u_ned.transpose() * skew(lever_ned);
-  return h;
+Eigen::Vector3d AidedNavigator::lever_arm_ned_m() const {
+  return ins_.state().q_b_n * cfg_.lever_arm_imu_to_antenna_b_m;
 }
 
-UpdateResult AidedNavigator::update_position_velocity(const Eigen::Vector3d& r_antenna_ecef_m,
+KalmanUpdate AidedNavigator::update_position_velocity(const Eigen::Vector3d& r_antenna_ecef_m,
                                                       const Eigen::Vector3d& v_antenna_ecef_mps,
                                                       const Eigen::Vector3d& position_sigma_ned_m,
                                                       const Eigen::Vector3d& velocity_sigma_ned_mps,
@@ -107,22 +101,15 @@ UpdateResult AidedNavigator::update_position_velocity(const Eigen::Vector3d& r_a
                                                        : antenna_velocity_ecef_mps();
   z.tail<3>() = ecef_to_ned_vector(at, v_ins - v_antenna_ecef_mps);
   r << position_sigma_ned_m.cwiseAbs2(), velocity_sigma_ned_mps.cwiseAbs2();
-  Eigen::Matrix<double, 6, kStates> H = Eigen::Matrix<double, 6, kStates>::Zero();
-  for (int i = 0; i < 3; ++i) {
-    H.row(i) = position_row(Eigen::Vector3d::Unit(i));
-    H(3 + i, kVel + i) = 1.0;
-  }
-  const UpdateResult result = kf_.update<6>(z, H, r, cfg_.gate_sigma);
+  const KalmanUpdate result = kf_.update(z, position_velocity_rows(lever_arm_ned_m()), r, {.row_sigma = cfg_.gate_sigma});
   if (result.applied) feed_back();
   return result;
 }
 
-UpdateResult AidedNavigator::update_zero_velocity(double sigma_mps) {
+KalmanUpdate AidedNavigator::update_zero_velocity(double sigma_mps) {
   // z = predicted - measured = v_ins - 0; dv = -x_vel in the error convention of feed_back.
-  Eigen::Matrix<double, 3, kStates> H = Eigen::Matrix<double, 3, kStates>::Zero();
-  H.block<3, 3>(0, kVel).setIdentity();
   const Eigen::Vector3d r = Eigen::Vector3d::Constant(sigma_mps * sigma_mps);
-  const UpdateResult result = kf_.update<3>(ins_.state().v_ned_mps, H, r, cfg_.gate_sigma);
+  const KalmanUpdate result = kf_.update(ins_.state().v_ned_mps, velocity_rows(), r, {.row_sigma = cfg_.gate_sigma});
   if (result.applied) feed_back();
   return result;
 }
@@ -139,18 +126,16 @@ struct RangeRows {
 
 }  // namespace
 
-UpdateResult AidedNavigator::update_ranges(const std::vector<RangeMeasurement>& measurements,
+KalmanUpdate AidedNavigator::update_ranges(const std::vector<RangeMeasurement>& measurements,
                                            std::vector<SatelliteInnovation>* innovations,
                                            const std::vector<RangeMeasurement>& test_only) {
   const wgs84::Llh& at = ins_.state().llh;
+  const bool troposphere = cfg_.troposphere.enabled;
   const auto append = [&](const RangeMeasurement& m, RangeRows& rows) {
-    // The range falls as the antenna moves towards the satellite: d(rho) = -u . d(r).
     const Eigen::Vector3d u_ned = ecef_to_ned_vector(at, m.geometry.los_ecef);
     if (m.pseudorange_m) {
-      StateRow h = -position_row(u_ned);
-      h(kClockBias) = 1.0;
-      if (cfg_.troposphere.enabled) h(kTropo) = m.geometry.troposphere_mapping;
-      rows.h.push_back(h);
+      rows.h.push_back(pseudorange_row(u_ned, lever_arm_ned_m(),
+                                       troposphere ? std::optional(m.geometry.troposphere_mapping) : std::nullopt));
       rows.z.push_back(m.geometry.pseudorange_m(clock_bias_m() + clock_drift_mps() * m.time_offset_s) +
                        residual_delay_m(m.geometry) - *m.pseudorange_m);
       rows.r.push_back(m.pseudorange_sigma_m * m.pseudorange_sigma_m);
@@ -159,11 +144,8 @@ UpdateResult AidedNavigator::update_ranges(const std::vector<RangeMeasurement>& 
     if (m.rate_mps) {
       const RangePrediction& g = m.rate_at_own_time ? m.rate_geometry : m.geometry;
       const double offset = m.rate_at_own_time ? m.rate_time_offset_s : m.time_offset_s;
-      StateRow h = StateRow::Zero();
-      h.segment<3>(kVel) = -ecef_to_ned_vector(at, g.los_ecef).transpose();
-      h(kClockDrift) = 1.0;
-      if (cfg_.troposphere.enabled) h(kTropo) = g.troposphere_mapping_rate_per_s;
-      rows.h.push_back(h);
+      rows.h.push_back(pseudorange_rate_row(ecef_to_ned_vector(at, g.los_ecef),
+                                            troposphere ? std::optional(g.troposphere_mapping_rate_per_s) : std::nullopt));
       rows.z.push_back(g.pseudorange_rate_mps(antenna_velocity_ecef_at(time_s() + offset), clock_drift_mps()) +
                        residual_delay_rate_mps(g) - *m.rate_mps);
       rows.r.push_back(m.rate_sigma_mps * m.rate_sigma_mps);
@@ -188,7 +170,7 @@ UpdateResult AidedNavigator::update_ranges(const std::vector<RangeMeasurement>& 
     zv(i) = rows.z[static_cast<std::size_t>(i)];
     rv(i) = rows.r[static_cast<std::size_t>(i)];
   }
-  const UpdateResult result = kf_.update(zv, H, rv, cfg_.gate_sigma);
+  const KalmanUpdate result = kf_.update(zv, H, rv, {.row_sigma = cfg_.gate_sigma});
   if (innovations) {
     for (std::size_t i = 0; i < result.normalized_innovations.size(); ++i)
       if (rows.pseudorange_prn[i] != 0)
@@ -208,7 +190,7 @@ void AidedNavigator::feed_back() {
   clock_bias_m_ -= x(kClockBias);
   clock_drift_mps_ -= x(kClockDrift);
   troposphere_residual_m_ -= x(kTropo);
-  kf_.clear_fed_back_states();
+  kf_.clear_state();
 }
 
 }  // namespace deepnav::aiding

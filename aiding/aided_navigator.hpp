@@ -5,7 +5,8 @@
 // zero. The antenna is where GNSS measures; the INS computes the IMU's position, so every
 // measurement goes through the lever arm (IMU -> antenna, body axes).
 //
-// Measurements (each z = predicted - measured = H dx + v):
+// Measurements (each z = predicted - measured = H dx + v; their rows and noise models are
+// in measurement_models.hpp):
 //   loose:  antenna position (NED metres) and velocity from a GNSS PVT solution;
 //   ranges: per satellite, a pseudorange and/or a pseudorange rate (tight coupling, and
 //           the ultra-tight receiver's discriminator-corrected ranges and rates).
@@ -13,9 +14,10 @@
 #include <optional>
 #include <vector>
 
-#include "aiding/error_state_kalman.hpp"
+#include "aiding/error_state.hpp"
 #include "aiding/ins_error_model.hpp"
 #include "aiding/satellite_fault_monitor.hpp"
+#include "ins/kalman_filter.hpp"
 #include "ins/strapdown.hpp"
 #include "receiver/range_model.hpp"
 
@@ -85,7 +87,7 @@ class AidedNavigator {
   /// A PVT fix: position at time_s() + time_offset_s, velocity at time_s() +
   /// velocity_time_offset_s (a Doppler velocity is a mean over the Dopplers' window, earlier
   /// than the fix; the INS velocity there is compared with it).
-  UpdateResult update_position_velocity(const Eigen::Vector3d& r_antenna_ecef_m, const Eigen::Vector3d& v_antenna_ecef_mps,
+  KalmanUpdate update_position_velocity(const Eigen::Vector3d& r_antenna_ecef_m, const Eigen::Vector3d& v_antenna_ecef_mps,
                                         const Eigen::Vector3d& position_sigma_ned_m,
                                         const Eigen::Vector3d& velocity_sigma_ned_mps, double time_offset_s = 0.0,
                                         std::optional<double> velocity_time_offset_s = std::nullopt);
@@ -93,13 +95,13 @@ class AidedNavigator {
   /// pseudorange row reports its normalised innovation against the prior (and whether the
   /// gate turned it away) for the per-satellite fault monitor; `test_only` measurements are
   /// reported there but not used (excluded satellites, still watched).
-  UpdateResult update_ranges(const std::vector<RangeMeasurement>& measurements,
+  KalmanUpdate update_ranges(const std::vector<RangeMeasurement>& measurements,
                              std::vector<SatelliteInnovation>* innovations = nullptr,
                              const std::vector<RangeMeasurement>& test_only = {});
 
   /// Zero-velocity update: the IMU is at rest (a stationarity detector says so), its NED
   /// velocity is zero to within sigma_mps on each axis.
-  UpdateResult update_zero_velocity(double sigma_mps);
+  KalmanUpdate update_zero_velocity(double sigma_mps);
 
   /// Adds a known step to the receiver clock bias (the receiver re-set its clock).
   void shift_clock_bias(double step_m) { clock_bias_m_ += step_m; }
@@ -138,10 +140,11 @@ class AidedNavigator {
   Eigen::Vector3d antenna_velocity_ecef_at(double t_s) const;
 
  private:
-  StateRow position_row(const Eigen::Vector3d& u_ned) const;
+  /// The lever arm (IMU -> antenna) in NED at the current attitude.
+  Eigen::Vector3d lever_arm_ned_m() const;
   void feed_back();
   StrapdownNed ins_;
-  ErrorStateKalman kf_;
+  KalmanFilter<kStates> kf_;  ///< error states; the covariance must stay positive definite
   NavigatorConfig cfg_;
   double clock_bias_m_, clock_drift_mps_;  ///< receiver clock model (c * dt, c * dt')
   double troposphere_residual_m_ = 0.0;

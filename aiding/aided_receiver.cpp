@@ -8,6 +8,7 @@
 
 #include "aiding/innovation_monitor.hpp"
 #include "aiding/ins_initializer.hpp"
+#include "aiding/measurement_models.hpp"
 #include "ins/frames.hpp"
 #include "ins/rotations.hpp"
 #include "signals/gps_constants.hpp"
@@ -16,18 +17,6 @@ namespace deepnav::aiding {
 namespace {
 
 constexpr double kRecentPvt_s = 3.0;
-
-/// Pseudorange-rate sigma of a scalar channel's Doppler: the carrier phase difference over
-/// the averaging window, each end with the PLL's thermal jitter at its C/N0 (Kaplan &
-/// Hegarty: Bn / (C/N0) (1 + 1 / (2 T C/N0)) rad^2), plus a 0.02 m/s floor (the receiver
-/// clock's white frequency noise over the window, common to every channel, and what is
-/// left of the dynamics), as for the ultra-tight frequency-discriminator rate.
-double scalar_rate_sigma_mps(double cn0_dbhz, double pll_bandwidth_hz, double coherent_s) {
-  const double cn0 = std::pow(10.0, std::max(cn0_dbhz, 20.0) / 10.0);
-  const double phase_var_rad2 = pll_bandwidth_hz / cn0 * (1.0 + 1.0 / (2.0 * coherent_s * cn0));
-  const double rate_mps = std::sqrt(2.0 * phase_var_rad2) / (2.0 * M_PI * kDopplerWindow_s) * gps::kL1Wavelength_m;
-  return std::hypot(rate_mps, 0.02);
-}
 
 }  // namespace
 
@@ -87,7 +76,7 @@ struct AidedReceiver::Impl : ChannelSteering {
     if (nav && modes.mode() != NavMode::ultra && modes.mode() != NavMode::scalar) ultra.update_and_steer(*nav, block, false);
     if (nav && modes.mode() == NavMode::ultra) {
       std::vector<SatelliteInnovation> rows;
-      const UpdateResult r = ultra.update_and_steer(*nav, block, true, cfg.fault_exclusion ? &rows : nullptr);
+      const KalmanUpdate r = ultra.update_and_steer(*nav, block, true, cfg.fault_exclusion ? &rows : nullptr);
       innovations.add(t, r);
       if (cfg.fault_exclusion) report_exclusions(t, rows);
       if (end % static_cast<std::int64_t>(fs) < static_cast<std::int64_t>(fs / 100))
@@ -194,8 +183,6 @@ struct AidedReceiver::Impl : ChannelSteering {
 
   void loose_update(const ReceiverEpoch& ep) {
     if (!ep.pvt.valid) return;
-    const double h = std::max(1.0, ep.pvt.dops.hdop * cfg.pvt_position_sigma_scale_m / std::sqrt(2.0));
-    const double v = std::max(1.5, ep.pvt.dops.vdop * cfg.pvt_position_sigma_scale_m);
     // The PVT's velocity comes from Dopplers averaged over their last window (about 55 ms
     // before the fix): compared with the INS velocity at the mean of their times.
     double doppler_offset_s = 0.0;
@@ -209,7 +196,8 @@ struct AidedReceiver::Impl : ChannelSteering {
     const double dt = ep.t_s - nav->time_s();
     // Not watched by the innovation monitor: the PVT's own errors come in runs under high
     // dynamics (its velocity model), and the gate turning them away is the right answer.
-    nav->update_position_velocity(ep.pvt.r_ecef_m, ep.pvt.v_ecef_mps, Eigen::Vector3d(h, h, v),
+    nav->update_position_velocity(ep.pvt.r_ecef_m, ep.pvt.v_ecef_mps,
+                                  pvt_position_sigma_ned_m(ep.pvt.dops.hdop, ep.pvt.dops.vdop, cfg.pvt_position_sigma_scale_m),
                                   Eigen::Vector3d::Constant(cfg.pvt_velocity_sigma_mps), dt, dt + doppler_offset_s);
   }
 
@@ -229,9 +217,8 @@ struct AidedReceiver::Impl : ChannelSteering {
                                  rx.atmosphere());
       if (m.geometry.elevation_rad < cfg.receiver.pvt.elevation_mask_rad) continue;
       m.pseudorange_m = o.pseudorange_m;
-      const RangeErrorModel& errors = cfg.receiver.pvt.range_errors;
-      m.pseudorange_sigma_m = std::sqrt(errors.model_variance_per_row_m2(m.geometry.elevation_rad, 1.0 / cfg.receiver.observation_rate_hz) +
-                                        errors.thermal_variance_m2(o.cn0_dbhz));
+      m.pseudorange_sigma_m = scalar_pseudorange_sigma_m(cfg.receiver.pvt.range_errors, m.geometry.elevation_rad, o.cn0_dbhz,
+                                                         1.0 / cfg.receiver.observation_rate_hz);
       m.rate_mps = -gps::kL1Wavelength_m * o.doppler_hz;
       m.rate_sigma_mps = scalar_rate_sigma_mps(o.cn0_dbhz, cfg.receiver.tracking_loops.pll_hz,
                                                1e-3 * cfg.receiver.tracking.coherent_ms_after_bit_sync);
@@ -247,7 +234,7 @@ struct AidedReceiver::Impl : ChannelSteering {
     last_tight_satellites = static_cast<int>(ms.size());
     if (ms.empty()) return;
     std::vector<SatelliteInnovation> rows;
-    const UpdateResult r = nav->update_ranges(ms, cfg.fault_exclusion ? &rows : nullptr, watched);
+    const KalmanUpdate r = nav->update_ranges(ms, cfg.fault_exclusion ? &rows : nullptr, watched);
     innovations.add(ep.t_s, r);
     if (cfg.fault_exclusion) report_exclusions(ep.t_s, rows);
   }

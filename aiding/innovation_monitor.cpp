@@ -2,7 +2,7 @@
 
 namespace deepnav::aiding {
 
-void InnovationMonitor::add(double t_s, const UpdateResult& update) {
+void InnovationMonitor::add(double t_s, const KalmanUpdate& update) {
   if (update.rows == 0) return;
   entries_.push_back({t_s, update.rows, update.rejected});
   rows_ += update.rows;

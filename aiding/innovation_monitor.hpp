@@ -6,7 +6,7 @@
 // (tight, ultra-tight), one row per satellite measurement.
 #include <deque>
 
-#include "aiding/error_state_kalman.hpp"
+#include "ins/kalman_filter.hpp"
 
 namespace deepnav::aiding {
 
@@ -21,7 +21,7 @@ class InnovationMonitor {
   explicit InnovationMonitor(InnovationMonitorConfig config = {}) : cfg_(config) {}
 
   /// One filter update at time t_s (non-decreasing).
-  void add(double t_s, const UpdateResult& update);
+  void add(double t_s, const KalmanUpdate& update);
   /// Whether, over the window ending at the last update, the gate rejected more than the
   /// allowed fraction of at least min_rows rows.
   bool inconsistent() const;

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "aiding/ins_initializer.hpp"
+#include "aiding/measurement_models.hpp"
 #include "ins/frames.hpp"
 #include "ins/rotations.hpp"
 #include "ins/wgs84.hpp"
@@ -225,12 +226,12 @@ void RecordedFusion::run(const std::vector<ProductSink*>& sinks) {
     } else if (nav) {
       const double dt = t - nav->time_s();
       if (mode == NavMode::loose && re.pvt.valid) {
-        const double h = std::max(1.0, re.pvt.dops.hdop * cfg_.pvt_position_sigma_scale_m / std::sqrt(2.0));
-        const double v = std::max(1.5, re.pvt.dops.vdop * cfg_.pvt_position_sigma_scale_m);
         const double vh = dopplers ? re.pvt.dops.hdop * cfg_.doppler_sigma_mps / std::sqrt(2.0) : 100.0;
         const double vv = dopplers ? re.pvt.dops.vdop * cfg_.doppler_sigma_mps : 100.0;
-        const UpdateResult r = nav->update_position_velocity(re.pvt.r_ecef_m, re.pvt.v_ecef_mps, Eigen::Vector3d(h, h, v),
-                                                             Eigen::Vector3d(vh, vh, vv), dt, dt);
+        const KalmanUpdate r = nav->update_position_velocity(
+            re.pvt.r_ecef_m, re.pvt.v_ecef_mps,
+            pvt_position_sigma_ned_m(re.pvt.dops.hdop, re.pvt.dops.vdop, cfg_.pvt_position_sigma_scale_m),
+            Eigen::Vector3d(vh, vh, vv), dt, dt);
         report_.rows_rejected += r.rejected;
         trace.rows += r.rows;
         trace.rows_rejected += r.rejected;
@@ -264,7 +265,7 @@ void RecordedFusion::run(const std::vector<ProductSink*>& sinks) {
           rows.push_back(m);
         }
         if (!rows.empty()) {
-          const UpdateResult r = nav->update_ranges(rows);
+          const KalmanUpdate r = nav->update_ranges(rows);
           report_.rows_rejected += r.rejected;
           trace.rows += r.rows;
           trace.rows_rejected += r.rejected;

@@ -70,7 +70,8 @@ ChannelDecision SteeredChannelController::on_epoch(const CorrelatorEpoch& e, con
   d.prn = e.prn;
   d.mid_sample = mid;
   d.replica_transmit_sow = *tt;
-  d.code_error_chips = dll_code_error_chips(e.early, e.late, cfg_.spacing_chips);
+  d.spacing_chips = e.spacing_chips;
+  d.code_error_chips = dll_code_error_chips(e.early, e.late, e.spacing_chips);
   // The phase is only as good as the Costas error is small: near its +-0.25 cycle range a
   // noise sample wraps it by half a cycle (5 Hz over a window). A large error means the
   // phase loop is stressed (the filter's Doppler still off after a start); then the

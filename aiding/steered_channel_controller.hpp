@@ -27,7 +27,6 @@ enum class Engagement {
 
 struct UltraTightConfig {
   double min_cn0_dbhz = 18.0;               ///< weaker integrations steer but are not measurements
-  double spacing_chips = 0.5;               ///< the channels' early-late spacing
   double max_code_correction_chips = 5.0;   ///< a larger jump means the channel is not where the filter thinks
   bool carrier_phase_tracking = true;
   double carrier_phase_gain = 0.25;         ///< fraction of the Costas error removed per integration
@@ -41,6 +40,7 @@ struct DiscriminatorSample {
   std::int64_t mid_sample = 0;
   double replica_transmit_sow = 0.0;   ///< replica transmit time at mid_sample
   double code_error_chips = 0.0;       ///< signal minus replica (positive: replica lags)
+  double spacing_chips = 0.0;          ///< early-late spacing it was measured with (the epoch's)
   /// Phase-locked: the mean carrier frequency over the window that just closed (adjoining
   /// windows of about 100 ms); otherwise NCO Doppler plus the frequency discriminator, when
   /// the previous integration adjoins.

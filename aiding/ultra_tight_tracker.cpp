@@ -5,44 +5,12 @@
 #include <cmath>
 #include <tuple>
 
+#include "aiding/measurement_models.hpp"
 #include "ins/gps_time.hpp"
 #include "receiver/tracking_loops.hpp"
 #include "signals/gps_constants.hpp"
 
 namespace deepnav::aiding {
-namespace {
-
-constexpr double kChip_m = gps::kSpeedOfLight_mps / gps::kCodeRate_cps;
-// Rate sigma floors (m/s). Phase windows: what the model leaves out inside a window (the
-// Doppler's second derivative around the window's middle, the INS velocity error there).
-// The receiver clock's white frequency noise is common to every channel (3 cm/s over
-// 100 ms for a TCXO with h0 = 2e-21); the clock drift state takes it, its random walk
-// moves it by that much within a window. Frequency discriminator: more dynamics left over
-// across one integration.
-constexpr double kPhaseRateFloor_mps = 0.005;
-constexpr double kDiscriminatorRateFloor_mps = 0.02;
-
-/// 1-sigma of the normalised early-minus-late envelope discriminator (chips) for spacing d
-/// and coherent time T (Kaplan & Hegarty, noncoherent E-L power with normalisation).
-double code_sigma_chips(double cn0_dbhz, double t_s, double spacing_chips) {
-  const double snr = std::pow(10.0, cn0_dbhz / 10.0) * t_s;
-  return std::sqrt(spacing_chips / (4.0 * snr) * (1.0 + 2.0 / ((2.0 - spacing_chips) * snr)));
-}
-
-/// Variance (rad^2) of the Costas phase discriminator over one integration of T.
-double phase_variance_rad2(double cn0_dbhz, double t_s) {
-  const double snr = std::pow(10.0, cn0_dbhz / 10.0) * t_s;
-  return 1.0 / (2.0 * snr) * (1.0 + 1.0 / (2.0 * snr));
-}
-
-/// 1-sigma (Hz) of a mean frequency from two phases `span_s` apart, each with variance
-/// `phase_var_rad2`: the carrier phase at both ends of a window, or the cross/dot
-/// discriminator between two adjoining integrations (span T).
-double mean_frequency_sigma_hz(double phase_var_rad2, double span_s) {
-  return std::sqrt(2.0 * phase_var_rad2) / (2.0 * M_PI * span_s);
-}
-
-}  // namespace
 
 UltraTightTracker::UltraTightTracker(UltraTightConfig config, double sample_rate_hz, const RangeErrorModel& range_errors,
                                      const SatelliteFaultMonitor* faults, const AtmosphereModels& atmosphere)
@@ -96,11 +64,9 @@ std::optional<RangeMeasurement> UltraTightTracker::to_measurement(const Discrimi
   m.geometry = p->range;
   const double t_tx = d.replica_transmit_sow + d.code_error_chips / gps::kCodeRate_cps;
   m.pseudorange_m = gps::kSpeedOfLight_mps * seconds_of_week_difference(p->t_rx.sow, t_tx);
-  // Discriminator noise plus what the range models leave, by elevation (the PVT's weights),
-  // shared by every integration of the same second (range_weight.hpp).
-  const double code_sigma = code_sigma_chips(d.cn0_dbhz, d.integration_s, cfg_.spacing_chips) * kChip_m;
-  m.pseudorange_sigma_m = std::sqrt(code_sigma * code_sigma +
-                                    range_errors_.model_variance_per_row_m2(p->range.elevation_rad, d.integration_s));
+  // Discriminator noise plus what the range models leave, by elevation (the PVT's weights).
+  m.pseudorange_sigma_m = discriminator_pseudorange_sigma_m(range_errors_, p->range.elevation_rad, d.cn0_dbhz,
+                                                            d.integration_s, d.spacing_chips);
   if (d.doppler_hz) {
     // Predicted where the Doppler refers to (doppler_sample), not at mid_sample.
     const std::optional<SamplePrediction> at_rate = predict_at(d.ephemeris, d.doppler_sample, nav, block);
@@ -109,14 +75,7 @@ std::optional<RangeMeasurement> UltraTightTracker::to_measurement(const Discrimi
     m.rate_geometry = at_rate->range;
     m.rate_time_offset_s = at_rate->offset_s;
     m.rate_mps = -gps::kL1Wavelength_m * *d.doppler_hz;
-    // One integration's phase noise at both ends of the window or of the discriminator's
-    // span (adjoining windows share an end, so their errors are negatively correlated:
-    // taking them as independent understates what a run of windows says).
-    const bool phase_window = d.rate_window_s > 0.0;
-    const double sigma_hz = mean_frequency_sigma_hz(phase_variance_rad2(d.cn0_dbhz, d.integration_s),
-                                                    phase_window ? d.rate_window_s : d.integration_s);
-    m.rate_sigma_mps =
-        std::hypot(sigma_hz * gps::kL1Wavelength_m, phase_window ? kPhaseRateFloor_mps : kDiscriminatorRateFloor_mps);
+    m.rate_sigma_mps = discriminator_rate_sigma_mps(d.cn0_dbhz, d.integration_s, d.rate_window_s);
   }
   return m;
 }
@@ -132,7 +91,7 @@ std::vector<RangeResidual> UltraTightTracker::take_mean_pseudorange_residuals() 
   return out;
 }
 
-UpdateResult UltraTightTracker::update_and_steer(AidedNavigator& nav, const BlockSnapshot& block, bool measure,
+KalmanUpdate UltraTightTracker::update_and_steer(AidedNavigator& nav, const BlockSnapshot& block, bool measure,
                                                  std::vector<SatelliteInnovation>* innovations) {
   std::vector<RangeMeasurement> ms, watched;
   // Channel order, each channel's integrations in time order: the same rows whichever
@@ -155,7 +114,7 @@ UpdateResult UltraTightTracker::update_and_steer(AidedNavigator& nav, const Bloc
     }
   }
   measuring_ = static_cast<int>(ms.size());
-  UpdateResult result;
+  KalmanUpdate result;
   if (!ms.empty()) result = nav.update_ranges(ms, innovations, watched);
   for (const ChannelStatus& ch : block.channels) {
     SteeredChannelController& controller = *controller_for(ch.prn);

@@ -56,7 +56,7 @@ class UltraTightTracker {
   /// `measure`), then new NCO commands for the steered channels from the block's end on.
   /// The navigator must already be propagated to the block end.
   /// With `innovations`, the pseudorange rows' normalised innovations (for the fault monitor).
-  UpdateResult update_and_steer(AidedNavigator& nav, const BlockSnapshot& block, bool measure,
+  KalmanUpdate update_and_steer(AidedNavigator& nav, const BlockSnapshot& block, bool measure,
                                 std::vector<SatelliteInnovation>* innovations = nullptr);
   /// Gives every channel back to its scalar loop.
   void release_all();

@@ -12,21 +12,31 @@
 #include "ins/wgs84.hpp"
 
 namespace deepnav {
+namespace {
+
+Eigen::Matrix<double, 12, 12> initial_covariance(const FineAlignmentConfig& config) {
+  Eigen::Matrix<double, 12, 12> P = Eigen::Matrix<double, 12, 12>::Zero();
+  const double tilt2 = config.initial_tilt_sigma_rad * config.initial_tilt_sigma_rad;
+  P.diagonal().segment<3>(0) << tilt2, tilt2, config.initial_heading_sigma_rad * config.initial_heading_sigma_rad;
+  P.diagonal().segment<3>(3).setConstant(1e-6);  // starts at rest, v = 0
+  P.diagonal().segment<3>(6).setConstant(config.accel_bias_sigma_mps2 * config.accel_bias_sigma_mps2);
+  P.diagonal().segment<3>(9).setConstant(config.gyro_bias_sigma_radps * config.gyro_bias_sigma_radps);
+  return P;
+}
+
+}  // namespace
+
 double gyrocompass_heading_limit_rad(double dw_east_radps, double lat_rad) {
   return -dw_east_radps / (wgs84::kEarthRate_radps * std::cos(lat_rad));
 }
 
 FineAlignment::FineAlignment(const FineAlignmentConfig& config, const Eigen::Matrix3d& C_b_n0)
-    : config_(config), C_b_n_(C_b_n0) {
+    : config_(config),
+      C_b_n_(C_b_n0),
+      kf_(Filter::Vector::Zero(), initial_covariance(config), {.allow_zero_variance = true}) {
   if (!(config.zupt_interval_s > 0.0)) throw std::invalid_argument("fine alignment: zupt_interval_s must be positive");
   if (!(config.zupt_sigma_mps > 0.0)) throw std::invalid_argument("fine alignment: zupt_sigma_mps must be positive");
   if (!C_b_n0.allFinite()) throw std::invalid_argument("fine alignment: initial C_b_n is not finite");
-  P_.setZero();
-  const double tilt2 = config.initial_tilt_sigma_rad * config.initial_tilt_sigma_rad;
-  P_.diagonal().segment<3>(0) << tilt2, tilt2, config.initial_heading_sigma_rad * config.initial_heading_sigma_rad;
-  P_.diagonal().segment<3>(3).setConstant(1e-6);  // starts at rest, v = 0
-  P_.diagonal().segment<3>(6).setConstant(config.accel_bias_sigma_mps2 * config.accel_bias_sigma_mps2);
-  P_.diagonal().segment<3>(9).setConstant(config.gyro_bias_sigma_radps * config.gyro_bias_sigma_radps);
 }
 
 void FineAlignment::step(const ImuReading& reading, double dt_s) {
@@ -65,28 +75,27 @@ void FineAlignment::zupt() {
   const double accel_psd = config_.accel_noise_density_mps2_per_rthz * config_.accel_noise_density_mps2_per_rthz;
   Qd.diagonal().segment<3>(0).setConstant(gyro_psd * T);
   Qd.diagonal().segment<3>(3).setConstant(accel_psd * T);
-  P_ = Phi * P_ * Phi.transpose() + Qd;
+  kf_.predict(Phi, Qd);  // the error state is zero between updates (fed back)
 
   // ZUPT: z = v_est - 0 = dv.
   const double r = config_.zupt_sigma_mps * config_.zupt_sigma_mps;
-  const Eigen::Matrix3d S = P_.block<3, 3>(3, 3) + r * Eigen::Matrix3d::Identity();
-  const Eigen::Matrix<double, 12, 3> K = P_.block<12, 3>(0, 3) * S.inverse();
-  const Eigen::Matrix<double, 12, 1> dx = K * v_ned_mps_;
-  Mat12 I_KH = Mat12::Identity();
-  I_KH.block<12, 3>(0, 3) -= K;
-  P_ = I_KH * P_ * I_KH.transpose() + r * K * K.transpose();  // Joseph form
-
-  // Closed loop: C_true = (I + [phi x]) C_est, v -= dv, biases += their errors.
-  C_b_n_ = dcm_from_rotation_vector(dx.segment<3>(0)) * C_b_n_;
-  v_ned_mps_ -= dx.segment<3>(3);
-  accel_bias_mps2_ += C_b_n_.transpose() * dx.segment<3>(6);
-  gyro_bias_radps_ += C_b_n_.transpose() * dx.segment<3>(9);
+  Eigen::Matrix<double, 3, 12> H = Eigen::Matrix<double, 3, 12>::Zero();
+  H.block<3, 3>(0, 3).setIdentity();
+  if (kf_.update(v_ned_mps_, H, Eigen::Vector3d::Constant(r)).applied) {
+    // Closed loop: C_true = (I + [phi x]) C_est, v -= dv, biases += their errors.
+    const Filter::Vector dx = kf_.x();
+    C_b_n_ = dcm_from_rotation_vector(dx.segment<3>(0)) * C_b_n_;
+    v_ned_mps_ -= dx.segment<3>(3);
+    accel_bias_mps2_ += C_b_n_.transpose() * dx.segment<3>(6);
+    gyro_bias_radps_ += C_b_n_.transpose() * dx.segment<3>(9);
+    kf_.clear_state();
+  }
 
   time_since_zupt_s_ = 0.0;
   samples_since_zupt_ = 0;
 }
 
-Eigen::Vector3d FineAlignment::attitude_sigma_rad() const { return P_.diagonal().segment<3>(0).cwiseSqrt(); }
+Eigen::Vector3d FineAlignment::attitude_sigma_rad() const { return kf_.P().diagonal().segment<3>(0).cwiseSqrt(); }
 
 FineAlignmentTrace run_fine_alignment(const std::vector<ImuReading>& imu, const FineAlignmentConfig& config,
                                       const Eigen::Matrix3d& C_b_n0, const Eigen::Matrix3d& C_b_n_true,

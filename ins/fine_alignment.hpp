@@ -13,13 +13,17 @@
 // the filter has learned about the north gyro bias into the unobservable east one and
 // the filter becomes overconfident and biased.) The ZUPT measures dv = v_est (truth is zero).
 // Corrections are fed back after every update (closed loop), so the states stay small.
+// The prediction and the update are the project's Kalman filter (kalman_filter.hpp); a
+// variance may be zero here (a bias the configuration says is absent).
 //
 // At rest the east gyro bias and the heading error are not separable: the heading
 // settles at the gyrocompassing limit eps_D = -db_gE / (w_ie cos L), the levels at the
 // accelerometer limit (-df_E/g, df_N/g). See gyrocompass_heading_limit_rad.
 #include <Eigen/Core>
+#include <string>
 #include <vector>
 
+#include "ins/kalman_filter.hpp"
 #include "ins/lever_arm_imu_sim.hpp"
 
 namespace deepnav {
@@ -58,15 +62,20 @@ class FineAlignment {
   const Eigen::Vector3d& accel_bias_mps2() const { return accel_bias_mps2_; }
   /// 1-sigma of the attitude error (N, E, D), from the filter covariance.
   Eigen::Vector3d attitude_sigma_rad() const;
+  /// false once the filter's covariance failed its check (reason in health_reason());
+  /// the mechanization then runs on without corrections.
+  bool healthy() const { return kf_.healthy(); }
+  const std::string& health_reason() const { return kf_.reason(); }
 
  private:
+  using Filter = KalmanFilter<12>;
   void zupt();
   FineAlignmentConfig config_;
   Eigen::Matrix3d C_b_n_;
   Eigen::Vector3d v_ned_mps_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d gyro_bias_radps_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d accel_bias_mps2_ = Eigen::Vector3d::Zero();
-  Eigen::Matrix<double, 12, 12> P_;
+  Filter kf_;  ///< error states: tilt (3), velocity (3), accelerometer and gyro bias (3 + 3, NED)
   double time_since_zupt_s_ = 0.0;
   long samples_since_zupt_ = 0;
   long samples_per_zupt_ = 0;

@@ -95,30 +95,35 @@ LeverArmEkfConfig paper004_config(LeverArmModel model, const MemsImuFigures& imu
   return c;
 }
 
+LeverArmEkf::Filter LeverArmEkf::make_filter(const LeverArmEkfConfig& config, const Eigen::Quaterniond& q_b_n0) {
+  const int lever_states = lever_state_count(config.model);
+  const int n = 7 + lever_states;
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+  x.head<4>() = to_vector(q_b_n0.normalized());
+  if (config.model == LeverArmModel::kVertical) x(7) = config.initial_lever_b_m.z();
+  if (config.model == LeverArmModel::kFull3d) x.tail<3>() = config.initial_lever_b_m;
+  Eigen::MatrixXd P = Eigen::MatrixXd::Zero(n, n);
+  // Small-angle attitude uncertainty maps onto the quaternion through 1/2 Xi(q).
+  const Eigen::Matrix<double, 4, 3> Xi = xi_matrix(x.head<4>());
+  P.topLeftCorner<4, 4>() = 0.25 * Xi * Xi.transpose() * config.initial_attitude_sigma_rad * config.initial_attitude_sigma_rad;
+  const double drift0 = config.initial_drift_sigma_radps > 0.0 ? config.initial_drift_sigma_radps : config.gyro_drift_sigma_radps;
+  P.block<3, 3>(4, 4) = Eigen::Matrix3d::Identity() * drift0 * drift0;
+  if (lever_states > 0)
+    P.bottomRightCorner(lever_states, lever_states) =
+        Eigen::MatrixXd::Identity(lever_states, lever_states) * config.initial_lever_sigma_m * config.initial_lever_sigma_m;
+  return Filter(x, P, {.allow_zero_variance = true});
+}
+
 LeverArmEkf::LeverArmEkf(const LeverArmEkfConfig& config, const Eigen::Quaterniond& q_b_n0)
-    : config_(config), lever_states_(lever_state_count(config.model)) {
+    : config_(config), lever_states_(lever_state_count(config.model)), kf_(make_filter(config, q_b_n0)) {
   if (!(config.gyro_drift_tau_s > 0.0)) throw std::invalid_argument("lever-arm EKF: gyro_drift_tau_s must be positive");
   if (!(config.accel_sigma_mps2 > 0.0)) throw std::invalid_argument("lever-arm EKF: accel_sigma_mps2 must be positive");
-  const int n = 7 + lever_states_;
-  x_ = Eigen::VectorXd::Zero(n);
-  x_.head<4>() = to_vector(q_b_n0.normalized());
-  if (config.model == LeverArmModel::kVertical) x_(7) = config.initial_lever_b_m.z();
-  if (config.model == LeverArmModel::kFull3d) x_.tail<3>() = config.initial_lever_b_m;
-  P_ = Eigen::MatrixXd::Zero(n, n);
-  // Small-angle attitude uncertainty maps onto the quaternion through 1/2 Xi(q).
-  const Eigen::Matrix<double, 4, 3> Xi = xi_matrix(x_.head<4>());
-  P_.topLeftCorner<4, 4>() = 0.25 * Xi * Xi.transpose() * config.initial_attitude_sigma_rad * config.initial_attitude_sigma_rad;
-  const double drift0 = config.initial_drift_sigma_radps > 0.0 ? config.initial_drift_sigma_radps : config.gyro_drift_sigma_radps;
-  P_.block<3, 3>(4, 4) = Eigen::Matrix3d::Identity() * drift0 * drift0;
-  if (lever_states_ > 0)
-    P_.bottomRightCorner(lever_states_, lever_states_) =
-        Eigen::MatrixXd::Identity(lever_states_, lever_states_) * config.initial_lever_sigma_m * config.initial_lever_sigma_m;
 }
 
 void LeverArmEkf::propagate(const Eigen::Vector3d& w_meas_radps, double dt_s) {
   if (!(dt_s > 0.0)) throw std::invalid_argument("lever-arm EKF: propagation step dt must be positive");
   const int n = state_size();
-  const Eigen::Vector4d q = x_.head<4>();
+  const Eigen::Vector4d q = kf_.x().head<4>();
   const Eigen::Vector3d w = w_meas_radps - gyro_drift_radps();
   const double beta = 1.0 / config_.gyro_drift_tau_s;
 
@@ -144,9 +149,10 @@ void LeverArmEkf::propagate(const Eigen::Vector3d& w_meas_radps, double dt_s) {
   const double angle = w.norm() * dt_s;
   const Eigen::Quaterniond dq = angle > 0.0 ? Eigen::Quaterniond(Eigen::AngleAxisd(angle, w.normalized()))
                                             : Eigen::Quaterniond::Identity();
-  x_.head<4>() = to_vector((to_quaternion(q) * dq).normalized());
-  x_.segment<3>(4) *= a;
-  P_ = Phi * P_ * Phi.transpose() + Qd;
+  Eigen::VectorXd& x = kf_.x();
+  x.head<4>() = to_vector((to_quaternion(q) * dq).normalized());
+  x.segment<3>(4) *= a;
+  kf_.predict_covariance(Phi, Qd);
 }
 
 Eigen::Matrix3d LeverArmEkf::lever_matrix(const Eigen::Vector3d& w_meas_radps, const Eigen::Vector3d& dw_radps2) const {
@@ -159,7 +165,7 @@ void LeverArmEkf::update(const Eigen::Vector3d& f_meas_mps2, const Eigen::Vector
     throw std::invalid_argument("lever-arm EKF: non-finite accelerometer, rate or angular acceleration");
   const int n = state_size();
   const double g = config_.gravity_mps2;
-  const Eigen::Vector4d q = x_.head<4>();
+  const Eigen::Vector4d q = kf_.x().head<4>();
   const Eigen::Matrix3d K_arm = lever_matrix(w_meas_radps, dw_radps2);
   const double r = config_.accel_sigma_mps2 * config_.accel_sigma_mps2;
   information_ += K_arm.transpose() * K_arm / r;
@@ -174,25 +180,21 @@ void LeverArmEkf::update(const Eigen::Vector3d& f_meas_mps2, const Eigen::Vector
   if (config_.model == LeverArmModel::kVertical) H.block<3, 1>(0, 7) = K_arm.col(2);
   if (config_.model == LeverArmModel::kFull3d) H.block<3, 3>(0, 7) = K_arm;
 
-  const Eigen::Matrix3d S = H * P_ * H.transpose() + r * Eigen::Matrix3d::Identity();
-  const Eigen::MatrixXd gain = P_ * H.transpose() * S.inverse();
-  x_ += gain * (f_meas_mps2 - h);
-  x_.head<4>().normalize();
-  const Eigen::MatrixXd I_KH = Eigen::MatrixXd::Identity(n, n) - gain * H;
-  P_ = I_KH * P_ * I_KH.transpose() + gain * r * gain.transpose();  // Joseph form
+  if (kf_.update_innovation(f_meas_mps2 - h, H, Eigen::Vector3d::Constant(r)).applied) kf_.x().head<4>().normalize();
 }
 
-Eigen::Quaterniond LeverArmEkf::q_b_n() const { return to_quaternion(x_.head<4>()); }
+Eigen::Quaterniond LeverArmEkf::q_b_n() const { return to_quaternion(kf_.x().head<4>()); }
 
 Eigen::Vector3d LeverArmEkf::lever_b_m() const {
-  if (config_.model == LeverArmModel::kVertical) return {0.0, 0.0, x_(7)};
-  if (config_.model == LeverArmModel::kFull3d) return x_.tail<3>();
+  if (config_.model == LeverArmModel::kVertical) return {0.0, 0.0, kf_.x()(7)};
+  if (config_.model == LeverArmModel::kFull3d) return kf_.x().tail<3>();
   return Eigen::Vector3d::Zero();
 }
 
 Eigen::Vector3d LeverArmEkf::lever_sigma_m() const {
-  if (config_.model == LeverArmModel::kVertical) return {0.0, 0.0, std::sqrt(P_(7, 7))};
-  if (config_.model == LeverArmModel::kFull3d) return P_.bottomRightCorner<3, 3>().diagonal().cwiseSqrt();
+  const Eigen::MatrixXd& P = kf_.P();
+  if (config_.model == LeverArmModel::kVertical) return {0.0, 0.0, std::sqrt(P(7, 7))};
+  if (config_.model == LeverArmModel::kFull3d) return P.bottomRightCorner<3, 3>().diagonal().cwiseSqrt();
   return Eigen::Vector3d::Zero();
 }
 

@@ -12,11 +12,16 @@
 // without it the filter becomes overconfident in the gyros).
 // Measurement (eq. 14-16): f_b = -C_n^b [0 0 g] + ([w x][w x] + [w' x]) L + n, with
 // w = w_meas - mu and w' supplied by the caller (e.g. smoothed_angular_acceleration).
+// The state is propagated here (exact rotation, exact Markov decay); the covariance, the
+// update and the health checks are the project's Kalman filter (kalman_filter.hpp). A
+// variance may be zero (the quaternion's covariance has rank 3, and a component of a
+// unit quaternion can be known exactly).
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <string>
 #include <vector>
 
+#include "ins/kalman_filter.hpp"
 #include "ins/lever_arm_imu_sim.hpp"
 
 namespace deepnav {
@@ -66,21 +71,26 @@ class LeverArmEkf {
               const Eigen::Vector3d& dw_radps2);
 
   Eigen::Quaterniond q_b_n() const;
-  Eigen::Vector3d gyro_drift_radps() const { return x_.segment<3>(4); }
+  Eigen::Vector3d gyro_drift_radps() const { return kf_.x().segment<3>(4); }
   /// Lever arm in body axes (zero for kNone; [0 0 l] for kVertical).
   Eigen::Vector3d lever_b_m() const;
   /// 1-sigma of the lever-arm state components in body axes (zero where not estimated).
   Eigen::Vector3d lever_sigma_m() const;
   /// Judged against config.observability_sigma_limit_m.
   LeverArmObservability observability() const;
-  int state_size() const { return static_cast<int>(x_.size()); }
+  int state_size() const { return kf_.size(); }
+  /// false once the covariance failed its check (reason in health_reason()); the attitude
+  /// is then propagated without further updates.
+  bool healthy() const { return kf_.healthy(); }
+  const std::string& health_reason() const { return kf_.reason(); }
 
  private:
+  using Filter = KalmanFilter<Eigen::Dynamic>;
+  static Filter make_filter(const LeverArmEkfConfig& config, const Eigen::Quaterniond& q_b_n0);
   Eigen::Matrix3d lever_matrix(const Eigen::Vector3d& w_meas_radps, const Eigen::Vector3d& dw_radps2) const;
   LeverArmEkfConfig config_;
   int lever_states_ = 0;
-  Eigen::VectorXd x_;
-  Eigen::MatrixXd P_;
+  Filter kf_;  ///< x = [q (4), mu (3), L (lever_states_)]
   Eigen::Matrix3d information_ = Eigen::Matrix3d::Zero();
 };
 

@@ -2,9 +2,9 @@
 
 namespace deepnav {
 
-ScalarChannelControl::ScalarChannelControl(double initial_doppler_hz, const LoopBandwidths& pull_in,
+ScalarChannelControl::ScalarChannelControl(double initial_doppler_hz, int pll_order, const LoopBandwidths& pull_in,
                                            const LoopBandwidths& tracking)
-    : loop_(initial_doppler_hz, pull_in), pull_in_(pull_in), tracking_(tracking) {}
+    : loop_(initial_doppler_hz, pll_order, pull_in), pull_in_(pull_in), tracking_(tracking) {}
 
 void ScalarChannelControl::select_bandwidths(const ChannelView& view) {
   loop_.set_bandwidths(view.channel.state() == ChannelState::tracking ? tracking_ : pull_in_);

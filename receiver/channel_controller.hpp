@@ -57,7 +57,8 @@ class ChannelController {
 /// until the channel tracks, the tracking ones after.
 class ScalarChannelControl final : public ChannelController {
  public:
-  ScalarChannelControl(double initial_doppler_hz, const LoopBandwidths& pull_in, const LoopBandwidths& tracking);
+  ScalarChannelControl(double initial_doppler_hz, int pll_order, const LoopBandwidths& pull_in,
+                       const LoopBandwidths& tracking);
   ChannelDecision on_epoch(const CorrelatorEpoch& epoch, const ChannelView& view) override;
   ChannelDecision between_blocks(const ChannelView&) override { return {}; }
   /// Another controller took the epoch: restart the loops at the Doppler it left, so they

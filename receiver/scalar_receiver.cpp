@@ -187,7 +187,7 @@ struct ScalarReceiver::Impl {
       if (!r.detected || static_cast<int>(channels.size()) >= cfg.channels) continue;
       Channel ch;
       ch.trk = std::make_unique<TrackingChannel>(cfg.tracking, ChannelStart{r.prn, r.doppler_hz, r.code_phase_chips, first});
-      ch.loop = std::make_unique<ScalarChannelControl>(r.doppler_hz, cfg.pull_in, cfg.tracking_loops);
+      ch.loop = std::make_unique<ScalarChannelControl>(r.doppler_hz, cfg.pll_order, cfg.pull_in, cfg.tracking_loops);
       if (steering) ch.steered = steering->controller_for(r.prn);
       ch.nav = std::make_unique<NavDecoder>(r.prn, resolution_week());
       ch.last_doppler_hz = r.doppler_hz;

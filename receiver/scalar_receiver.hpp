@@ -50,8 +50,9 @@ struct ReceiverConfig {
   double reacquire_interval_s = 5.0;
   AcquisitionConfig acquisition;        ///< sample rate and IF are taken from the source
   TrackingConfig tracking;
-  LoopBandwidths pull_in{15.0, 10.0, 1.0, 0.5};
-  LoopBandwidths tracking_loops{10.0, 0.0, 0.5, 0.5};
+  LoopBandwidths pull_in{15.0, 10.0, 1.0};
+  LoopBandwidths tracking_loops{10.0, 0.0, 0.5};
+  int pll_order = 2;                    ///< every channel's carrier loop, pull-in and tracking: 2, or 3 for high dynamics
   PvtConfig pvt;
   /// The atmosphere models of every range the receiver or an aided filter predicts: the
   /// PVT solution reads them from here, and so do tight coupling and the ultra-tight NCO commands

@@ -157,6 +157,7 @@ std::optional<CorrelatorEpoch> TrackingChannel::finish_code_period() {
   e.early = acc_e_;
   e.prompt = acc_p_;
   e.late = acc_l_;
+  e.spacing_chips = cfg_.spacing_chips;
   e.very_early = acc_ve_;
   e.very_late = acc_vl_;
   e.noise = acc_n_;

@@ -22,7 +22,7 @@ namespace deepnav {
 struct TrackingConfig {
   double sample_rate_hz = 4.092e6;
   double if_hz = 0.0;
-  double spacing_chips = 0.5;
+  double spacing_chips = 0.5;           ///< early-late spacing (the receiver's only setting of it)
   int coherent_ms_after_bit_sync = 10;  ///< 1, 2, 4, 5, 10 or 20
   double lost_cn0_dbhz = 22.0;          ///< below this for `lost_after_s`: loss of lock
   double lost_after_s = 1.0;

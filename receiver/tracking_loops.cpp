@@ -62,16 +62,16 @@ double carrier_aided_code_rate_cps(double carrier_doppler_hz, double code_error_
   return gps::kCodeRate_cps * (1.0 + carrier_doppler_hz / gps::kL1_Hz) + 4.0 * dll_hz * code_error_chips;
 }
 
-ScalarLoopController::ScalarLoopController(double initial_doppler_hz, LoopBandwidths b)
-    : bw_(b), carrier_(b.pll_order, b.pll_hz, b.fll_hz, initial_doppler_hz) {}
+ScalarLoopController::ScalarLoopController(double initial_doppler_hz, int pll_order, LoopBandwidths b)
+    : pll_order_(pll_order), bw_(b), carrier_(pll_order, b.pll_hz, b.fll_hz, initial_doppler_hz) {}
 
 void ScalarLoopController::set_bandwidths(const LoopBandwidths& b) {
-  carrier_.set_bandwidths(b.pll_order, b.pll_hz, b.fll_hz);
+  carrier_.set_bandwidths(pll_order_, b.pll_hz, b.fll_hz);
   bw_ = b;
 }
 
 void ScalarLoopController::reset(double doppler_hz) {
-  carrier_ = CarrierLoopFilter(bw_.pll_order, bw_.pll_hz, bw_.fll_hz, doppler_hz);
+  carrier_ = CarrierLoopFilter(pll_order_, bw_.pll_hz, bw_.fll_hz, doppler_hz);
   previous_prompt_.reset();
 }
 
@@ -85,12 +85,12 @@ NcoCommand ScalarLoopController::update(const CorrelatorEpoch& epoch, bool use_f
   previous_prompt_ = epoch.prompt;
   if (use_fll) {
     const double fade = bw_.fll_fade_s > 0.0 ? std::exp(-fll_time_s_ / bw_.fll_fade_s) : 1.0;
-    carrier_.set_bandwidths(bw_.pll_order, bw_.pll_hz, bw_.fll_hz * fade);
+    carrier_.set_bandwidths(pll_order_, bw_.pll_hz, bw_.fll_hz * fade);
     fll_time_s_ += t;
   }
   NcoCommand cmd;
   cmd.carrier_doppler_hz = carrier_.update(e_phase_rad, e_freq_radps, t);
-  const double e_code = dll_code_error_chips(epoch.early, epoch.late, bw_.dll_spacing_chips);
+  const double e_code = dll_code_error_chips(epoch.early, epoch.late, epoch.spacing_chips);
   cmd.code_rate_cps = carrier_aided_code_rate_cps(cmd.carrier_doppler_hz, e_code, bw_.dll_hz);
   return cmd;
 }

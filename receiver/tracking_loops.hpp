@@ -53,12 +53,13 @@ class CarrierLoopFilter {
 /// First-order carrier-aided DLL: code rate = nominal (1 + Doppler / f_L1) + 4 Bn error.
 double carrier_aided_code_rate_cps(double carrier_doppler_hz, double code_error_chips, double dll_bandwidth_hz);
 
+/// Loop bandwidths of one phase of tracking (pull-in, tracking). The loop order is the
+/// receiver's (ReceiverConfig::pll_order), the same in both phases; the DLL's early-late
+/// spacing is the channel's (CorrelatorEpoch::spacing_chips).
 struct LoopBandwidths {
   double pll_hz = 15.0;
   double fll_hz = 10.0;
   double dll_hz = 1.0;
-  double dll_spacing_chips = 0.5;  ///< early-late spacing the channel uses
-  int pll_order = 2;               ///< 2 or 3
   /// The FLL assistance fades out with this time constant (counted over the epochs it is
   /// used), so the PLL takes over without the FLL's frequency noise (tens of hertz at
   /// 30 dB-Hz with 1 ms integrations); 0 keeps it at full bandwidth.
@@ -69,7 +70,8 @@ struct LoopBandwidths {
 /// filter replaces exactly this object.
 class ScalarLoopController {
  public:
-  ScalarLoopController(double initial_doppler_hz, LoopBandwidths bandwidths);
+  /// pll_order 2 or 3; throws std::invalid_argument otherwise.
+  ScalarLoopController(double initial_doppler_hz, int pll_order, LoopBandwidths bandwidths);
   /// The command for the next integration; `use_fll` adds frequency assistance (pull-in).
   NcoCommand update(const CorrelatorEpoch& epoch, bool use_fll);
   void set_bandwidths(const LoopBandwidths& b);
@@ -78,6 +80,7 @@ class ScalarLoopController {
   double doppler_hz() const { return carrier_.frequency_hz(); }
 
  private:
+  int pll_order_;
   LoopBandwidths bw_;
   CarrierLoopFilter carrier_;
   std::optional<std::complex<double>> previous_prompt_;

@@ -32,7 +32,10 @@ struct CorrelatorEpoch {
   int samples = 0;
   double integration_s = 0.0;
   std::int64_t code_period = 0;         ///< code periods (ms) completed since tracking started, at the end
-  std::complex<double> early, prompt, late;  ///< E/P/L at +-spacing/2 chips
+  std::complex<double> early, prompt, late;  ///< E/P/L at +-spacing_chips/2 chips
+  /// Early-late spacing the taps were taken at: the channel's TrackingConfig::spacing_chips,
+  /// the one setting of it. Every code discriminator reads it from here.
+  double spacing_chips = 0.0;
   std::complex<double> very_early, very_late;  ///< at +-very_spacing/2 chips; zero when not configured
   std::complex<double> noise;           ///< a correlator on an unused PRN code: noise power reference
   int noise_samples = 0;                ///< samples `noise` covers (the integration's first code period; 0: none)

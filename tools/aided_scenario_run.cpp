@@ -86,8 +86,7 @@ AidedRunResult run_aided_scenario(const Scenario& sc, const SynthesisSummary& s,
   FileSampleSource source(synthesized_source(sc, s));
   aiding::NavigationSessionConfig cfg = scenario_session_config(sc, mode);
   aiding::AidedReceiverConfig& nav = cfg.navigator;
-  nav.receiver.pull_in.pll_order = settings.pll_order;
-  nav.receiver.tracking_loops.pll_order = settings.pll_order;
+  nav.receiver.pll_order = settings.pll_order;
   nav.receiver.atmosphere = settings.atmosphere;
   nav.troposphere.enabled = settings.filter_troposphere;
   aiding::NavigationSession session(cfg, source, scenario_imu_log(s, mode), sc.duration_s);

@@ -37,7 +37,6 @@ struct RunOptions {
   ReceiverConfig receiver;
   // INS aiding (--mode loose|tight|ultra).
   std::string assist_ephemeris;
-  int pll_order = 2;
   std::string mode = "scalar", imu_path, imu_grade = "tactical", imu_grades_file = "data/imu_grades.yaml";
   std::vector<double> imu_lever_arm_m{0.0, 0.0, 0.0};
   bool filter_troposphere = false;
@@ -72,7 +71,6 @@ aiding::AidedReceiverConfig aided_config(const RunOptions& o, aiding::NavMode mo
     throw UserError(e.what());
   }
   c.lever_arm_imu_to_antenna_b_m = -Eigen::Vector3d(o.imu_lever_arm_m[0], o.imu_lever_arm_m[1], o.imu_lever_arm_m[2]);
-  c.ultra.spacing_chips = o.receiver.tracking.spacing_chips;
   c.troposphere.enabled = o.filter_troposphere;
   c.troposphere.enable_on_mismatch = o.detect_troposphere_mismatch;
   c.fault_exclusion = o.fault_exclusion;
@@ -80,8 +78,7 @@ aiding::AidedReceiverConfig aided_config(const RunOptions& o, aiding::NavMode mo
 }
 
 /// The session's configuration from the options (assistance files read here).
-aiding::NavigationSessionConfig session_config(RunOptions& o, aiding::NavMode mode) {
-  o.receiver.pull_in.pll_order = o.receiver.tracking_loops.pll_order = o.pll_order;
+aiding::NavigationSessionConfig session_config(const RunOptions& o, aiding::NavMode mode) {
   aiding::NavigationSessionConfig c;
   if (mode == aiding::NavMode::scalar) {
     c.navigator.mode = mode;
@@ -254,7 +251,7 @@ const bool registered = register_command([](CommandParents& parents) {
   cmd->add_option("--channels", o->receiver.channels, "Tracking channels")
       ->check(CLI::Range(1, 32).description("1 to 32 (one per GPS PRN at most)"))
       ->capture_default_str();
-  cmd->add_option("--pll-order", o->pll_order, "Carrier loop order: 2, or 3 for high dynamics (follows Doppler ramps)")
+  cmd->add_option("--pll-order", o->receiver.pll_order, "Carrier loop order: 2, or 3 for high dynamics (follows Doppler ramps)")
       ->check(CLI::IsMember({2, 3}))
       ->capture_default_str();
   cmd->add_option("--threads", o->receiver.threads, "Channel worker threads (0: all cores; every mode's products are the same for any count)")

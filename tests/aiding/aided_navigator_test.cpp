@@ -231,25 +231,5 @@ TEST(AidedNavigator, TightCouplingExcludesASatelliteWithAStepAndStaysWithinBound
   EXPECT_LT(small.worst_h_m, unwatched.worst_h_m) << "excluding it beats letting it through the gate";
 }
 
-TEST(ErrorStateKalman, GatesOutliersAndNonFiniteMeasurementsWithoutLosingHealth) {
-  ErrorStateKalman kf(StateVector::Zero(), StateMatrix::Identity());
-  Eigen::Matrix<double, 2, kStates> H = Eigen::Matrix<double, 2, kStates>::Zero();
-  H(0, 0) = 1.0;
-  H(1, 1) = 1.0;
-  const UpdateResult r = kf.update<2>(Eigen::Vector2d{std::nan(""), 100.0}, H, Eigen::Vector2d{1.0, 1.0}, 5.0);
-  EXPECT_FALSE(r.applied);
-  EXPECT_EQ(r.rejected, 2);
-  EXPECT_TRUE(kf.healthy());
-  const UpdateResult ok = kf.update<2>(Eigen::Vector2d{0.5, -0.5}, H, Eigen::Vector2d{1.0, 1.0}, 5.0);
-  EXPECT_TRUE(ok.applied);
-  EXPECT_NEAR(kf.x()(0), 0.25, 1e-12);  // equal prior and measurement variance: half way
-  EXPECT_NEAR(kf.P()(0, 0), 0.5, 1e-12);
-  StateMatrix bad = StateMatrix::Identity();
-  bad(3, 3) = std::nan("");
-  kf.predict(StateMatrix::Identity(), bad);
-  EXPECT_FALSE(kf.healthy());
-  EXPECT_FALSE(kf.reason().empty());
-}
-
 }  // namespace
 }  // namespace deepnav::aiding

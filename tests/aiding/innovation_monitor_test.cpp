@@ -5,8 +5,8 @@
 namespace deepnav::aiding {
 namespace {
 
-UpdateResult rows(int offered, int rejected) {
-  UpdateResult r;
+KalmanUpdate rows(int offered, int rejected) {
+  KalmanUpdate r;
   r.rows = offered;
   r.rejected = rejected;
   return r;
@@ -37,7 +37,7 @@ TEST(InnovationMonitor, TooFewRowsSayNothing) {
   EXPECT_FALSE(m.inconsistent());
   m.add(2.0, rows(6, 6));
   EXPECT_TRUE(m.inconsistent());
-  m.add(2.5, UpdateResult{});  // an update that offered nothing changes nothing
+  m.add(2.5, KalmanUpdate{});  // an update that offered nothing changes nothing
   EXPECT_TRUE(m.inconsistent());
 }
 

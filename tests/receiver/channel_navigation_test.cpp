@@ -64,9 +64,9 @@ Decoded run(const Source& src, double polarity) {
   TrackingConfig cfg;
   cfg.sample_rate_hz = kFs;
   TrackingChannel ch(cfg, ChannelStart{spec.prn, spec.doppler0_hz + 30.0, spec.code0_chips + 0.2, 0, 0});
-  const LoopBandwidths pull_in{15.0, 10.0, 1.0, 0.5};
-  const LoopBandwidths narrow{10.0, 0.0, 0.5, 0.5};
-  ScalarLoopController loop(spec.doppler0_hz + 30.0, pull_in);
+  const LoopBandwidths pull_in{15.0, 10.0, 1.0};
+  const LoopBandwidths narrow{10.0, 0.0, 0.5};
+  ScalarLoopController loop(spec.doppler0_hz + 30.0, 2, pull_in);
   Decoded d;
   for (int ms = 0; ms < 36000; ms += 100) {
     const SampleBlock b = sig.next(100);

@@ -36,9 +36,9 @@ RunResult track(const ChannelSignalSpec& spec, double seconds, double doppler_er
   const double start_phase = std::fmod(spec.code0_chips, 1023.0);
   ChannelStart start{spec.prn, spec.doppler0_hz + doppler_error_hz, std::fmod(start_phase + code_error_chips + 1023.0, 1023.0), 0, 4};
   TrackingChannel ch(cfg, start);
-  const LoopBandwidths pull_in{15.0, 10.0, 1.0, cfg.spacing_chips};
-  const LoopBandwidths narrow{10.0, 0.0, 0.5, cfg.spacing_chips};
-  ScalarLoopController loop(start.doppler_hz, pull_in);
+  const LoopBandwidths pull_in{15.0, 10.0, 1.0};
+  const LoopBandwidths narrow{10.0, 0.0, 0.5};
+  ScalarLoopController loop(start.doppler_hz, 2, pull_in);
   RunResult r;
   double sum_code2 = 0.0, sum_dop2 = 0.0;
   int n_err = 0;

@@ -91,9 +91,7 @@ TEST(TrackingLoops, CarrierAidedDllRemovesACodeOffsetWithTimeConstantOneOverFour
 TEST(TrackingLoops, BadSettingsAreRejected) {
   EXPECT_THROW(CarrierLoopFilter(4, 15.0, 0.0, 0.0), std::invalid_argument);
   EXPECT_THROW(CarrierLoopFilter(2, -1.0, 0.0, 0.0), std::invalid_argument);
-  LoopBandwidths b;
-  b.pll_order = 1;
-  EXPECT_THROW(ScalarLoopController(0.0, b), std::invalid_argument);
+  EXPECT_THROW(ScalarLoopController(0.0, 1, LoopBandwidths{}), std::invalid_argument);
 }
 
 }  // namespace
