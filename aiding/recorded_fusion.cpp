@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
+#include <algorithm>
 #include <deque>
 #include <stdexcept>
 
@@ -57,6 +58,36 @@ class StationarityDetector {
   std::deque<Entry> window_;
 };
 
+/// The common offset of an epoch's pseudoranges from the filter when the gate turned every
+/// one of them (four or more) away and they agree with each other: their median, when it
+/// is over five times their spread about it (at least a metre).
+std::optional<double> common_code_offset(const std::vector<RangeMeasurement>& rows, const UpdateResult& r,
+                                         const FusionEpochTrace& trace) {
+  std::vector<double> residuals;
+  std::size_t k = 0;
+  for (const RangeMeasurement& m : rows) {
+    if (m.pseudorange_m) {
+      if (k >= r.row_rejected.size() || !r.row_rejected[k]) return std::nullopt;
+      for (const FusionSatelliteTrace& st : trace.satellites)
+        if (st.prn == m.prn && st.code_residual_m) residuals.push_back(*st.code_residual_m);
+      ++k;
+    }
+    if (m.rate_mps) ++k;
+  }
+  if (residuals.size() < 4) return std::nullopt;
+  const auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+  };
+  const double mid = median(residuals);
+  std::vector<double> spread;
+  for (double x : residuals) spread.push_back(std::abs(x - mid));
+  const double mad = median(spread);
+  if (std::abs(mid) <= 5.0 * std::max(1.0, mad)) return std::nullopt;
+  return mid;
+}
+
 }  // namespace
 
 nlohmann::json RecordedFusionReport::json() const {
@@ -66,6 +97,7 @@ nlohmann::json RecordedFusionReport::json() const {
           {"zero_velocity_updates", zero_velocity_updates},
           {"zero_velocity_rejected", zero_velocity_rejected},
           {"clock_jumps_followed", clock_jumps_followed},
+          {"clock_steps_absorbed", clock_steps_absorbed},
           {"filter_restarts", filter_restarts},
           {"rows_rejected", rows_rejected},
           {"smoothing_restarts", smoothing_restarts},
@@ -277,7 +309,19 @@ void RecordedFusion::run(const std::vector<ProductSink*>& sinks) {
           rows.push_back(m);
         }
         if (!rows.empty()) {
-          const UpdateResult r = nav->update_ranges(rows);
+          UpdateResult r = nav->update_ranges(rows);
+          // Every pseudorange turned away, all by about the same amount: the receiver clock
+          // stepped by less than the reader looks for (rinex_obs_reader.hpp), or the filter's
+          // clock ran off. A common offset is a clock error, not four faulty satellites: the
+          // clock takes it and the rows are offered again.
+          if (const std::optional<double> step = common_code_offset(rows, r, trace); step) {
+            nav->shift_clock_bias(*step);
+            ++report_.clock_steps_absorbed;
+            spdlog::info("t = {:.2f} s: every pseudorange {:.1f} m off the filter: its clock takes the step", re.t_s, *step);
+            for (FusionSatelliteTrace& st : trace.satellites)
+              if (st.code_residual_m) *st.code_residual_m -= *step;
+            r = nav->update_ranges(rows);
+          }
           report_.rows_rejected += r.rejected;
           trace.rows += r.rows;
           trace.rows_rejected += r.rejected;

@@ -11,7 +11,8 @@
 //
 // What recorded data need beyond the IF receiver's:
 //  - a receiver clock re-set between epochs (rinex_obs_reader.hpp finds it) moves the
-//    filter's clock bias by the same step;
+//    filter's clock bias by the same step; one too small for the reader, which the gate
+//    meets as every pseudorange off by the same amount, is taken by the clock too;
 //  - zero-velocity updates whenever a stationarity detector on the IMU fires (a walker
 //    stops): over the last window the specific force and the angular rate each stay within
 //    a tolerance of their window means, the mean specific force is gravity's magnitude, the
@@ -101,6 +102,7 @@ struct RecordedFusionReport {
   int zero_velocity_updates = 0;         ///< applied
   int zero_velocity_rejected = 0;        ///< the detector fired, the filter's gate turned it away
   int clock_jumps_followed = 0;
+  int clock_steps_absorbed = 0;          ///< every pseudorange off by one amount: the clock took it
   int filter_restarts = 0;
   int rows_rejected = 0;
   int smoothing_restarts = 0, smoothing_slips = 0, smoothing_doppler_steps = 0;
