@@ -1,6 +1,6 @@
 """Tracks of `deepnav fuse` runs and of a single-point solution over an RTKLIB reference.
 
-Usage: plot_fuse.py REFERENCE.pos OUT.png LABEL=FILE [LABEL=FILE ...]
+Usage: /usr/bin/python3 tools/plot_fuse.py REFERENCE.pos OUT.png LABEL=FILE [LABEL=FILE ...]
   FILE: an RTKLIB .pos solution (lat/lon/height) or a deepnav pvt.csv.
 
 Each solution is compared with the reference on common epochs (within 10 ms) in the
