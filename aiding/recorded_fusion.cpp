@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
+#include <algorithm>
 #include <deque>
 #include <stdexcept>
 
@@ -20,10 +21,15 @@ namespace {
 constexpr double kGpsToUnix_s = 315964800.0;  ///< 1980-01-06 minus 1970-01-01, in seconds
 
 /// The stationarity detector: over the last window the specific force and the angular rate
-/// each stay within a tolerance of their means.
+/// each stay within a tolerance of their means (a bias does not matter), the mean specific
+/// force is gravity's magnitude and the mean angular rate is no more than the tolerance plus
+/// what the gyro's bias can be. The variation alone is not enough: a vehicle in a steady turn
+/// or at constant speed with a quiet IMU passes it (the land circle with a tactical IMU did
+/// at every epoch); the rate bound catches the turn, the GNSS speed (the caller's) the rest.
 class StationarityDetector {
  public:
-  explicit StationarityDetector(const StationarityConfig& c) : cfg_(c) {}
+  StationarityDetector(const StationarityConfig& c, double gravity_mps2, double gyro_bias_radps)
+      : cfg_(c), gravity_mps2_(gravity_mps2), gyro_bias_radps_(gyro_bias_radps) {}
   void add(const ImuSample& s, double dt) {
     if (dt <= 0.0) return;
     window_.push_back({s.t_s, s.dv_b_mps / dt, s.dtheta_b_rad / dt});
@@ -35,6 +41,9 @@ class StationarityDetector {
     for (const auto& e : window_) mf += e.f, mw += e.w;
     mf /= static_cast<double>(window_.size());
     mw /= static_cast<double>(window_.size());
+    if (std::abs(mf.norm() - gravity_mps2_) > cfg_.accel_tolerance_mps2 ||
+        mw.norm() > cfg_.gyro_tolerance_radps + gyro_bias_radps_)
+      return false;
     for (const auto& e : window_)
       if ((e.f - mf).norm() > cfg_.accel_tolerance_mps2 || (e.w - mw).norm() > cfg_.gyro_tolerance_radps) return false;
     return true;
@@ -46,8 +55,39 @@ class StationarityDetector {
     Eigen::Vector3d f, w;
   };
   StationarityConfig cfg_;
+  double gravity_mps2_, gyro_bias_radps_;
   std::deque<Entry> window_;
 };
+
+/// The common offset of an epoch's pseudoranges from the filter when the gate turned every
+/// one of them (four or more) away and they agree with each other: their median, when it
+/// is over five times their spread about it (at least a metre).
+std::optional<double> common_code_offset(const std::vector<RangeMeasurement>& rows, const KalmanUpdate& r,
+                                         const FusionEpochTrace& trace) {
+  std::vector<double> residuals;
+  std::size_t k = 0;
+  for (const RangeMeasurement& m : rows) {
+    if (m.pseudorange_m) {
+      if (k >= r.row_rejected.size() || !r.row_rejected[k]) return std::nullopt;
+      for (const FusionSatelliteTrace& st : trace.satellites)
+        if (st.prn == m.prn && st.code_residual_m) residuals.push_back(*st.code_residual_m);
+      ++k;
+    }
+    if (m.rate_mps) ++k;
+  }
+  if (residuals.size() < 4) return std::nullopt;
+  const auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+  };
+  const double mid = median(residuals);
+  std::vector<double> spread;
+  for (double x : residuals) spread.push_back(std::abs(x - mid));
+  const double mad = median(spread);
+  if (std::abs(mid) <= 5.0 * std::max(1.0, mad)) return std::nullopt;
+  return mid;
+}
 
 }  // namespace
 
@@ -56,7 +96,9 @@ nlohmann::json RecordedFusionReport::json() const {
           {"fixes", fixes},
           {"filter_epochs", filter_epochs},
           {"zero_velocity_updates", zero_velocity_updates},
+          {"zero_velocity_rejected", zero_velocity_rejected},
           {"clock_jumps_followed", clock_jumps_followed},
+          {"clock_steps_absorbed", clock_steps_absorbed},
           {"filter_restarts", filter_restarts},
           {"rows_rejected", rows_rejected},
           {"smoothing_restarts", smoothing_restarts},
@@ -117,7 +159,10 @@ void RecordedFusion::run(const std::vector<ProductSink*>& sinks) {
   const IonoParameters iono = cfg_.iono ? *cfg_.iono : nav_.iono;
   InsInitializer init(cfg_.imu, cfg_.lever_arm_imu_to_antenna_b_m);
   std::optional<AidedNavigator> nav;
-  StationarityDetector still(cfg_.stationarity);
+  const wgs84::Llh site = obs_.report.approx_position_ecef_m ? wgs84::ecef_to_llh(*obs_.report.approx_position_ecef_m)
+                                                              : wgs84::Llh{0.7, 0.0, 0.0};
+  StationarityDetector still(cfg_.stationarity, wgs84::normal_gravity_mps2(site.lat_rad, site.height_m),
+                             3.0 * (cfg_.imu.gyro.bias_sigma + cfg_.imu.gyro.bias_instability_sigma));
   std::size_t next_imu = 0;
   double last_imu_t = -1e300;
   // A start at rest gyrocompasses: it needs a gyro whose bias is small against the Earth's
@@ -194,8 +239,8 @@ void RecordedFusion::run(const std::vector<ProductSink*>& sinks) {
     if (nav && e.clock_jump_m != 0.0) {
       nav->shift_clock_bias(e.clock_jump_m);
       ++report_.clock_jumps_followed;
-      spdlog::info("t = {:.2f} s: receiver clock re-set by {:.3f} ms: filter clock follows", re.t_s,
-                   e.clock_jump_m / gps::kSpeedOfLight_mps * 1e3);
+      spdlog::info("t = {:.2f} s: receiver clock re-set by {:.3f} us: filter clock follows", re.t_s,
+                   e.clock_jump_m / gps::kSpeedOfLight_mps * 1e6);
     }
     int filter_satellites = 0;
     if (!nav && re.pvt.valid && dopplers && last_imu_t > t - 0.1) {
@@ -265,7 +310,19 @@ void RecordedFusion::run(const std::vector<ProductSink*>& sinks) {
           rows.push_back(m);
         }
         if (!rows.empty()) {
-          const KalmanUpdate r = nav->update_ranges(rows);
+          KalmanUpdate r = nav->update_ranges(rows);
+          // Every pseudorange turned away, all by about the same amount: the receiver clock
+          // stepped by less than the reader looks for (rinex_obs_reader.hpp), or the filter's
+          // clock ran off. A common offset is a clock error, not four faulty satellites: the
+          // clock takes it and the rows are offered again.
+          if (const std::optional<double> step = common_code_offset(rows, r, trace); step) {
+            nav->shift_clock_bias(*step);
+            ++report_.clock_steps_absorbed;
+            spdlog::info("t = {:.2f} s: every pseudorange {:.1f} m off the filter: its clock takes the step", re.t_s, *step);
+            for (FusionSatelliteTrace& st : trace.satellites)
+              if (st.code_residual_m) *st.code_residual_m -= *step;
+            r = nav->update_ranges(rows);
+          }
           report_.rows_rejected += r.rejected;
           trace.rows += r.rows;
           trace.rows_rejected += r.rejected;
@@ -283,10 +340,17 @@ void RecordedFusion::run(const std::vector<ProductSink*>& sinks) {
         }
         filter_satellites = static_cast<int>(rows.size());
       }
-      if (still.stationary()) {
-        nav->update_zero_velocity(cfg_.stationarity.velocity_sigma_mps);
-        ++report_.zero_velocity_updates;
-        trace.zero_velocity = true;
+      // Not while the Dopplers say the antenna moves (a fix without Dopplers says nothing).
+      const bool gnss_still = !re.pvt.valid || !dopplers ||
+                              ecef_to_ned_vector(re.pvt.llh, re.pvt.v_ecef_mps).norm() <= cfg_.stationarity.max_gnss_speed_mps;
+      if (gnss_still && still.stationary()) {
+        const KalmanUpdate r = nav->update_zero_velocity(cfg_.stationarity.velocity_sigma_mps);
+        if (r.applied) {
+          ++report_.zero_velocity_updates;
+          trace.zero_velocity = true;
+        } else {
+          ++report_.zero_velocity_rejected;
+        }
       }
       if (!nav->healthy()) {
         spdlog::error("t = {:.2f} s: navigation filter failed ({}); INS restarted from the next fix", re.t_s,

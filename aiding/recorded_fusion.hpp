@@ -11,10 +11,13 @@
 //
 // What recorded data need beyond the IF receiver's:
 //  - a receiver clock re-set between epochs (rinex_obs_reader.hpp finds it) moves the
-//    filter's clock bias by the same step;
+//    filter's clock bias by the same step; one too small for the reader, which the gate
+//    meets as every pseudorange off by the same amount, is taken by the clock too;
 //  - zero-velocity updates whenever a stationarity detector on the IMU fires (a walker
 //    stops): over the last window the specific force and the angular rate each stay within
-//    a tolerance of their window means;
+//    a tolerance of their window means, the mean specific force is gravity's magnitude, the
+//    mean rate within the tolerance plus the gyro's possible bias, and the PVT's Doppler
+//    speed (when there is one) is low;
 //  - a satellite flagged with loss of lock keeps its pseudorange (code does not slip);
 //    a satellite without Doppler gives a pseudorange row only.
 #include <functional>
@@ -42,6 +45,8 @@ struct StationarityConfig {
   double accel_tolerance_mps2 = 0.25;   ///< |f - mean f| within this over the window
   double gyro_tolerance_radps = 0.25 * M_PI / 180.0;
   double velocity_sigma_mps = 0.02;     ///< of the zero-velocity update
+  /// No update while the PVT's Doppler velocity is faster than this (m/s).
+  double max_gnss_speed_mps = 0.5;
 };
 
 struct RecordedFusionConfig {
@@ -94,8 +99,10 @@ struct FusionEpochTrace {
 /// What the run did, for summary.json.
 struct RecordedFusionReport {
   int epochs = 0, fixes = 0, filter_epochs = 0;
-  int zero_velocity_updates = 0;
+  int zero_velocity_updates = 0;         ///< applied
+  int zero_velocity_rejected = 0;        ///< the detector fired, the filter's gate turned it away
   int clock_jumps_followed = 0;
+  int clock_steps_absorbed = 0;          ///< every pseudorange off by one amount: the clock took it
   int filter_restarts = 0;
   int rows_rejected = 0;
   int smoothing_restarts = 0, smoothing_slips = 0, smoothing_doppler_steps = 0;

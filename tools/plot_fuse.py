@@ -1,6 +1,6 @@
 """Tracks of `deepnav fuse` runs and of a single-point solution over an RTKLIB reference.
 
-Usage: plot_fuse.py REFERENCE.pos OUT.png LABEL=FILE [LABEL=FILE ...]
+Usage: /usr/bin/python3 tools/plot_fuse.py REFERENCE.pos OUT.png LABEL=FILE [LABEL=FILE ...]
   FILE: an RTKLIB .pos solution (lat/lon/height) or a deepnav pvt.csv.
 
 Each solution is compared with the reference on common epochs (within 10 ms) in the
@@ -115,7 +115,9 @@ def main():
     ax.plot([p[0] for p in ref_enu], [p[1] for p in ref_enu], color="black", lw=2.2, label="RTK reference", zorder=1)
     print("%-28s %6s %22s %8s %10s %7s %7s" % ("solution", "epochs", "mean offset E,N,U (m)", "RMS H", "scatter H",
                                                 "max H", "max 3-D"))
-    colors = ["tab:gray", "tab:blue", "tab:red", "tab:green", "tab:orange"]
+    colors = ["tab:gray", "tab:blue", "tab:red", "tab:green", "tab:orange", "tab:purple", "tab:brown", "tab:olive"]
+    if len(runs) > len(colors):
+        sys.exit("at most %d solutions in one plot" % len(colors))
     t0 = keys[0]
     for (label, sol), color in zip(runs, colors):
         pairs = match(sol, reference)

@@ -108,6 +108,45 @@ def cnav_messages(data):
     return out
 
 
+def lnav_orbits(data):
+    """Orbit parameters of every GPS satellite whose L1 C/A subframes 2 and 3 (one IODE)
+    are in RXM-SFRBX, by PRN: a check of the CNAV orbits, also for satellites whose
+    subframe 1 (the clock) never came. u-blox gives each 30-bit word with its data bits
+    already in true polarity; the 24 data bits are kept."""
+    frames = collections.defaultdict(dict)
+    for cls, mid, p in ubx_messages(data):
+        if (cls, mid) != (0x02, 0x13) or p[0] != 0 or p[2] != 0 or p[4] != 10:
+            continue
+        words = struct.unpack_from("<10I", p, 8)
+        m = Bits([int(c) for c in "".join(format((w >> 6) & 0xFFFFFF, "024b") for w in words)])
+        if m.u(1, 8) == 0x8B:
+            frames[p[1]][m.u(44, 3)] = m
+
+    def field(m, word, bit, n, signed):
+        return m.s(24 * (word - 1) + bit, n) if signed else m.u(24 * (word - 1) + bit, n)
+
+    def split(m, word, n_msb, signed):  # n_msb bits at the end of `word`, 24 in the next
+        v = (field(m, word, 25 - n_msb, n_msb, False) << 24) | field(m, word + 1, 1, 24, False)
+        n = n_msb + 24
+        return v - (1 << n) if signed and v >> (n - 1) else v
+
+    out = {}
+    for prn, f in frames.items():
+        if 2 not in f or 3 not in f or field(f[2], 3, 1, 8, False) != field(f[3], 10, 1, 8, False):
+            continue
+        s2, s3 = f[2], f[3]
+        out[prn] = dict(Crs=field(s2, 3, 9, 16, True) * 2.0**-5, dn=field(s2, 4, 1, 16, True) * 2.0**-43 * SC,
+                        M0=split(s2, 4, 8, True) * 2.0**-31 * SC, Cuc=field(s2, 6, 1, 16, True) * 2.0**-29,
+                        e=split(s2, 6, 8, False) * 2.0**-33, Cus=field(s2, 8, 1, 16, True) * 2.0**-29,
+                        sqrtA=split(s2, 8, 8, False) * 2.0**-19, toe=field(s2, 10, 1, 16, False) * 16.0,
+                        Cic=field(s3, 3, 1, 16, True) * 2.0**-29, Omega0=split(s3, 3, 8, True) * 2.0**-31 * SC,
+                        Cis=field(s3, 5, 1, 16, True) * 2.0**-29, i0=split(s3, 5, 8, True) * 2.0**-31 * SC,
+                        Crc=field(s3, 7, 1, 16, True) * 2.0**-5, omega=split(s3, 7, 8, True) * 2.0**-31 * SC,
+                        Omegadot=field(s3, 9, 1, 24, True) * 2.0**-43 * SC,
+                        idot=field(s3, 10, 9, 14, True) * 2.0**-43 * SC)
+    return out
+
+
 def decode(messages):
     """Per PRN: the last ephemeris (types 10 + 11 of one toe) with a clock (30-37) and
     group delays (30)."""
@@ -270,7 +309,9 @@ def main():
     if len(sys.argv) != 5:
         sys.exit(__doc__)
     ubx_path, nav_in, obs_path, nav_out = sys.argv[1:]
-    cnav, iono = decode(cnav_messages(open(ubx_path, "rb").read()))
+    raw = open(ubx_path, "rb").read()
+    cnav, iono = decode(cnav_messages(raw))
+    subframes = lnav_orbits(raw)
     header, records, lnav = read_lnav(nav_in)
     lnav_toc = {prn: p["toc"] for prn, p in lnav.items()}
     (w0, t0), (w1, t1) = obs_span(obs_path)
@@ -288,6 +329,9 @@ def main():
         worst = max(math.dist(position(c, t, True), position(min(fits, key=lambda f: abs(f["toe"] - t)), t, False))
                     for t in span)
         note = "LNAV form against the CNAV model over the span: largest difference %.4f m" % worst
+        if prn in subframes:
+            d = max(math.dist(position(c, t, True), position(subframes[prn], t, False)) for t in span)
+            note += "; orbit of its L1 C/A subframes 2-3 against it: %.2f m" % d
         if prn in lnav:
             d = max(math.dist(position(c, t, True), position(lnav[prn], t, False)) for t in span)
             dc = max(abs(clock(c, c["toc"], t) - clock(lnav[prn], lnav_toc[prn], t)) for t in span) * C

@@ -379,8 +379,15 @@ void find_gaps(ObservationFile& f, std::optional<double> interval_s) {
 }
 
 /// Receiver clock re-settings: the median over common satellites of the pseudorange
-/// change minus what the Dopplers predict for it; a step beyond 1/10 ms of range (30 km:
-/// no motion or clock drift makes that in seconds) is a jump.
+/// change minus what the Dopplers predict for it. Between consecutive epochs (no gap) the
+/// Dopplers take the motion and the clock drift, and what is left is code noise and
+/// multipath, a metre or two at most (the walk_0827 recording: 1.0 m); a common step beyond
+/// kMinStepConsecutive_m is a re-set, whether by whole milliseconds (u-blox and most
+/// receivers) or by microseconds (a receiver steering its time tags, as deepnav's own does:
+/// steps of about 1 km). Across a gap the Dopplers' mean misses the motion in between, and
+/// only a step beyond 1/10 ms of range (30 km) counts.
+constexpr double kMinStepConsecutive_m = 100.0;
+
 void find_clock_jumps(ObservationFile& f) {
   for (std::size_t i = 1; i < f.epochs.size(); ++i) {
     const ObservationEpoch& a = f.epochs[i - 1];
@@ -396,7 +403,8 @@ void find_clock_jumps(ObservationFile& f) {
     }
     if (steps.empty()) continue;
     const double step = median(steps);
-    if (std::abs(step) < 0.1 * kMillisecondRange_m) continue;
+    const bool consecutive = f.report.nominal_interval_s > 0.0 && dt <= 1.5 * f.report.nominal_interval_s;
+    if (std::abs(step) < (consecutive ? kMinStepConsecutive_m : 0.1 * kMillisecondRange_m)) continue;
     b.clock_jump_m = step;
     f.report.clock_jumps.push_back({b.line, b.t, step, step / kMillisecondRange_m});
   }

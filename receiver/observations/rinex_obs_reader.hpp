@@ -10,7 +10,8 @@
 //    since the previous epoch) marks every satellite so;
 //  - a missing pseudorange or Doppler: the field stays empty (nullopt), counted;
 //  - receiver clock jumps (a receiver that keeps its clock within a millisecond of GPS
-//    time re-sets it by whole milliseconds, and every pseudorange jumps by c x 1 ms): found
+//    time re-sets it by whole milliseconds, and every pseudorange jumps by c x 1 ms; one
+//    that steers its time tags steps them by microseconds, hundreds of metres): found
 //    from the pseudorange change between epochs against the Doppler's, reported per epoch
 //    (ObservationEpoch::clock_jump_m) and in the report; the data are left as recorded;
 //  - epoch flags 2-5 (moving antenna, new site, header records, external event) and 6

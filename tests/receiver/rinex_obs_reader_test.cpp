@@ -166,6 +166,34 @@ TEST(RinexObsReader, FindsMillisecondClockResetsAndGapsWithoutInterpolating) {
   EXPECT_EQ(f.epochs.size(), 5u);  // nothing invented in the gap
 }
 
+TEST(RinexObsReader, FindsMicrosecondStepsOfASteeredClockButNotCodeNoise) {
+  // A receiver that steers its time tags steps every pseudorange by a few microseconds
+  // (here -3.6 us, about -1080 m, before epoch 3); code noise of a metre or two is not a step,
+  // nor is a 300 m step across a gap (the Dopplers' mean misses the motion in a gap).
+  std::string t = header3();
+  const double d1 = 1000.0, d2 = -2000.0;
+  double pr1 = 2.1e7, pr2 = 2.2e7;
+  const double secs[] = {0.0, 0.25, 0.5, 0.75, 1.0, 3.0};
+  const double noise1[] = {0.0, 1.5, -1.2, 0.8, 0.0, 0.0}, noise2[] = {0.0, 1.9, -0.7, 1.1, 0.0, 0.0};
+  for (int k = 0; k < 6; ++k) {
+    if (k > 0) {
+      const double dt = secs[k] - secs[k - 1];
+      pr1 -= d1 * gps::kL1Wavelength_m * dt;
+      pr2 -= d2 * gps::kL1Wavelength_m * dt;
+    }
+    const double step = (k >= 3 ? -3.6e-6 * gps::kSpeedOfLight_mps : 0.0) + (k >= 5 ? 300.0 : 0.0);
+    t += epoch3(10.0 + secs[k], 2);
+    t += sat3("G01", pr1 + step + noise1[k], 1.0, d1, 45.0);
+    t += sat3("G02", pr2 + step + noise2[k], 1.0, d2, 45.0);
+  }
+  const ObservationFile f = parse(t);
+  ASSERT_EQ(f.report.clock_jumps.size(), 1u);
+  EXPECT_NEAR(f.epochs[3].clock_jump_m, -3.6e-6 * gps::kSpeedOfLight_mps + 2.0, 1e-3);  // the upper median of the two
+  EXPECT_NEAR(f.report.clock_jumps[0].jump_ms, f.epochs[3].clock_jump_m / (gps::kSpeedOfLight_mps * 1e-3), 1e-9);
+  EXPECT_EQ(f.epochs[5].clock_jump_m, 0.0);
+  EXPECT_TRUE(f.epochs[5].after_gap);
+}
+
 TEST(RinexObsReader, SkipsEventRecordsAndCycleSlipRecords) {
   std::string t = header3();
   t += epoch3(0.0, 1) + sat3("G01", 2.1e7, 1.0, 0.0, 45.0);
