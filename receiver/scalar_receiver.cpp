@@ -42,6 +42,7 @@ struct ScalarReceiver::Impl {
   std::vector<Channel> channels;
   std::vector<int> acquired;
   std::map<int, Ephemeris> ephs;
+  std::set<int> decoded_prns;  ///< PRNs whose entry in ephs came from the signal (not assistance)
   IonoParameters iono;
   UtcParameters utc;
   PvtSolver pvt;
@@ -310,6 +311,7 @@ struct ScalarReceiver::Impl {
       for (const EpochRecord& r : records[i]) {
         if (r.new_ephemeris) {
           ephs[ch.trk->prn()] = *ch.nav->ephemeris();
+          decoded_prns.insert(ch.trk->prn());
           if (ch.nav->iono().valid) iono = ch.nav->iono();
           if (ch.nav->utc().valid) utc = ch.nav->utc();
           spdlog::debug("PRN {:2d}: ephemeris IODE {}", ch.trk->prn(), ch.nav->ephemeris()->iode);
@@ -501,6 +503,12 @@ double ScalarReceiver::sample_rate_hz() const { return impl_->fs; }
 double ScalarReceiver::clock_steps_s() const { return impl_->clock_steps_s; }
 
 std::map<int, Ephemeris> ScalarReceiver::ephemerides() const { return impl_->ephs; }
+
+std::map<int, Ephemeris> ScalarReceiver::decoded_ephemerides() const {
+  std::map<int, Ephemeris> out;
+  for (int prn : impl_->decoded_prns) out.emplace(prn, impl_->ephs.at(prn));
+  return out;
+}
 IonoParameters ScalarReceiver::iono() const { return impl_->iono; }
 const AtmosphereModels& ScalarReceiver::atmosphere() const { return impl_->cfg.atmosphere; }
 UtcParameters ScalarReceiver::utc() const { return impl_->utc; }

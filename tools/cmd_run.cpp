@@ -117,6 +117,7 @@ nlohmann::json run_summary(const RunOptions& o, const OpenedSource& opened, aidi
       {"time_to_first_fix_s", stats.first_fix_s() ? nlohmann::json(*stats.first_fix_s()) : nlohmann::json(nullptr)},
       {"acquired_prns", receiver.acquired_prns()},
       {"ephemerides", receiver.ephemerides().size()},
+      {"ephemerides_decoded", receiver.decoded_ephemerides().size()},
       {"satellites_used", stats.satellites().json()},
       {"pdop", stats.pdop().json()}};
   if (scored) {
@@ -151,6 +152,12 @@ nlohmann::json run_summary(const RunOptions& o, const OpenedSource& opened, aidi
     }
   }
   summary["interrupted"] = opened.interrupted();
+  // What failed, if anything: the run itself (the products hold what came before), and
+  // each product that could not be written (the others are).
+  summary["error"] = session.run_error() ? nlohmann::json(*session.run_error()) : nlohmann::json(nullptr);
+  nlohmann::json failed = nlohmann::json::array();
+  for (const ProductFailure& f : session.product_failures()) failed.push_back({{"product", f.product}, {"error", f.error}});
+  summary["products_failed"] = failed;
   if (opened.is_stream) summary["stream"] = opened.report();
   return summary;
 }
@@ -163,6 +170,7 @@ class SummarySink : public ProductSink {
     file_.write(summary_().dump(2) + "\n");
     file_.commit();
   }
+  std::string name() const override { return "summary.json"; }
 
  private:
   TextOutputFile file_;
@@ -209,9 +217,15 @@ void run_receiver(RunOptions o) {
 
   const double total_s = opened.duration_s.value_or(0.0);
   ProgressLine progress("run", total_s);
-  session.run(sinks, [&](double t) {
-    if (total_s > 0.0) progress.update(t / total_s);  // a stream's length is not known
-  });
+  try {
+    session.run(sinks, [&](double t) {
+      if (total_s > 0.0) progress.update(t / total_s);  // a stream's length is not known
+    });
+  } catch (const std::exception& e) {
+    progress.finish();
+    if (session.run_error()) throw UserError(fmt::format("{} (products written up to there)", e.what()));
+    throw UserError(e.what());
+  }
   progress.finish();
   fmt::print("{} fixes in {} epochs; first fix at {} s; satellites acquired: {}\n", stats.fixes(), stats.epochs(),
              stats.first_fix_s() ? fmt::format("{:.1f}", *stats.first_fix_s()) : std::string("-"),
