@@ -105,7 +105,7 @@ aiding::NavigationSessionConfig session_config(RunOptions& o, aiding::NavMode mo
 }
 
 nlohmann::json run_summary(const RunOptions& o, const OpenedSource& opened, aiding::NavigationSession& session,
-                           const RunStatistics& stats, bool scored) {
+                           const RunStatistics& stats, bool scored, const std::vector<ImuGap>& imu_gaps) {
   ScalarReceiver& receiver = session.receiver();
   const SampleSource& source = *opened.source;
   nlohmann::json summary = {
@@ -143,6 +143,9 @@ nlohmann::json run_summary(const RunOptions& o, const OpenedSource& opened, aidi
     summary["seconds_in_mode"] = session.seconds_in_mode();
     summary["ins_start"] = aided->ins_start_method();
     summary["filter_restarts"] = aided->filter_restarts();
+    nlohmann::json gaps = nlohmann::json::array();
+    for (const ImuGap& g : imu_gaps) gaps.push_back({{"from_s", g.t_before_s}, {"to_s", g.t_after_s}, {"line", g.line}});
+    summary["imu_gaps"] = gaps;
     summary["satellite_exclusions"] = aided->satellite_exclusions();
     if (const auto found = aided->troposphere_mismatch_found_s()) {
       const auto from = aided->troposphere_state_from_s();
@@ -205,12 +208,16 @@ void run_receiver(RunOptions o) {
   const aiding::NavMode mode = parse_mode(o);
   std::optional<ImuLog> imu;
   if (mode != aiding::NavMode::scalar) imu = read_imu(o);
+  const std::vector<ImuGap> imu_gaps = imu ? imu->gaps : std::vector<ImuGap>{};
+  for (const ImuGap& g : imu_gaps)
+    spdlog::warn("{}:{}: no IMU data from t = {:.3f} s to {:.3f} s: the INS stops across the gap", o.imu_path, g.line,
+                 g.t_before_s, g.t_after_s);
   std::vector<std::unique_ptr<ProductSink>> products =
       file_products(o.out_dir, std::filesystem::path(o.input).filename().string(), 1.0 / o.receiver.observation_rate_hz);
   aiding::NavigationSession session(session_config(o, mode), *opened.source, std::move(imu), opened.duration_s);
   RunStatistics stats(truth ? &*truth : nullptr);
   SummarySink summary((std::filesystem::path(o.out_dir) / "summary.json").string(),
-                      [&] { return run_summary(o, opened, session, stats, truth.has_value()); });
+                      [&] { return run_summary(o, opened, session, stats, truth.has_value(), imu_gaps); });
   std::vector<ProductSink*> sinks{&stats};
   for (const auto& p : products) sinks.push_back(p.get());
   sinks.push_back(&summary);
