@@ -140,6 +140,9 @@ class ScalarReceiver {
   /// about 0.1 ns, 3.5 cm, and those errors add up over thousands of blocks).
   double clock_steps_s() const;
   double sample_rate_hz() const;
+  /// Seconds of signal the run processed: from its first sample to the end of the last
+  /// block read (gaps included), 0 before the first block.
+  double processed_s() const;
   /// Ephemerides in use (decoded, else assisted), ionosphere and UTC decoded so far.
   std::map<int, Ephemeris> ephemerides() const;
   /// Only those ephemerides decoded from the signal (what nav.rnx reports).

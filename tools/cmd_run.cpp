@@ -107,11 +107,11 @@ aiding::NavigationSessionConfig session_config(RunOptions& o, aiding::NavMode mo
 nlohmann::json run_summary(const RunOptions& o, const OpenedSource& opened, aiding::NavigationSession& session,
                            const RunStatistics& stats, bool scored, const std::vector<ImuGap>& imu_gaps) {
   ScalarReceiver& receiver = session.receiver();
-  const SampleSource& source = *opened.source;
   nlohmann::json summary = {
       {"input", o.input},
-      {"duration_s", opened.duration_s ? *opened.duration_s
-                                       : static_cast<double>(source.next_sample_index()) / source.sample_rate_hz()},
+      // What the run processed: a file's length only when it was read to the end (not after
+      // Ctrl-C), and a stream's from its first sample (not from sample 0).
+      {"duration_s", receiver.processed_s()},
       {"epochs", stats.epochs()},
       {"fixes", stats.fixes()},
       {"time_to_first_fix_s", stats.first_fix_s() ? nlohmann::json(*stats.first_fix_s()) : nlohmann::json(nullptr)},
