@@ -1,10 +1,13 @@
 #include "aiding/aided_receiver.hpp"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
+#include <string>
 
 #include "aiding/innovation_monitor.hpp"
 #include "aiding/ins_initializer.hpp"
@@ -25,6 +28,8 @@ struct AidedReceiver::Impl : ChannelSteering {
   ScalarReceiver rx;
   ImuLog imu;
   std::size_t next_imu = 0;
+  std::size_t next_gap = 0;  ///< first IMU gap not reached yet
+  std::optional<std::size_t> current_gap;  ///< the IMU gap the receiver is in (no INS there)
   InsInitializer init;
   std::optional<AidedNavigator> nav;
   UltraTightTracker ultra;
@@ -88,6 +93,19 @@ struct AidedReceiver::Impl : ChannelSteering {
   }
 
   void propagate_to(double t) {
+    // A gap in the IMU data: nothing to propagate the INS with, so it stops (and restarts
+    // from the fixes after the gap) instead of steering channels and publishing solutions
+    // from a state that no longer moves with the vehicle.
+    if (current_gap && t >= imu.gaps[*current_gap].t_after_s) current_gap.reset();
+    while (next_gap < imu.gaps.size() && t > imu.gaps[next_gap].t_before_s + 1.5 * imu.nominal_interval_s) {
+      const ImuGap& g = imu.gaps[next_gap++];
+      if (t >= g.t_after_s) continue;  // passed within one block
+      spdlog::warn("t = {:.2f} s: IMU data missing from t = {:.3f} s to {:.3f} s (IMU file line {}): INS stopped, "
+                   "scalar receiver until it restarts after the gap",
+                   t, g.t_before_s, g.t_after_s, g.line);
+      stop_ins();  // an alignment under way starts over too: its samples end before the gap
+      current_gap = next_gap - 1;
+    }
     while (next_imu < imu.samples.size() && imu.samples[next_imu].t_s <= t + 1e-9) {
       const ImuSample& s = imu.samples[next_imu++];
       if (!nav) {
@@ -143,12 +161,28 @@ struct AidedReceiver::Impl : ChannelSteering {
     } else {
       return;
     }
+    stop_ins();
+    ++restarts;
+  }
+
+  /// Drops the INS and its filter; the initializer starts over from the next IMU samples
+  /// and fixes.
+  void stop_ins() {
     nav.reset();
     innovations.clear();
     faults.clear();
     ultra.release_all();
     init = InsInitializer(cfg.imu, cfg.lever_arm_imu_to_antenna_b_m);
-    ++restarts;
+  }
+
+  /// A position or velocity no receiver can have (the vehicle's own limits aside): far
+  /// from the Earth's surface, or faster than 12 km/s.
+  static std::optional<std::string> implausible(const Eigen::Vector3d& r_ecef_m, const Eigen::Vector3d& v_ecef_mps) {
+    const double r = r_ecef_m.norm(), v = v_ecef_mps.norm();
+    if (!(r > 6.0e6 && r < 7.0e6))
+      return fmt::format("{:.0f} km from the Earth's centre", r / 1000.0);
+    if (!(v < 1.2e4)) return fmt::format("moving at {:.3g} m/s", v);
+    return std::nullopt;
   }
 
   void start_ins(const ReceiverEpoch& ep) {
@@ -289,7 +323,7 @@ struct AidedReceiver::Impl : ChannelSteering {
     ranging = 0;
     for (const auto& o : ep.observations)
       if (rx.ephemeris(o.prn)) ++ranging;
-    if (!nav && ep.pvt.valid) start_ins(ep);
+    if (!nav && ep.pvt.valid && !current_gap) start_ins(ep);
     watch_troposphere(ep);
     if (nav) {
       if (modes.mode() == NavMode::loose) loose_update(ep);
@@ -304,6 +338,15 @@ struct AidedReceiver::Impl : ChannelSteering {
     out.v_ecef_mps = nav->antenna_velocity_ecef_mps();
     out.valid = out.r_ecef_m.allFinite() && out.v_ecef_mps.allFinite();
     if (!out.valid) return out;
+    if (const auto why = implausible(out.r_ecef_m, out.v_ecef_mps)) {
+      spdlog::error("t = {:.2f} s: the aided solution left the physically possible ({}): not published; INS "
+                    "restarted from the next fix",
+                    ep.t_s, *why);
+      stop_ins();
+      ++restarts;
+      out.valid = false;
+      return out;
+    }
     out.llh = wgs84::ecef_to_llh(out.r_ecef_m);
     out.v_ned_mps = ecef_to_ned_vector(out.llh, out.v_ecef_mps);
     const EulerAngles e = euler_from_quaternion(nav->ins().q_b_n);
@@ -325,14 +368,15 @@ struct AidedReceiver::Impl : ChannelSteering {
 
 AidedReceiver::AidedReceiver(AidedReceiverConfig config, SampleSource& source, ImuLog imu,
                              std::optional<double> if_duration_s) {
-  if (imu.samples.empty()) throw std::invalid_argument("the IMU log holds no samples");
+  const std::string name = imu.source.empty() ? "the IMU log" : "IMU file " + imu.source;
+  if (imu.samples.empty()) throw std::invalid_argument(name + " holds no samples");
   const double first = imu.samples.front().t_s, last = imu.samples.back().t_s;
   if (first > 1.0)
-    throw std::invalid_argument("the IMU log starts at t = " + std::to_string(first) +
-                                " s; it must cover the IF data from t = 0 (the first sample)");
+    throw std::invalid_argument(fmt::format("{} starts at t = {} s; it must cover the IF data from t = 0 (the first sample)",
+                                            name, first));
   if (if_duration_s && last + 0.05 < *if_duration_s)
-    throw std::invalid_argument("the IMU log ends at t = " + std::to_string(last) + " s but the IF data last " +
-                                std::to_string(*if_duration_s) + " s");
+    throw std::invalid_argument(fmt::format("{}: the IMU log ends at t = {} s but the IF data last {} s", name, last,
+                                            *if_duration_s));
   impl_ = std::make_unique<Impl>(std::move(config), source, std::move(imu));
 }
 

@@ -1,5 +1,8 @@
 #include "aiding/navigation_session.hpp"
 
+#include <fmt/format.h>
+
+#include <exception>
 #include <stdexcept>
 
 #include "receiver/mitigation/mitigation_sample_source.hpp"
@@ -75,15 +78,29 @@ void NavigationSession::run(const std::vector<ProductSink*>& sinks, const std::f
   const auto on_correlation = [&](const CorrelatorEpoch& e, const ChannelSnapshot& ch) {
     for (ProductSink* s : sinks) s->on_correlation(e, ch);
   };
-  if (aided_)
-    aided_->run([&](const AidedEpoch& a) { hand_out(a.receiver, &a, sinks); }, on_correlation, progress);
-  else
-    scalar_->run([&](const ReceiverEpoch& ep) { hand_out(ep, nullptr, sinks); }, on_correlation, progress);
-  NavData decoded;
-  for (const auto& [prn, eph] : receiver().ephemerides()) decoded.ephemerides.push_back(eph);
+  std::exception_ptr failure;
+  try {
+    if (aided_)
+      aided_->run([&](const AidedEpoch& a) { hand_out(a.receiver, &a, sinks); }, on_correlation, progress);
+    else
+      scalar_->run([&](const ReceiverEpoch& ep) { hand_out(ep, nullptr, sinks); }, on_correlation, progress);
+  } catch (const std::exception& e) {
+    // The products keep what they were given up to here; the summary says why it ended.
+    failure = std::current_exception();
+    run_error_ = e.what();
+  }
+  NavData decoded;  // from the signal only: assisted ephemerides are the input, not a product
+  for (const auto& [prn, eph] : receiver().decoded_ephemerides()) decoded.ephemerides.push_back(eph);
   decoded.iono = receiver().iono();
   decoded.utc = receiver().utc();
-  for (ProductSink* s : sinks) s->finish(decoded);
+  finish_all(sinks, decoded, product_failures_);
+  if (failure) std::rethrow_exception(failure);
+  if (!product_failures_.empty()) {
+    std::string what;
+    for (const ProductFailure& f : product_failures_) what += (what.empty() ? "" : "; ") + f.product + ": " + f.error;
+    throw std::runtime_error(fmt::format("{} of the products could not be written (the others are): {}",
+                                         product_failures_.size(), what));
+  }
 }
 
 }  // namespace deepnav::aiding

@@ -41,8 +41,14 @@ class NavigationSession {
 
   /// Runs to the end of the source, handing every epoch and integration to each sink, then
   /// finishes every sink (so each file takes its final name) even when the source ended
-  /// early; an exception from the run leaves the sinks unfinished (their files removed).
+  /// early. A run that fails (an exception from the receiver or the filter) still finishes
+  /// them, with what they were given up to the failure (run_error() says why, for the
+  /// summary), and then rethrows. A sink that fails to finish is recorded
+  /// (product_failures(), at once, so a later sink can report it) without stopping the
+  /// others; then run() throws std::runtime_error naming the products.
   void run(const std::vector<ProductSink*>& sinks, const std::function<void(double)>& progress = {});
+  const std::optional<std::string>& run_error() const { return run_error_; }
+  const std::vector<ProductFailure>& product_failures() const { return product_failures_; }
 
   ScalarReceiver& receiver();
   /// The aided navigator (nullptr in scalar mode).
@@ -57,6 +63,8 @@ class NavigationSession {
   std::unique_ptr<AidedReceiver> aided_;
   std::unique_ptr<ScalarReceiver> scalar_;
   std::map<std::string, double> seconds_in_mode_;
+  std::optional<std::string> run_error_;
+  std::vector<ProductFailure> product_failures_;
 };
 
 }  // namespace deepnav::aiding

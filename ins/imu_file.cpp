@@ -164,6 +164,7 @@ ImuLog read_imu_csv(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("cannot open IMU file '" + path + "'");
   ImuLog log;
+  log.source = path;
   double declared_rate_hz = 0.0;
   bool have_header = false;
   std::vector<Row> rows;

@@ -40,6 +40,7 @@ struct ImuLog {
   double nominal_interval_s = 0.0;  ///< from the sample_rate_hz comment, else the median interval
   std::vector<ImuSample> samples;   ///< always as increments
   std::vector<ImuGap> gaps;
+  std::string source;  ///< the file it was read from (for messages)
 };
 
 /// Writes `<path>.partial` and renames it to `path` when complete; throws

@@ -42,6 +42,7 @@ struct ScalarReceiver::Impl {
   std::vector<Channel> channels;
   std::vector<int> acquired;
   std::map<int, Ephemeris> ephs;
+  std::set<int> decoded_prns;  ///< PRNs whose entry in ephs came from the signal (not assistance)
   IonoParameters iono;
   UtcParameters utc;
   PvtSolver pvt;
@@ -49,6 +50,7 @@ struct ScalarReceiver::Impl {
   std::optional<GpsTime> time_ref;
   std::int64_t sample_ref = 0;
   double clock_steps_s = 0.0;  ///< sum of the steers applied to time_ref
+  std::int64_t first_index = -1, end_index = -1;  ///< span of the samples read so far
   bool gap_since_epoch = false;  ///< samples lost since the last observation epoch
   double last_reacquire_s = 0.0;
   ChannelSteering* steering = nullptr;  ///< an outside filter steering channels, or none
@@ -310,6 +312,7 @@ struct ScalarReceiver::Impl {
       for (const EpochRecord& r : records[i]) {
         if (r.new_ephemeris) {
           ephs[ch.trk->prn()] = *ch.nav->ephemeris();
+          decoded_prns.insert(ch.trk->prn());
           if (ch.nav->iono().valid) iono = ch.nav->iono();
           if (ch.nav->utc().valid) utc = ch.nav->utc();
           spdlog::debug("PRN {:2d}: ephemeris IODE {}", ch.trk->prn(), ch.nav->ephemeris()->iode);
@@ -431,6 +434,8 @@ void ScalarReceiver::run(const std::function<void(const ReceiverEpoch&)>& on_epo
         next_obs += (block.first_sample_index - next_obs + obs_step - 1) / obs_step * obs_step;
     }
     expected_first = block.first_sample_index + static_cast<std::int64_t>(block.samples.size());
+    if (m.first_index < 0) m.first_index = block.first_sample_index;
+    m.end_index = expected_first;
     prepare_for_correlation(block);
     if (first) {
       if (const std::string problem = if_sample_problem(block.samples, m.src.is_real()); !problem.empty())
@@ -498,9 +503,18 @@ std::optional<GpsTime> ScalarReceiver::receiver_time(std::int64_t sample_index) 
 }
 
 double ScalarReceiver::sample_rate_hz() const { return impl_->fs; }
+double ScalarReceiver::processed_s() const {
+  return impl_->first_index < 0 ? 0.0 : static_cast<double>(impl_->end_index - impl_->first_index) / impl_->fs;
+}
 double ScalarReceiver::clock_steps_s() const { return impl_->clock_steps_s; }
 
 std::map<int, Ephemeris> ScalarReceiver::ephemerides() const { return impl_->ephs; }
+
+std::map<int, Ephemeris> ScalarReceiver::decoded_ephemerides() const {
+  std::map<int, Ephemeris> out;
+  for (int prn : impl_->decoded_prns) out.emplace(prn, impl_->ephs.at(prn));
+  return out;
+}
 IonoParameters ScalarReceiver::iono() const { return impl_->iono; }
 const AtmosphereModels& ScalarReceiver::atmosphere() const { return impl_->cfg.atmosphere; }
 UtcParameters ScalarReceiver::utc() const { return impl_->utc; }

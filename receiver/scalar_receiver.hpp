@@ -141,8 +141,13 @@ class ScalarReceiver {
   /// about 0.1 ns, 3.5 cm, and those errors add up over thousands of blocks).
   double clock_steps_s() const;
   double sample_rate_hz() const;
-  /// Ephemerides, ionosphere and UTC decoded so far.
+  /// Seconds of signal the run processed: from its first sample to the end of the last
+  /// block read (gaps included), 0 before the first block.
+  double processed_s() const;
+  /// Ephemerides in use (decoded, else assisted), ionosphere and UTC decoded so far.
   std::map<int, Ephemeris> ephemerides() const;
+  /// Only those ephemerides decoded from the signal (what nav.rnx reports).
+  std::map<int, Ephemeris> decoded_ephemerides() const;
   IonoParameters iono() const;
   /// The atmosphere models in use (ReceiverConfig::atmosphere): predict ranges with these
   /// and iono() so that they agree with the receiver's own PVT.

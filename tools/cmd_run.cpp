@@ -103,18 +103,19 @@ aiding::NavigationSessionConfig session_config(const RunOptions& o, aiding::NavM
 }
 
 nlohmann::json run_summary(const RunOptions& o, const OpenedSource& opened, aiding::NavigationSession& session,
-                           const RunStatistics& stats, bool scored) {
+                           const RunStatistics& stats, bool scored, const std::vector<ImuGap>& imu_gaps) {
   ScalarReceiver& receiver = session.receiver();
-  const SampleSource& source = *opened.source;
   nlohmann::json summary = {
       {"input", o.input},
-      {"duration_s", opened.duration_s ? *opened.duration_s
-                                       : static_cast<double>(source.next_sample_index()) / source.sample_rate_hz()},
+      // What the run processed: a file's length only when it was read to the end (not after
+      // Ctrl-C), and a stream's from its first sample (not from sample 0).
+      {"duration_s", receiver.processed_s()},
       {"epochs", stats.epochs()},
       {"fixes", stats.fixes()},
       {"time_to_first_fix_s", stats.first_fix_s() ? nlohmann::json(*stats.first_fix_s()) : nlohmann::json(nullptr)},
       {"acquired_prns", receiver.acquired_prns()},
       {"ephemerides", receiver.ephemerides().size()},
+      {"ephemerides_decoded", receiver.decoded_ephemerides().size()},
       {"satellites_used", stats.satellites().json()},
       {"pdop", stats.pdop().json()}};
   if (scored) {
@@ -140,6 +141,9 @@ nlohmann::json run_summary(const RunOptions& o, const OpenedSource& opened, aidi
     summary["seconds_in_mode"] = session.seconds_in_mode();
     summary["ins_start"] = aided->ins_start_method();
     summary["filter_restarts"] = aided->filter_restarts();
+    nlohmann::json gaps = nlohmann::json::array();
+    for (const ImuGap& g : imu_gaps) gaps.push_back({{"from_s", g.t_before_s}, {"to_s", g.t_after_s}, {"line", g.line}});
+    summary["imu_gaps"] = gaps;
     summary["satellite_exclusions"] = aided->satellite_exclusions();
     if (const auto found = aided->troposphere_mismatch_found_s()) {
       const auto from = aided->troposphere_state_from_s();
@@ -149,6 +153,12 @@ nlohmann::json run_summary(const RunOptions& o, const OpenedSource& opened, aidi
     }
   }
   summary["interrupted"] = opened.interrupted();
+  // What failed, if anything: the run itself (the products hold what came before), and
+  // each product that could not be written (the others are).
+  summary["error"] = session.run_error() ? nlohmann::json(*session.run_error()) : nlohmann::json(nullptr);
+  nlohmann::json failed = nlohmann::json::array();
+  for (const ProductFailure& f : session.product_failures()) failed.push_back({{"product", f.product}, {"error", f.error}});
+  summary["products_failed"] = failed;
   if (opened.is_stream) summary["stream"] = opened.report();
   // What the run cost: peak memory stays flat with run length (products are written as
   // the run goes), which a long stream can check from here.
@@ -164,6 +174,7 @@ class SummarySink : public ProductSink {
     file_.write(summary_().dump(2) + "\n");
     file_.commit();
   }
+  std::string name() const override { return "summary.json"; }
 
  private:
   TextOutputFile file_;
@@ -198,21 +209,31 @@ void run_receiver(RunOptions o) {
   const aiding::NavMode mode = parse_mode(o);
   std::optional<ImuLog> imu;
   if (mode != aiding::NavMode::scalar) imu = read_imu(o);
+  const std::vector<ImuGap> imu_gaps = imu ? imu->gaps : std::vector<ImuGap>{};
+  for (const ImuGap& g : imu_gaps)
+    spdlog::warn("{}:{}: no IMU data from t = {:.3f} s to {:.3f} s: the INS stops across the gap", o.imu_path, g.line,
+                 g.t_before_s, g.t_after_s);
   std::vector<std::unique_ptr<ProductSink>> products =
       file_products(o.out_dir, std::filesystem::path(o.input).filename().string(), 1.0 / o.receiver.observation_rate_hz);
   aiding::NavigationSession session(session_config(o, mode), *opened.source, std::move(imu), opened.duration_s);
   RunStatistics stats(truth ? &*truth : nullptr);
   SummarySink summary((std::filesystem::path(o.out_dir) / "summary.json").string(),
-                      [&] { return run_summary(o, opened, session, stats, truth.has_value()); });
+                      [&] { return run_summary(o, opened, session, stats, truth.has_value(), imu_gaps); });
   std::vector<ProductSink*> sinks{&stats};
   for (const auto& p : products) sinks.push_back(p.get());
   sinks.push_back(&summary);
 
   const double total_s = opened.duration_s.value_or(0.0);
   ProgressLine progress("run", total_s);
-  session.run(sinks, [&](double t) {
-    if (total_s > 0.0) progress.update(t / total_s);  // a stream's length is not known
-  });
+  try {
+    session.run(sinks, [&](double t) {
+      if (total_s > 0.0) progress.update(t / total_s);  // a stream's length is not known
+    });
+  } catch (const std::exception& e) {
+    progress.finish();
+    if (session.run_error()) throw UserError(fmt::format("{} (products written up to there)", e.what()));
+    throw UserError(e.what());
+  }
   progress.finish();
   fmt::print("{} fixes in {} epochs; first fix at {} s; satellites acquired: {}\n", stats.fixes(), stats.epochs(),
              stats.first_fix_s() ? fmt::format("{:.1f}", *stats.first_fix_s()) : std::string("-"),

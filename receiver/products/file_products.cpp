@@ -16,6 +16,9 @@ namespace {
 constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 }
 
+std::string FileSink::name() const { return std::filesystem::path(file_.path()).filename().string(); }
+std::string RinexObsSink::name() const { return std::filesystem::path(file_.path()).filename().string(); }
+
 PvtCsvSink::PvtCsvSink(const std::string& path) : FileSink(path) {
   file_.write(
       "t_s,gps_week,gps_sow,valid,x_ecef_m,y_ecef_m,z_ecef_m,lat_deg,lon_deg,height_m,vn_mps,ve_mps,vd_mps,"

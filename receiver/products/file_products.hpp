@@ -21,6 +21,7 @@ namespace deepnav {
 class FileSink : public ProductSink {
  public:
   void finish(const NavData&) override { file_.commit(); }
+  std::string name() const override;
 
  protected:
   explicit FileSink(const std::string& path) : file_(path) {}
@@ -51,6 +52,7 @@ class TrackSink : public ProductSink {
   TrackSink(const std::string& kml_path, const std::string& gpx_path, const std::string& name);
   void on_epoch(const NavigationEpoch& e) override;
   void finish(const NavData&) override;
+  std::string name() const override { return "track.kml/track.gpx"; }
 
  private:
   TextOutputFile kml_, gpx_;
@@ -61,6 +63,7 @@ class RinexObsSink : public ProductSink {
   RinexObsSink(const std::string& path, double interval_s);
   void on_epoch(const NavigationEpoch& e) override;
   void finish(const NavData&) override;
+  std::string name() const override;
 
  private:
   void write_header(const Eigen::Vector3d& approx_position_ecef_m);

@@ -2,10 +2,13 @@
 // What a run hands its products at each observation epoch, whatever navigates (the
 // receiver alone or an aided filter), and the interface of a product that takes it. Each
 // product writes as the run goes, to a file that takes its final name only in finish()
-// (text_output_file.hpp): memory stays flat with run length, and a run that fails leaves
-// no file that passes for complete.
+// (text_output_file.hpp): memory stays flat with run length. A run that fails still
+// finishes its products (what was written up to the failure, and the run's summary says
+// so); a product whose writer fails is reported without costing the others.
 #include <functional>
+#include <string>
 #include <string_view>
+#include <vector>
 
 #include "receiver/scalar_receiver.hpp"
 #include "signals/rinex_nav.hpp"
@@ -35,6 +38,8 @@ class ProductSink {
   /// The run has ended: write what is left and give the file its final name.
   /// `decoded`: the navigation data the run ended with (ephemerides, ionosphere, UTC).
   virtual void finish(const NavData& decoded) { (void)decoded; }
+  /// What the product is called in reports ("pvt.csv"; a sink that writes no file: what it does).
+  virtual std::string name() const { return "product"; }
 };
 
 /// A sink made of callables, for a caller that only watches the run (a benchmark counting
@@ -56,5 +61,16 @@ class CallbackSink : public ProductSink {
   EpochCallback on_epoch_;
   CorrelationCallback on_correlation_;
 };
+
+/// A product that could not be finished, and why.
+struct ProductFailure {
+  std::string product;
+  std::string error;
+};
+
+/// Finishes every sink in order, each on its own: one that throws (a writer refusing a
+/// value, a full disk) is appended to `failures` at once (a later sink, the run's summary,
+/// can report it), and the others still finish and keep their files.
+void finish_all(const std::vector<ProductSink*>& sinks, const NavData& decoded, std::vector<ProductFailure>& failures);
 
 }  // namespace deepnav

@@ -23,6 +23,7 @@ class RunStatistics : public ProductSink {
   /// `truth`: nullptr when the run is not scored (not owned).
   explicit RunStatistics(const TruthFile* truth) : truth_(truth) {}
   void on_epoch(const NavigationEpoch& e) override;
+  std::string name() const override { return "run statistics"; }
 
   int epochs() const { return epochs_; }
   int fixes() const { return fixes_; }

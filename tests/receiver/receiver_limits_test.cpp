@@ -17,14 +17,15 @@ namespace {
 /// Noise blocks at 2.046 Msps: `before` samples, then a jump of `gap` samples, then `after`.
 class GappedNoise final : public SampleSource {
  public:
-  GappedNoise(std::int64_t before, std::int64_t gap, std::int64_t after) : before_(before), gap_(gap), after_(after) {}
+  GappedNoise(std::int64_t before, std::int64_t gap, std::int64_t after, std::int64_t start = 0)
+      : before_(before), gap_(gap), after_(after), next_(start) {}
   double sample_rate_hz() const override { return 2.046e6; }
   double intermediate_frequency_hz() const override { return 0.0; }
   bool is_real() const override { return false; }
   std::size_t read(std::span<Sample> out) override {
     if (delivered_ == before_ && !jumped_) {
       jumped_ = true;
-      report_gap({next_, gap_});
+      if (gap_ > 0) report_gap({next_, gap_});
       next_ += gap_;
     }
     const std::int64_t left = (jumped_ ? before_ + after_ : before_) - delivered_;
@@ -42,7 +43,7 @@ class GappedNoise final : public SampleSource {
 
  private:
   std::int64_t before_, gap_, after_;
-  std::int64_t delivered_ = 0, next_ = 0;
+  std::int64_t delivered_ = 0, next_;
   bool jumped_ = false, at_end_ = false;
   std::mt19937 rng_{5};
 };
@@ -60,6 +61,16 @@ TEST(ReceiverLimits, AGapOfAnyLengthCostsNoEpochPerStep) {
   ASSERT_EQ(epochs.size(), 1u);  // at 1 s; the next grid point after the gap is past the end
   EXPECT_EQ(epochs[0], 2046000);
   EXPECT_EQ(source.lost_sample_count(), 1000000000000000);
+  EXPECT_DOUBLE_EQ(receiver.processed_s(), (2455200.0 + 1e15 + 1023000.0) / 2.046e6);
+}
+
+TEST(ReceiverLimits, ProcessedDurationCountsFromTheFirstSample) {
+  // A stream whose first sample is 10^9 (summary.json's duration_s once counted from 0).
+  GappedNoise source(409200, 0, 0, 1000000000);
+  ScalarReceiver receiver(ReceiverConfig{}, source);
+  EXPECT_EQ(receiver.processed_s(), 0.0);
+  receiver.run([](const ReceiverEpoch&) {});
+  EXPECT_DOUBLE_EQ(receiver.processed_s(), 0.2);
 }
 
 TEST(ReceiverLimits, SettingsOutsideTheReceiversRangeAreErrors) {
