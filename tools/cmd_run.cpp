@@ -155,7 +155,10 @@ nlohmann::json run_summary(const RunOptions& o, const OpenedSource& opened, aidi
   summary["interrupted"] = opened.interrupted();
   // What failed, if anything: the run itself (the products hold what came before), and
   // each product that could not be written (the others are).
-  summary["error"] = session.run_error() ? nlohmann::json(*session.run_error()) : nlohmann::json(nullptr);
+  const std::optional<std::string> stream_failure = opened.failure();
+  summary["error"] = session.run_error()  ? nlohmann::json(*session.run_error())
+                     : stream_failure     ? nlohmann::json(*stream_failure)
+                                          : nlohmann::json(nullptr);
   nlohmann::json failed = nlohmann::json::array();
   for (const ProductFailure& f : session.product_failures()) failed.push_back({{"product", f.product}, {"error", f.error}});
   summary["products_failed"] = failed;

@@ -1,9 +1,8 @@
 #include "signals/sim/satellite_signal_kernel.hpp"
 
-#include <fmt/format.h>
-
 #include <cmath>
 #include <complex>
+#include <cstdio>
 #include <stdexcept>
 
 namespace deepnav {
@@ -57,9 +56,13 @@ void fill_code(float* out, int n, double chip0, double step, const CaCodeChips& 
   // sample only for a step in [2^-32, 1023) chips: anything else (a NaN, zero or negative step,
   // or one beyond a whole code per sample) would never reach the period end.
   if (!(step * kOne >= 1.0 && step < 1023.0) || !(chip0 >= 0.0 && chip0 < 1023.0)) {
-    throw std::invalid_argument(fmt::format("signal kernel: code phase {} chips advancing {} chips per sample is "
-                                            "outside [0, 1023) chips and (0, 1023) chips per sample",
-                                            chip0, step));
+    // (No fmt here: this file is also cross-compiled on its own for the AArch64 tests.)
+    char what[160];
+    std::snprintf(what, sizeof what,
+                  "signal kernel: code phase %g chips advancing %g chips per sample is outside [0, 1023) chips "
+                  "and (0, 1023) chips per sample",
+                  chip0, step);
+    throw std::invalid_argument(what);
   }
   float levels[1023];
   for (int c = 0; c < 1023; ++c) levels[c] = amplitude * static_cast<float>(code[c]);

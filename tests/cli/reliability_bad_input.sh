@@ -10,7 +10,7 @@ repro=$src/tests/data/repro
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 fail=0
-python3 -c "import os,sys; sys.stdout.buffer.write(os.urandom(4092000))" > "$work/noise.bin"  # 0.5 s ibyte at 4.092 Msps
+head -c 4092000 /dev/urandom > "$work/noise.bin"  # 0.5 s ibyte at 4.092 Msps
 printf 'this is a text file, not IF samples\n%.0s' $(seq 3000) > "$work/text.bin"
 
 # expect_error NAME SECONDS FRAGMENT... -- ARGUMENTS: deepnav ARGUMENTS must exit non-zero
@@ -22,12 +22,12 @@ expect_error() {
   while [[ $1 != -- ]]; do fragments+=("$1"); shift; done
   shift
   local start out rc
-  start=$(date +%s.%N)
+  start=$EPOCHREALTIME
   # ADDRESS_SPACE_KB: run under that address-space limit (ulimit -v).
   out=$(ulimit -v "${ADDRESS_SPACE_KB:-unlimited}"; timeout -k 2 "$limit" "$deepnav" -q "$@" 2>&1 >/dev/null)
   rc=$?
   local took
-  took=$(python3 -c "print(f'{$(date +%s.%N) - $start:.1f}')")
+  took=$(awk "BEGIN { printf \"%.1f\", $EPOCHREALTIME - $start }")
   if [[ $rc -eq 0 ]]; then echo "FAIL $name: exit status 0"; fail=1; return; fi
   if [[ $rc -eq 124 || $rc -eq 137 ]]; then echo "FAIL $name: still running after $limit s"; fail=1; return; fi
   for f in "${fragments[@]}"; do

@@ -67,6 +67,10 @@ check() {  # name, rc, message, out dir, fragment
   if [[ $rc -ne 1 ]]; then echo "FAIL $name: exit status $rc, expected 1: $out"; fail=1; return; fi
   if [[ $out != *"$fragment"* ]]; then echo "FAIL $name: message lacks '$fragment': $out"; fail=1; return; fi
   if [[ ! -f $dir/summary.json || ! -f $dir/pvt.csv ]]; then echo "FAIL $name: products missing: $(ls "$dir" 2>&1)"; fail=1; return; fi
+  if ! python3 -c "import json, sys; s = json.load(open(sys.argv[1])); sys.exit(0 if sys.argv[2] in (s['error'] or '') else 1)" \
+       "$dir/summary.json" "$fragment"; then
+    echo "FAIL $name: summary.json's error lacks the reason"; fail=1; return
+  fi
   echo "ok   $name: $(tail -n 1 <<< "$out")"
 }
 
