@@ -71,6 +71,12 @@ void SampleConverter::convert(std::span<const std::byte> raw_bytes, std::span<Sa
     case SampleFormat::byte:
       for (std::size_t i = 0; i < count; ++i) out[i] = Sample(static_cast<std::int8_t>(raw[i]), 0);
       break;
+    case SampleFormat::cu8:
+      // u - 127.5 in half units: 2u - 255, odd levels -255..255 (exact, and symmetric about zero).
+      for (std::size_t i = 0; i < count; ++i)
+        out[i] = Sample(static_cast<std::int16_t>(2 * raw[2 * i] - 255),
+                        static_cast<std::int16_t>(q_sign * (2 * raw[2 * i + 1] - 255)));
+      break;
   }
 }
 

@@ -2,6 +2,8 @@
 // Raw IF bytes of a sample format -> the receiver's complex int16 samples, exactly as
 // FileSampleSource converts a file (same rounding, saturation, spectrum inversion and
 // gr_complex scaling), so a stream and a file of the same bytes give the same samples.
+// cu8 (unsigned, zero at 127.5) becomes 2u - 255: twice the offset value, so it stays an
+// integer and keeps the odd, zero-free level set an 8-bit ADC has.
 #include <cstddef>
 #include <cstdint>
 #include <span>

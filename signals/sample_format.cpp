@@ -6,7 +6,7 @@
 
 namespace deepnav {
 namespace {
-constexpr std::array<std::pair<std::string_view, SampleFormat>, 8> kNames = {{
+constexpr std::array<std::pair<std::string_view, SampleFormat>, 9> kNames = {{
     {"ibyte", SampleFormat::ibyte},
     {"cs8", SampleFormat::ibyte},
     {"ishort", SampleFormat::ishort},
@@ -15,6 +15,7 @@ constexpr std::array<std::pair<std::string_view, SampleFormat>, 8> kNames = {{
     {"cf32", SampleFormat::gr_complex},
     {"byte", SampleFormat::byte},
     {"s8", SampleFormat::byte},
+    {"cu8", SampleFormat::cu8},
 }};
 }  // namespace
 
@@ -31,6 +32,7 @@ std::string_view to_string(SampleFormat format) {
     case SampleFormat::ishort: return "ishort";
     case SampleFormat::gr_complex: return "gr_complex";
     case SampleFormat::byte: return "byte";
+    case SampleFormat::cu8: return "cu8";
   }
   return "?";
 }
@@ -41,12 +43,13 @@ std::size_t bytes_per_sample(SampleFormat format) {
     case SampleFormat::ishort: return 4;
     case SampleFormat::gr_complex: return 8;
     case SampleFormat::byte: return 1;
+    case SampleFormat::cu8: return 2;
   }
   return 0;
 }
 
 bool is_complex(SampleFormat format) { return format != SampleFormat::byte; }
 
-std::string sample_format_choices() { return "ibyte|cs8, ishort|cs16, gr_complex|cf32, byte|s8"; }
+std::string sample_format_choices() { return "ibyte|cs8, ishort|cs16, gr_complex|cf32, byte|s8, cu8"; }
 
 }  // namespace deepnav

@@ -11,9 +11,10 @@ enum class SampleFormat {
   ishort,      ///< interleaved int16 I/Q, little endian (alias cs16)
   gr_complex,  ///< complex float32 I/Q, little endian (alias cf32)
   byte,        ///< real int8 samples (alias s8)
+  cu8,         ///< interleaved unsigned 8-bit I/Q, zero at 127.5 (RTL-SDR, rtl_tcp)
 };
 
-/// Accepts ibyte/cs8, ishort/cs16, gr_complex/cf32, byte/s8 (case-sensitive);
+/// Accepts ibyte/cs8, ishort/cs16, gr_complex/cf32, byte/s8, cu8 (case-sensitive);
 /// throws std::invalid_argument naming the valid choices otherwise.
 SampleFormat parse_sample_format(std::string_view name);
 std::string_view to_string(SampleFormat format);

@@ -122,7 +122,7 @@ const bool registered = register_command([](CommandParents& parents) {
                        ->check(CLI::ExistingFile);
   auto* file = cmd->add_option("--file", o->file_path, "IF file to serve instead")->check(CLI::ExistingFile);
   scenario->excludes(file);
-  cmd->add_option("--format", o->format, "--file's format: ibyte|cs8, ishort|cs16, gr_complex|cf32, byte|s8")->capture_default_str();
+  cmd->add_option("--format", o->format, "--file's format: " + sample_format_choices())->capture_default_str();
   cmd->add_option("--fs", o->fs_hz, "--file's sample rate (Hz)");
   cmd->add_option("--if", o->if_hz, "--file's intermediate frequency (Hz)")->capture_default_str();
   cmd->add_option("--duration", o->duration_s, "Override the scenario's duration (s)");

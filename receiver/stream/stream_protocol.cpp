@@ -14,8 +14,8 @@ constexpr std::uint8_t kHeaderFlagGpsTime = 1;
 constexpr std::uint8_t kHeaderFlagInverted = 2;
 constexpr std::uint32_t kFrameFlagEnd = 1;
 constexpr std::uint16_t kRequestFlagStop = 1;
-constexpr std::array<SampleFormat, 4> kFormats{SampleFormat::ibyte, SampleFormat::ishort, SampleFormat::gr_complex,
-                                               SampleFormat::byte};
+constexpr std::array<SampleFormat, 5> kFormats{SampleFormat::ibyte, SampleFormat::ishort, SampleFormat::gr_complex,
+                                               SampleFormat::byte, SampleFormat::cu8};
 
 template <typename T>
 void put(std::byte* at, T value) {
@@ -108,7 +108,7 @@ StreamHeader decode_header(std::span<const std::byte, kHeaderBytes> bytes) {
   const auto code = get<std::uint8_t>(b + 8);
   if (code >= kFormats.size())
     throw ProtocolError(fmt::format("stream header: sample format code {} is unknown (0 ibyte, 1 ishort, "
-                                    "2 gr_complex, 3 byte)", code));
+                                    "2 gr_complex, 3 byte, 4 cu8)", code));
   const auto flags = get<std::uint8_t>(b + 9);
   if ((flags & ~(kHeaderFlagGpsTime | kHeaderFlagInverted)) != 0)
     throw ProtocolError(fmt::format("stream header: unknown flag bits 0x{:02x}", flags));

@@ -18,7 +18,8 @@ constexpr std::array<double, 8> kMaxStepOverSigma = {1.596, 0.9957, 0.5860, 0.33
 int container_bits(SampleFormat format) {
   switch (format) {
     case SampleFormat::ibyte:
-    case SampleFormat::byte: return 8;
+    case SampleFormat::byte:
+    case SampleFormat::cu8: return 8;
     case SampleFormat::ishort: return 16;
     case SampleFormat::gr_complex: return 16;  // float holds any level exactly; cap at 16 bits
   }
@@ -142,6 +143,17 @@ void quantize_pack(const float* x, std::size_t n, float gain, int bits, SampleFo
     }
     return;
   }
+  if (format == SampleFormat::cu8) {
+    // The odd level L of a b-bit ADC is stored as (L + 255) / 2: an 8-bit ADC fills 0..255,
+    // fewer bits sit in the middle of the range, as a dongle's ADC at low signal levels.
+    std::int16_t buffer[kChunk];
+    for (std::size_t k0 = 0; k0 < n; k0 += kChunk) {
+      const std::size_t len = std::min(kChunk, n - k0);
+      quantize_to(x + k0, len, gain, bits, true, buffer);
+      for (std::size_t k = 0; k < len; ++k) out[k0 + k] = static_cast<std::byte>((buffer[k] + 255) / 2);
+    }
+    return;
+  }
   const bool odd = stores_odd_levels(bits, format);
   if (format == SampleFormat::ishort) {
     std::int16_t buffer[kChunk];
@@ -171,6 +183,9 @@ void unpack_levels(const std::byte* in, std::size_t n, int bits, SampleFormat fo
     case SampleFormat::ibyte:
     case SampleFormat::byte:
       for (std::size_t k = 0; k < n; ++k) out[k] = level(static_cast<std::int8_t>(in[k]));
+      return;
+    case SampleFormat::cu8:
+      for (std::size_t k = 0; k < n; ++k) out[k] = static_cast<float>(2 * std::to_integer<int>(in[k]) - 255);
       return;
   }
 }

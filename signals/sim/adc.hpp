@@ -10,7 +10,8 @@
 // captures do). When the ADC uses the container's full width (8 bits in int8, 16 bits in
 // int16) the odd levels do not fit, and the stored value is the two's-complement code
 // (level - 1) / 2 in [-2^(b-1), 2^(b-1) - 1], as 8-bit SDR front ends write it (a level
-// scaled by 1/2 with a -1/2 LSB offset).
+// scaled by 1/2 with a -1/2 LSB offset). The unsigned format cu8 stores (level + 255) / 2,
+// so an 8-bit ADC fills 0..255 around 127.5 as an RTL-SDR does.
 //
 // Optimum loading: the AGC scales the input so that each component (I, Q or the real
 // sample) has the RMS that minimises the quantisation noise of a Gaussian input for a
@@ -29,7 +30,7 @@
 namespace deepnav {
 
 struct AdcConfig {
-  int bits = 2;  ///< 1..8 for ibyte/byte, 1..16 for ishort, 0..16 for gr_complex (0 = no quantization)
+  int bits = 2;  ///< 1..8 for ibyte/byte/cu8, 1..16 for ishort, 0..16 for gr_complex (0 = no quantization)
   double agc_target_rms = 0.0;       ///< per-component RMS at the quantizer input, in level units; 0 = optimum
   bool agc_enabled = true;           ///< false: fixed_gain instead of the AGC
   double agc_time_constant_s = 1e-3; ///< time constant of the AGC's power estimate

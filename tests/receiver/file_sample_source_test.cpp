@@ -54,6 +54,29 @@ TEST(FileSampleSource, ReadsIbyte) {
   EXPECT_TRUE(source.warnings().empty());
 }
 
+TEST(FileSampleSource, ReadsCu8AsOddLevelsAroundTheMidpoint) {
+  // u - 127.5 in half units: 0 -> -255, 255 -> +255, 127 -> -1, 128 -> +1.
+  const std::uint8_t data[] = {0, 255, 127, 128, 128, 127, 200, 3};
+  auto o = options(write_file("cu8.bin", data, sizeof data), SampleFormat::cu8);
+  {
+    FileSampleSource source(o);
+    EXPECT_EQ(source.total_samples(), 4);
+    EXPECT_FALSE(source.is_real());
+    const auto s = read_all(source);
+    ASSERT_EQ(s.size(), 4u);
+    EXPECT_EQ(s[0], Sample(-255, 255));
+    EXPECT_EQ(s[1], Sample(-1, 1));
+    EXPECT_EQ(s[2], Sample(1, -1));
+    EXPECT_EQ(s[3], Sample(145, -249));
+  }
+  o.inverted_spectrum = true;
+  FileSampleSource inverted(o);
+  const auto s = read_all(inverted);
+  ASSERT_EQ(s.size(), 4u);
+  EXPECT_EQ(s[0], Sample(-255, -255));
+  EXPECT_EQ(s[3], Sample(145, 249));
+}
+
 TEST(FileSampleSource, ReadsIshortAndInvertsSpectrumWithSaturation) {
   const std::int16_t data[] = {1000, -2000, -32768, -32768, 7, 32767};
   auto o = options(write_file("ishort.bin", data, sizeof data), SampleFormat::ishort);

@@ -220,7 +220,8 @@ TEST(FrontEnd, OutputDoesNotDependOnBlockBoundaries) {
 
 TEST(FrontEnd, EveryFormatRoundTripsThroughItsBytes) {
   const Block x = {{1.25f, -3.5f}, {0.0f, 7.75f}, {-100.0f, 2.0f}};
-  for (SampleFormat format : {SampleFormat::ibyte, SampleFormat::ishort, SampleFormat::gr_complex, SampleFormat::byte}) {
+  for (SampleFormat format :
+       {SampleFormat::ibyte, SampleFormat::ishort, SampleFormat::gr_complex, SampleFormat::byte, SampleFormat::cu8}) {
     const int bits = format == SampleFormat::gr_complex ? 0 : format == SampleFormat::ishort ? 12 : 4;
     FrontEndConfig c = config(format, bits);
     c.adc.agc_enabled = false;
@@ -253,6 +254,29 @@ TEST(FrontEnd, EveryFormatRoundTripsThroughItsBytes) {
     ASSERT_EQ(back.size(), bytes.size());
     EXPECT_EQ(std::memcmp(back.data(), bytes.data(), bytes.size()), 0);
     std::filesystem::remove(path);
+  }
+}
+
+TEST(FrontEnd, Cu8StoresEightBitLevelsAroundTheMidpoint) {
+  // An 8-bit ADC in cu8 fills 0..255 (level L stored as (L + 255) / 2); four bits sit in the
+  // middle of the range, 120..135.
+  for (const int bits : {8, 4}) {
+    FrontEndConfig c = config(SampleFormat::cu8, bits);
+    c.adc.agc_enabled = false;
+    c.adc.fixed_gain = 1.0;
+    c.thermal_noise = false;
+    FrontEnd fe(c, 1);
+    Block x = {{-1000.0f, 1000.0f}, {0.4f, -0.4f}, {3.0f, -3.0f}};
+    std::vector<std::byte> bytes;
+    fe.process(x, 0, bytes);
+    ASSERT_EQ(bytes.size(), 6u);
+    const int top = (1 << (bits - 1)) + 127, bottom = 128 - (1 << (bits - 1));
+    EXPECT_EQ(std::to_integer<int>(bytes[0]), bottom) << bits;
+    EXPECT_EQ(std::to_integer<int>(bytes[1]), top) << bits;
+    EXPECT_EQ(std::to_integer<int>(bytes[2]), 128) << bits;  // level +1
+    EXPECT_EQ(std::to_integer<int>(bytes[3]), 127) << bits;  // level -1
+    EXPECT_EQ(std::to_integer<int>(bytes[4]), 129) << bits;  // level +3
+    EXPECT_EQ(std::to_integer<int>(bytes[5]), 126) << bits;  // level -3
   }
 }
 
