@@ -33,8 +33,23 @@ FileSampleSource::FileSampleSource(FileSampleSourceOptions options)
   if (skip_samples >= total_samples())
     throw std::runtime_error(fmt::format("sample file '{}': skip of {} s ({} samples) is past its end ({} samples)",
                                          options_.path.string(), options_.skip_s, skip_samples, total_samples()));
-  file_.seek(skip_samples);
+  // A packed file is read in whole words: start at the word holding the first sample wanted
+  // and hold back the samples of that word before it.
+  const auto spw = static_cast<std::int64_t>(samples_per_word(options_.format));
+  file_.seek(skip_samples - skip_samples % spw);
+  if (skip_samples % spw != 0) {
+    fill_pending();
+    pending_at_ = static_cast<std::size_t>(skip_samples % spw);
+  }
   if (options_.format == SampleFormat::gr_complex) choose_float_scale();
+}
+
+void FileSampleSource::fill_pending() {
+  const std::int64_t first = file_.next_sample_index();
+  const std::size_t count = file_.read(raw_, samples_per_word(options_.format));
+  pending_.resize(count);
+  pending_at_ = 0;
+  convert(pending_, first);
 }
 
 void FileSampleSource::choose_float_scale() {
@@ -44,6 +59,14 @@ void FileSampleSource::choose_float_scale() {
 
 std::size_t FileSampleSource::read(std::span<Sample> out) {
   if (at_end_ || out.empty()) return 0;
+  if (pending_at_ == pending_.size() && out.size() < samples_per_word(options_.format)) fill_pending();
+  if (pending_at_ < pending_.size()) {
+    // Samples of a word read before (after a skip into it, or for a read shorter than a word).
+    const std::size_t n = std::min(out.size(), pending_.size() - pending_at_);
+    std::copy_n(pending_.begin() + static_cast<std::ptrdiff_t>(pending_at_), n, out.begin());
+    pending_at_ += n;
+    return n;
+  }
   const std::int64_t first = file_.next_sample_index();
   const std::size_t count = file_.read(raw_, std::min(out.size(), kChunkSamples));
   if (count == 0) {

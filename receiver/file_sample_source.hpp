@@ -1,6 +1,6 @@
 #pragma once
-// Samples from a recorded IF file in any of the GNSS-SDR formats, read in
-// bounded pieces so memory stays small whatever the file length. The bytes come from the
+// Samples from a recorded IF file in any of the sample formats (signals/sample_format.hpp),
+// read in bounded pieces so memory stays small whatever the file length. The bytes come from the
 // one IF file reader (signals/if_file_stream: opening, size, partial samples, seeking);
 // this adds the skip, the spectrum inversion and the conversion to samples.
 #include <filesystem>
@@ -38,7 +38,9 @@ class FileSampleSource final : public SampleSource {
   double intermediate_frequency_hz() const override { return options_.intermediate_frequency_hz; }
   bool is_real() const override { return !is_complex(options_.format); }
   std::size_t read(std::span<Sample> out) override;
-  std::int64_t next_sample_index() const override { return file_.next_sample_index(); }
+  std::int64_t next_sample_index() const override {
+    return file_.next_sample_index() - static_cast<std::int64_t>(pending_.size() - pending_at_);
+  }
   bool at_end() const override { return at_end_; }
 
   /// Whole samples in the file (including skipped ones).
@@ -50,6 +52,8 @@ class FileSampleSource final : public SampleSource {
 
  private:
   void choose_float_scale();
+  /// Reads the next word of a packed file into pending_.
+  void fill_pending();
   void convert(std::span<Sample> out, std::int64_t first_index) const;
 
   FileSampleSourceOptions options_;
@@ -57,6 +61,8 @@ class FileSampleSource final : public SampleSource {
   bool at_end_ = false;
   SampleConverter converter_;
   std::vector<std::byte> raw_;
+  std::vector<Sample> pending_;  ///< converted samples of a packed word not delivered yet
+  std::size_t pending_at_ = 0;
 };
 
 }  // namespace deepnav

@@ -7,6 +7,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "signals/sample_packing.hpp"
+
 namespace deepnav {
 namespace {
 
@@ -24,7 +26,7 @@ SampleConverter::SampleConverter(SampleFormat format, bool inverted_spectrum)
 
 void SampleConverter::calibrate(std::span<const std::byte> first_samples) {
   calibrated_ = true;
-  if (format_ != SampleFormat::gr_complex) return;
+  if (format_.kind != SampleKind::gr_complex) return;
   const std::size_t count = std::min(first_samples.size() / 8, kCalibrationSamples);
   double power = 0.0;
   for (std::size_t i = 0; i < 2 * count; ++i) {
@@ -39,17 +41,17 @@ void SampleConverter::calibrate(std::span<const std::byte> first_samples) {
 
 void SampleConverter::convert(std::span<const std::byte> raw_bytes, std::span<Sample> out,
                               std::int64_t first_index) const {
-  const std::size_t count = raw_bytes.size() / bytes_per_sample(format_);
+  const std::size_t count = raw_bytes.size() / bytes_per_word(format_) * samples_per_word(format_);
   if (out.size() < count) throw std::logic_error("SampleConverter::convert: output too small");
   const std::int16_t q_sign = inverted_ ? -1 : 1;
   const auto* raw = reinterpret_cast<const unsigned char*>(raw_bytes.data());
-  switch (format_) {
-    case SampleFormat::ibyte:
+  switch (format_.kind) {
+    case SampleKind::ibyte:
       for (std::size_t i = 0; i < count; ++i)
         out[i] = Sample(static_cast<std::int8_t>(raw[2 * i]),
                         static_cast<std::int16_t>(q_sign * static_cast<std::int8_t>(raw[2 * i + 1])));
       break;
-    case SampleFormat::ishort:
+    case SampleKind::ishort:
       for (std::size_t i = 0; i < count; ++i) {
         std::int16_t iq[2];
         std::memcpy(iq, raw + 4 * i, sizeof iq);
@@ -58,7 +60,7 @@ void SampleConverter::convert(std::span<const std::byte> raw_bytes, std::span<Sa
         out[i] = Sample(iq[0], static_cast<std::int16_t>(std::min(q, 32767)));
       }
       break;
-    case SampleFormat::gr_complex:
+    case SampleKind::gr_complex:
       for (std::size_t i = 0; i < count; ++i) {
         float iq[2];
         std::memcpy(iq, raw + 8 * i, sizeof iq);
@@ -68,9 +70,28 @@ void SampleConverter::convert(std::span<const std::byte> raw_bytes, std::span<Sa
         out[i] = Sample(saturate_int16(iq[0] * float_scale_), saturate_int16(q_sign * iq[1] * float_scale_));
       }
       break;
-    case SampleFormat::byte:
+    case SampleKind::byte:
       for (std::size_t i = 0; i < count; ++i) out[i] = Sample(static_cast<std::int8_t>(raw[i]), 0);
       break;
+    case SampleKind::cu8:
+      // u - 127.5 in half units: 2u - 255, odd levels -255..255 (exact, and symmetric about zero).
+      for (std::size_t i = 0; i < count; ++i)
+        out[i] = Sample(static_cast<std::int16_t>(2 * raw[2 * i] - 255),
+                        static_cast<std::int16_t>(q_sign * (2 * raw[2 * i + 1] - 255)));
+      break;
+    case SampleKind::packed: {
+      const PackedLayout& l = format_.packed;
+      levels_.resize(count * (l.complex ? 2 : 1));
+      unpack_levels(raw_bytes.first(count / samples_per_word(format_) * bytes_per_word(format_)), l, levels_);
+      if (!l.complex) {
+        for (std::size_t i = 0; i < count; ++i) out[i] = Sample(levels_[i], 0);
+      } else {
+        const std::size_t at_i = l.q_first ? 1 : 0, at_q = 1 - at_i;
+        for (std::size_t i = 0; i < count; ++i)
+          out[i] = Sample(levels_[2 * i + at_i], static_cast<std::int16_t>(q_sign * levels_[2 * i + at_q]));
+      }
+      break;
+    }
   }
 }
 

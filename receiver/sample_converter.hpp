@@ -2,9 +2,13 @@
 // Raw IF bytes of a sample format -> the receiver's complex int16 samples, exactly as
 // FileSampleSource converts a file (same rounding, saturation, spectrum inversion and
 // gr_complex scaling), so a stream and a file of the same bytes give the same samples.
+// cu8 (unsigned, zero at 127.5) becomes 2u - 255: twice the offset value, so it stays an
+// integer and keeps the odd, zero-free level set an 8-bit ADC has. Packed formats give
+// their quantizer levels (signals/sample_packing.hpp): 2 bits {-3, -1, 1, 3}.
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "receiver/sample_source.hpp"
 #include "signals/sample_format.hpp"
@@ -24,7 +28,8 @@ class SampleConverter {
   void calibrate(std::span<const std::byte> first_samples);
   bool needs_calibration() const { return format_ == SampleFormat::gr_complex && !calibrated_; }
 
-  /// Converts raw.size() / bytes_per_sample whole samples into out (which must hold them);
+  /// Converts the whole samples of raw (whole words of a packed format) into out (which
+  /// must hold them);
   /// `first_index` only names a non-finite gr_complex sample in the error it throws.
   void convert(std::span<const std::byte> raw, std::span<Sample> out, std::int64_t first_index) const;
 
@@ -36,6 +41,7 @@ class SampleConverter {
   bool inverted_;
   bool calibrated_ = false;
   float float_scale_ = 1.0f;
+  mutable std::vector<std::int16_t> levels_;  ///< packed formats: scratch for the unpacked values
 };
 
 }  // namespace deepnav

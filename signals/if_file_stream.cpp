@@ -26,14 +26,15 @@ IfFileStream::IfFileStream(IfFileStreamOptions options) : options_(std::move(opt
   std::error_code ec;
   const auto size_bytes = std::filesystem::file_size(options_.path, ec);
   if (ec) throw std::runtime_error(fmt::format("cannot read the size of sample file '{}': {}", name, ec.message()));
-  const std::size_t bps = bytes_per_sample(options_.format);
+  const std::size_t bpw = bytes_per_word(options_.format);
   if (size_bytes == 0) throw std::runtime_error(fmt::format("sample file '{}' is empty", name));
-  total_samples_ = static_cast<std::int64_t>(size_bytes / bps);
-  if (const auto trailing = size_bytes % bps; trailing != 0)
+  total_samples_ = static_cast<std::int64_t>(size_bytes / bpw * samples_per_word(options_.format));
+  if (const auto trailing = size_bytes % bpw; trailing != 0)
     warnings_.push_back(fmt::format(
-        "sample file '{}': its last {} byte(s) are ignored (a partial sample: the size {} is not a multiple of "
-        "the {} bytes of one {} sample)",
-        name, trailing, size_bytes, bps, to_string(options_.format)));
+        "sample file '{}': its last {} byte(s) are ignored (a partial {}: the size {} is not a multiple of "
+        "the {} bytes of one {} {})",
+        name, trailing, is_packed(options_.format) ? "word" : "sample", size_bytes, bpw, to_string(options_.format),
+        is_packed(options_.format) ? "word" : "sample"));
   if (total_samples_ == 0)
     throw std::runtime_error(fmt::format("sample file '{}' holds no whole {} sample ({} bytes)", name,
                                          to_string(options_.format), size_bytes));
@@ -44,17 +45,18 @@ IfFileStream::~IfFileStream() {
 }
 
 std::size_t IfFileStream::read(std::vector<std::byte>& out, std::size_t max_samples) {
-  const std::size_t bps = bytes_per_sample(options_.format);
-  const auto wanted = static_cast<std::size_t>(std::min<std::int64_t>(static_cast<std::int64_t>(max_samples),
-                                                                       total_samples_ - next_index_));
-  out.resize(wanted * bps);
-  const std::size_t got = wanted == 0 ? 0 : std::fread(out.data(), bps, wanted, file_);
+  const std::size_t bpw = bytes_per_word(options_.format);
+  const std::size_t spw = samples_per_word(options_.format);
+  const auto left_words = static_cast<std::size_t>((total_samples_ - next_index_) / static_cast<std::int64_t>(spw));
+  const std::size_t wanted = max_samples == 0 ? 0 : std::min(std::max<std::size_t>(max_samples / spw, 1), left_words);
+  out.resize(wanted * bpw);
+  const std::size_t got = wanted == 0 ? 0 : std::fread(out.data(), bpw, wanted, file_);
   if (got < wanted && std::ferror(file_))
     throw std::runtime_error(
         fmt::format("error reading sample file '{}': {}", options_.path.string(), std::strerror(errno)));
-  out.resize(got * bps);
-  next_index_ += static_cast<std::int64_t>(got);
-  return got;
+  out.resize(got * bpw);
+  next_index_ += static_cast<std::int64_t>(got * spw);
+  return got * spw;
 }
 
 std::size_t IfFileStream::peek(std::vector<std::byte>& out, std::size_t max_samples) {
@@ -68,11 +70,15 @@ void IfFileStream::seek(std::int64_t sample_index) {
   if (sample_index < next_index_ || sample_index > total_samples_)
     throw std::invalid_argument(fmt::format("sample file '{}': cannot seek to sample {} (next sample {}, {} in all)",
                                             options_.path.string(), sample_index, next_index_, total_samples_));
+  if (const auto spw = static_cast<std::int64_t>(samples_per_word(options_.format)); sample_index % spw != 0)
+    throw std::invalid_argument(fmt::format("sample file '{}': cannot seek to sample {}: {} packs {} samples a word",
+                                            options_.path.string(), sample_index, to_string(options_.format), spw));
   position_at(sample_index);
 }
 
 void IfFileStream::position_at(std::int64_t sample_index) {
-  const auto offset = static_cast<off_t>(sample_index) * static_cast<off_t>(bytes_per_sample(options_.format));
+  const auto word = sample_index / static_cast<std::int64_t>(samples_per_word(options_.format));
+  const auto offset = static_cast<off_t>(word) * static_cast<off_t>(bytes_per_word(options_.format));
   if (::fseeko(file_, offset, SEEK_SET) != 0)
     throw std::runtime_error(
         fmt::format("cannot seek in sample file '{}': {}", options_.path.string(), std::strerror(errno)));

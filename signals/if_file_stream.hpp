@@ -1,6 +1,6 @@
 #pragma once
-// A recorded IF file as a byte stream: whole samples of the given format, read in bounded
-// pieces. The one reader of IF files: a server sends its bytes as they are, and the
+// A recorded IF file as a byte stream: whole samples of the given format (whole words of a
+// packed format, several samples each), read in bounded pieces. The one reader of IF files: a server sends its bytes as they are, and the
 // receiver's FileSampleSource converts them to samples.
 #include <cstdio>
 #include <filesystem>
@@ -32,7 +32,9 @@ class IfFileStream final : public IfByteStream {
   double if_hz() const override { return options_.if_hz; }
   std::optional<GpsTime> start_time() const override { return options_.start_time; }
   std::optional<std::int64_t> total_samples() const override { return total_samples_; }
+  /// Packed formats: whole words, max_samples rounded down to them but at least one word.
   std::size_t read(std::vector<std::byte>& out, std::size_t max_samples) override;
+  /// Packed formats: only to the first sample of a word.
   void seek(std::int64_t sample_index) override;
   std::int64_t next_sample_index() const override { return next_index_; }
   /// The same bytes read() would give, without moving on.

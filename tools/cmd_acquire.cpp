@@ -125,7 +125,7 @@ const bool registered = register_command([](CommandParents& parents) {
   auto o = std::make_shared<AcquireOptions>();
   CLI::App* cmd = parents.root.add_subcommand("acquire", "Cold-start FFT acquisition of an IF file: detected PRNs, Doppler, code delay");
   cmd->add_option("--input", o->input, "IF sample file")->required()->check(CLI::ExistingFile);
-  cmd->add_option("--format", o->format, "ibyte|cs8, ishort|cs16, gr_complex|cf32, byte|s8")->capture_default_str();
+  cmd->add_option("--format", o->format, sample_format_choices())->capture_default_str();
   cmd->add_option("--fs", o->fs_hz, "Sample rate (Hz)")
       ->required()
       ->check(finite_in(1.023e6, kMaxAcquisitionSampleRate_hz, "a sample rate in Hz"));

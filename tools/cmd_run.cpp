@@ -21,6 +21,7 @@
 #include "tools/progress.hpp"
 #include "tools/sample_source_factory.hpp"
 #include "tools/yaml_config.hpp"
+#include "signals/sample_format.hpp"
 #include "aiding/navigation_session.hpp"
 #include "ins/imu_file.hpp"
 #include "ins/imu_model.hpp"
@@ -253,7 +254,7 @@ const bool registered = register_command([](CommandParents& parents) {
   auto o = std::make_shared<RunOptions>();
   CLI::App* cmd = parents.root.add_subcommand("run", "Run the receiver on an IF file: PVT and products in --out");
   cmd->add_option("--input", o->input, "IF sample file, tcp://HOST:PORT, udp://HOST:PORT (subscribe) or udp://@HOST:PORT (listen)")->required();
-  cmd->add_option("--format", o->format, "ibyte|cs8, ishort|cs16, gr_complex|cf32, byte|s8")->capture_default_str();
+  cmd->add_option("--format", o->format, sample_format_choices())->capture_default_str();
   cmd->add_option("--fs", o->fs_hz, "Sample rate (Hz); a framed stream's header carries it")
       ->check(finite_in(kMinSampleRate_hz, kMaxSampleRate_hz, "a sample rate in Hz"));
   cmd->add_flag("--raw", o->raw, "The stream is bare samples (no deepnav framing): needs --format and --fs");

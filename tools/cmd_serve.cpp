@@ -7,6 +7,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "receiver/stream/stream_protocol.hpp"
 #include "receiver/stream/stream_server.hpp"
 #include "signals/if_file_stream.hpp"
 #include "signals/rinex_nav.hpp"
@@ -62,6 +63,10 @@ std::function<std::unique_ptr<IfByteStream>()> stream_opener(const ServeOptions&
     } catch (const std::exception& e) {
       throw UserError(e.what());
     }
+    if (!stream::streamable(sc.format))
+      throw UserError(fmt::format("{}: format {} cannot be streamed (the stream protocol carries ibyte, ishort, "
+                                  "gr_complex, byte and cu8; packed formats are for files)",
+                                  o.scenario_path, to_string(sc.format)));
     spdlog::info("scenario '{}': {} s, {} satellites, {} jammer(s), {} at {} Hz", sc.name, sc.duration_s,
                  synth->satellites().size(), sc.jammers.size(), to_string(sc.format), sc.sample_rate_hz);
     return [synth, threads = o.threads] { return std::make_unique<SynthesizedIfStream>(synth, threads); };
@@ -73,6 +78,10 @@ std::function<std::unique_ptr<IfByteStream>()> stream_opener(const ServeOptions&
   } catch (const std::invalid_argument& e) {
     throw UserError(std::string("--format: ") + e.what());
   }
+  if (!stream::streamable(fo.format))
+    throw UserError(fmt::format("--format {} cannot be streamed (the stream protocol carries ibyte, ishort, "
+                                "gr_complex, byte and cu8; packed formats are for files)",
+                                to_string(fo.format)));
   if (!(o.fs_hz > 0.0)) throw UserError("--file needs its sample rate (--fs)");
   fo.sample_rate_hz = o.fs_hz;
   fo.if_hz = o.if_hz;
@@ -122,7 +131,7 @@ const bool registered = register_command([](CommandParents& parents) {
                        ->check(CLI::ExistingFile);
   auto* file = cmd->add_option("--file", o->file_path, "IF file to serve instead")->check(CLI::ExistingFile);
   scenario->excludes(file);
-  cmd->add_option("--format", o->format, "--file's format: ibyte|cs8, ishort|cs16, gr_complex|cf32, byte|s8")->capture_default_str();
+  cmd->add_option("--format", o->format, "--file's format: " + sample_format_choices())->capture_default_str();
   cmd->add_option("--fs", o->fs_hz, "--file's sample rate (Hz)");
   cmd->add_option("--if", o->if_hz, "--file's intermediate frequency (Hz)")->capture_default_str();
   cmd->add_option("--duration", o->duration_s, "Override the scenario's duration (s)");

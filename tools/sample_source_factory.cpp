@@ -127,6 +127,9 @@ OpenedSource open_stream(const SourceRequest& r, const ParsedUrl& url) {
     } catch (const std::invalid_argument& e) {
       throw UserError(std::string("--format: ") + e.what());
     }
+    if (!stream::streamable(st.raw_format))
+      throw UserError(fmt::format("--format {}: streams carry ibyte, ishort, gr_complex, byte or cu8 (packed formats "
+                                  "are read from files)", to_string(st.raw_format)));
     if (!(r.fs_hz > 0.0)) throw UserError(fmt::format("--input '{}': a raw stream needs --fs", r.input));
     st.raw_sample_rate_hz = r.fs_hz;
     st.raw_if_hz = r.if_hz;

@@ -6,6 +6,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
 
 namespace deepnav::stream {
 namespace {
@@ -14,8 +15,8 @@ constexpr std::uint8_t kHeaderFlagGpsTime = 1;
 constexpr std::uint8_t kHeaderFlagInverted = 2;
 constexpr std::uint32_t kFrameFlagEnd = 1;
 constexpr std::uint16_t kRequestFlagStop = 1;
-constexpr std::array<SampleFormat, 4> kFormats{SampleFormat::ibyte, SampleFormat::ishort, SampleFormat::gr_complex,
-                                               SampleFormat::byte};
+const std::array<SampleFormat, 5> kFormats{SampleFormat::ibyte, SampleFormat::ishort, SampleFormat::gr_complex,
+                                           SampleFormat::byte, SampleFormat::cu8};
 
 template <typename T>
 void put(std::byte* at, T value) {
@@ -59,8 +60,17 @@ void check_version(std::uint16_t version, const char* what) {
 
 }  // namespace
 
-std::uint8_t format_code(SampleFormat format) {
-  return static_cast<std::uint8_t>(std::find(kFormats.begin(), kFormats.end(), format) - kFormats.begin());
+bool streamable(const SampleFormat& format) {
+  return std::find(kFormats.begin(), kFormats.end(), format) != kFormats.end();
+}
+
+std::uint8_t format_code(const SampleFormat& format) {
+  const auto at = std::find(kFormats.begin(), kFormats.end(), format);
+  if (at == kFormats.end())
+    throw std::invalid_argument(fmt::format("sample format {} cannot be streamed: the stream protocol carries "
+                                            "ibyte, ishort, gr_complex, byte and cu8 (packed formats are read from files)",
+                                            to_string(format)));
+  return static_cast<std::uint8_t>(at - kFormats.begin());
 }
 
 std::array<std::byte, kHeaderBytes> encode(const StreamHeader& h) {
@@ -108,7 +118,7 @@ StreamHeader decode_header(std::span<const std::byte, kHeaderBytes> bytes) {
   const auto code = get<std::uint8_t>(b + 8);
   if (code >= kFormats.size())
     throw ProtocolError(fmt::format("stream header: sample format code {} is unknown (0 ibyte, 1 ishort, "
-                                    "2 gr_complex, 3 byte)", code));
+                                    "2 gr_complex, 3 byte, 4 cu8)", code));
   const auto flags = get<std::uint8_t>(b + 9);
   if ((flags & ~(kHeaderFlagGpsTime | kHeaderFlagInverted)) != 0)
     throw ProtocolError(fmt::format("stream header: unknown flag bits 0x{:02x}", flags));

@@ -113,7 +113,10 @@ struct Datagram {
 };
 Datagram decode_datagram(std::span<const std::byte> bytes, const std::optional<StreamHeader>& header);
 
-/// The format code carried in the header.
-std::uint8_t format_code(SampleFormat format);
+/// Whether the protocol carries the format (the whole-byte formats; not the packed ones).
+bool streamable(const SampleFormat& format);
+/// The format code carried in the header; throws std::invalid_argument naming the format
+/// for one the protocol does not carry.
+std::uint8_t format_code(const SampleFormat& format);
 
 }  // namespace deepnav::stream

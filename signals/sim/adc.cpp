@@ -1,5 +1,7 @@
 #include "signals/sim/adc.hpp"
 
+#include "signals/sample_packing.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -8,6 +10,7 @@
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
+#include <vector>
 
 namespace deepnav {
 namespace {
@@ -15,19 +18,13 @@ namespace {
 // J. Max (1960), Table II: optimum uniform step / sigma for 2^b levels, b = 1..8.
 constexpr std::array<double, 8> kMaxStepOverSigma = {1.596, 0.9957, 0.5860, 0.3352, 0.1881, 0.1041, 0.0569, 0.0308};
 
-int container_bits(SampleFormat format) {
-  switch (format) {
-    case SampleFormat::ibyte:
-    case SampleFormat::byte: return 8;
-    case SampleFormat::ishort: return 16;
-    case SampleFormat::gr_complex: return 16;  // float holds any level exactly; cap at 16 bits
-  }
-  return 8;
-}
+// A float holds any level exactly; gr_complex is capped at 16 bits (value_bits).
+int container_bits(const SampleFormat& format) { return value_bits(format); }
 
-/// Odd levels fit unless the ADC fills an integer container completely.
-bool stores_odd_levels(int bits, SampleFormat format) {
-  return format == SampleFormat::gr_complex || bits < container_bits(format);
+/// Odd levels fit unless the ADC fills an integer container completely (packed codes stand
+/// for odd levels whatever the width).
+bool stores_odd_levels(int bits, const SampleFormat& format) {
+  return format == SampleFormat::gr_complex || is_packed(format) || bits < container_bits(format);
 }
 
 template <typename T>
@@ -80,7 +77,7 @@ double optimum_quantizer_rms(int bits) {
   return 2.0 / step_over_sigma;
 }
 
-void validate_adc(const AdcConfig& c, SampleFormat format) {
+void validate_adc(const AdcConfig& c, const SampleFormat& format) {
   const int max_bits = container_bits(format);
   const int min_bits = format == SampleFormat::gr_complex ? 0 : 1;
   if (c.bits < min_bits || c.bits > max_bits)
@@ -127,8 +124,18 @@ void Agc::accumulate(double sum_squares, std::size_t values, bool window_done) {
   set_gain();
 }
 
-void quantize_pack(const float* x, std::size_t n, float gain, int bits, SampleFormat format, std::byte* out) {
+void quantize_levels(const float* x, std::size_t n, float gain, int bits, std::int16_t* out) {
+  quantize_to(x, n, gain, bits, true, out);
+}
+
+void quantize_pack(const float* x, std::size_t n, float gain, int bits, const SampleFormat& format, std::byte* out) {
   constexpr std::size_t kChunk = 256;
+  if (is_packed(format)) {
+    std::vector<std::int16_t> levels(n);
+    quantize_to(x, n, gain, bits, true, levels.data());
+    pack_levels(levels, format.packed, std::span<std::byte>(out, n / values_per_word(format.packed) * bytes_per_word(format)));
+    return;
+  }
   if (format == SampleFormat::gr_complex) {
     float buffer[kChunk];
     for (std::size_t k0 = 0; k0 < n; k0 += kChunk) {
@@ -139,6 +146,17 @@ void quantize_pack(const float* x, std::size_t n, float gain, int bits, SampleFo
         quantize_to(x + k0, len, gain, bits, true, buffer);
       }
       store_little_endian(buffer, len, out + 4 * k0);
+    }
+    return;
+  }
+  if (format == SampleFormat::cu8) {
+    // The odd level L of a b-bit ADC is stored as (L + 255) / 2: an 8-bit ADC fills 0..255,
+    // fewer bits sit in the middle of the range, as a dongle's ADC at low signal levels.
+    std::int16_t buffer[kChunk];
+    for (std::size_t k0 = 0; k0 < n; k0 += kChunk) {
+      const std::size_t len = std::min(kChunk, n - k0);
+      quantize_to(x + k0, len, gain, bits, true, buffer);
+      for (std::size_t k = 0; k < len; ++k) out[k0 + k] = static_cast<std::byte>((buffer[k] + 255) / 2);
     }
     return;
   }
@@ -155,23 +173,33 @@ void quantize_pack(const float* x, std::size_t n, float gain, int bits, SampleFo
   quantize_to(x, n, gain, bits, odd, reinterpret_cast<std::int8_t*>(out));
 }
 
-void unpack_levels(const std::byte* in, std::size_t n, int bits, SampleFormat format, float* out) {
+void unpack_levels(const std::byte* in, std::size_t n, int bits, const SampleFormat& format, float* out) {
   const bool odd = stores_odd_levels(bits, format);
   // Full-width codes c map back to the odd level 2c + 1.
   auto level = [odd](int v) { return static_cast<float>(odd ? v : 2 * v + 1); };
-  switch (format) {
-    case SampleFormat::gr_complex: load_little_endian(in, n, out); return;
-    case SampleFormat::ishort:
+  switch (format.kind) {
+    case SampleKind::gr_complex: load_little_endian(in, n, out); return;
+    case SampleKind::ishort:
       for (std::size_t k = 0; k < n; ++k) {
         std::int16_t v;
         load_little_endian(in + 2 * k, 1, &v);
         out[k] = level(v);
       }
       return;
-    case SampleFormat::ibyte:
-    case SampleFormat::byte:
+    case SampleKind::ibyte:
+    case SampleKind::byte:
       for (std::size_t k = 0; k < n; ++k) out[k] = level(static_cast<std::int8_t>(in[k]));
       return;
+    case SampleKind::cu8:
+      for (std::size_t k = 0; k < n; ++k) out[k] = static_cast<float>(2 * std::to_integer<int>(in[k]) - 255);
+      return;
+    case SampleKind::packed: {
+      std::vector<std::int16_t> levels(n);
+      unpack_levels(std::span<const std::byte>(in, n / values_per_word(format.packed) * bytes_per_word(format)),
+                    format.packed, levels);
+      std::copy(levels.begin(), levels.end(), out);
+      return;
+    }
   }
 }
 

@@ -10,7 +10,10 @@
 // captures do). When the ADC uses the container's full width (8 bits in int8, 16 bits in
 // int16) the odd levels do not fit, and the stored value is the two's-complement code
 // (level - 1) / 2 in [-2^(b-1), 2^(b-1) - 1], as 8-bit SDR front ends write it (a level
-// scaled by 1/2 with a -1/2 LSB offset).
+// scaled by 1/2 with a -1/2 LSB offset). The unsigned format cu8 stores (level + 255) / 2,
+// so an 8-bit ADC fills 0..255 around 127.5 as an RTL-SDR does. Packed formats store the
+// odd levels as B-bit codes (signals/sample_packing.hpp); an ADC of fewer bits than B uses
+// the inner codes.
 //
 // Optimum loading: the AGC scales the input so that each component (I, Q or the real
 // sample) has the RMS that minimises the quantisation noise of a Gaussian input for a
@@ -29,7 +32,7 @@
 namespace deepnav {
 
 struct AdcConfig {
-  int bits = 2;  ///< 1..8 for ibyte/byte, 1..16 for ishort, 0..16 for gr_complex (0 = no quantization)
+  int bits = 2;  ///< 1..8 for ibyte/byte/cu8, 1..16 for ishort, 0..16 for gr_complex (0 = no quantization), 1..B packed
   double agc_target_rms = 0.0;       ///< per-component RMS at the quantizer input, in level units; 0 = optimum
   bool agc_enabled = true;           ///< false: fixed_gain instead of the AGC
   double agc_time_constant_s = 1e-3; ///< time constant of the AGC's power estimate
@@ -40,7 +43,7 @@ struct AdcConfig {
 double optimum_quantizer_rms(int bits);
 /// Throws std::invalid_argument naming the field (adc.bits, adc.agc_target_rms, ...) when
 /// the settings do not fit the format or are out of range.
-void validate_adc(const AdcConfig& config, SampleFormat format);
+void validate_adc(const AdcConfig& config, const SampleFormat& format);
 
 /// Feed-forward AGC. The power of the whole input (signals, noise, jammers) is measured
 /// over windows of kWindow samples aligned to absolute sample indices and smoothed by a
@@ -73,12 +76,16 @@ class Agc {
   float gain_;
 };
 
+/// The odd levels of x[k] * gain (k < n) for a b-bit quantizer.
+void quantize_levels(const float* x, std::size_t n, float gain, int bits, std::int16_t* out);
+
 /// Quantizes x[k] * gain (k < n values, interleaved I/Q or real) with the given bits and
-/// packs the results into `out` in the container of `format` (n values of 1, 2 or 4 bytes).
-void quantize_pack(const float* x, std::size_t n, float gain, int bits, SampleFormat format, std::byte* out);
+/// packs the results into `out` in the container of `format` (n values of 1, 2 or 4 bytes;
+/// a packed format: n must fill whole words, in time order as the layout has them).
+void quantize_pack(const float* x, std::size_t n, float gain, int bits, const SampleFormat& format, std::byte* out);
 
 /// Decodes packed values back to level units (inverse of the storage rule above), for
-/// readers and tests: out must hold n values.
-void unpack_levels(const std::byte* in, std::size_t n, int bits, SampleFormat format, float* out);
+/// readers and tests: out must hold n values (a packed format: whole words of them).
+void unpack_levels(const std::byte* in, std::size_t n, int bits, const SampleFormat& format, float* out);
 
 }  // namespace deepnav

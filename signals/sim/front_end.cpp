@@ -4,7 +4,9 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
+#include "signals/sample_packing.hpp"
 #include "signals/sim/gaussian_noise.hpp"
 
 namespace deepnav {
@@ -53,7 +55,11 @@ FrontEnd::FrontEnd(FrontEndConfig config, std::uint64_t seed)
 
 void FrontEnd::process(std::span<std::complex<float>> block, std::int64_t first_sample,
                        std::vector<std::byte>& out_bytes) {
-  out_bytes.resize(block.size() * bytes_per_sample(config_.format));
+  const std::size_t spw = samples_per_word(config_.format);
+  if (block.size() % spw != 0)
+    throw std::logic_error("FrontEnd::process: " + to_string(config_.format) + " needs blocks of whole words of " +
+                           std::to_string(spw) + " samples");
+  out_bytes.resize(block.size() / spw * bytes_per_word(config_.format));
   for (Jammer& jammer : jammers_) jammer.add_to(block, first_sample);
   if (is_complex(config_.format)) {
     if (config_.thermal_noise) noise_.add_complex(block, first_sample, noise_sigma_);
@@ -71,8 +77,11 @@ void FrontEnd::process(std::span<std::complex<float>> block, std::int64_t first_
 // the gain sequence does not depend on how the run is cut into blocks.
 void FrontEnd::digitize(const float* x, std::size_t n_samples, int values_per_sample, std::int64_t first_sample,
                         std::byte* out) {
-  const std::size_t bytes_per_value = bytes_per_sample(config_.format) / static_cast<std::size_t>(values_per_sample);
   const auto vps = static_cast<std::size_t>(values_per_sample);
+  const bool packed = is_packed(config_.format);
+  // Packed formats: the levels of the whole block first, then whole words of them.
+  if (packed) levels_.resize(n_samples * vps);
+  const std::size_t bytes_per_value = packed ? 0 : bytes_per_sample(config_.format) / vps;
   for (std::size_t k = 0; k < n_samples;) {
     const std::int64_t sample = first_sample + static_cast<std::int64_t>(k);
     const std::int64_t in_window = ((sample % Agc::kWindow) + Agc::kWindow) % Agc::kWindow;
@@ -80,10 +89,19 @@ void FrontEnd::digitize(const float* x, std::size_t n_samples, int values_per_sa
     const float* seg = x + k * vps;
     const double energy = sum_squares(seg, len * vps);
     if (!agc_.initialized()) agc_.initialize(energy / static_cast<double>(len * vps));
-    quantize_pack(seg, len * vps, agc_.gain(), config_.adc.bits, config_.format, out + k * vps * bytes_per_value);
+    if (packed) {
+      quantize_levels(seg, len * vps, agc_.gain(), config_.adc.bits, levels_.data() + k * vps);
+    } else {
+      quantize_pack(seg, len * vps, agc_.gain(), config_.adc.bits, config_.format, out + k * vps * bytes_per_value);
+    }
     agc_.accumulate(energy, len * vps, in_window + static_cast<std::int64_t>(len) == Agc::kWindow);
     k += len;
   }
+  if (packed && config_.format.packed.q_first)  // the layout stores Q before I
+    for (std::size_t k = 0; k + 1 < levels_.size(); k += 2) std::swap(levels_[k], levels_[k + 1]);
+  if (packed)
+    pack_levels(levels_, config_.format.packed,
+                std::span<std::byte>(out, n_samples / samples_per_word(config_.format) * bytes_per_word(config_.format)));
 }
 
 }  // namespace deepnav

@@ -41,8 +41,8 @@ class FrontEnd {
   FrontEnd(FrontEndConfig config, std::uint64_t seed);
 
   /// block: signals at IF for samples [first_sample, first_sample + block.size()); the
-  /// block is modified in place (jammers added). out_bytes is resized to
-  /// block.size() * bytes_per_sample(format) and filled. Blocks must be contiguous for
+  /// block is modified in place (jammers added). out_bytes is resized to the block's bytes
+  /// in `format` and filled (a packed format needs blocks of whole words). Blocks must be contiguous for
   /// the AGC state to evolve as in hardware; noise and jammers depend only on the index.
   void process(std::span<std::complex<float>> block, std::int64_t first_sample, std::vector<std::byte>& out_bytes);
 
@@ -60,6 +60,7 @@ class FrontEnd {
   std::vector<Jammer> jammers_;
   Agc agc_;
   std::vector<float> real_;  ///< real-output scratch
+  std::vector<std::int16_t> levels_;  ///< packed output: the block's levels before packing
 };
 
 }  // namespace deepnav

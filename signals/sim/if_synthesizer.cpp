@@ -73,7 +73,7 @@ FrontEndConfig make_front_end_config(const Scenario& sc) {
   fe.if_hz = sc.if_hz;
   fe.format = sc.format;
   int bits = sc.adc.bits;
-  if (bits == 0) bits = sc.format == SampleFormat::gr_complex ? 0 : (sc.format == SampleFormat::ishort ? 16 : 8);
+  if (bits == 0) bits = sc.format == SampleFormat::gr_complex ? 0 : value_bits(sc.format);
   fe.adc.bits = bits;
   fe.adc.agc_enabled = sc.adc.agc;
   fe.adc.agc_time_constant_s = sc.adc.agc_time_constant_s;

@@ -513,9 +513,11 @@ Scenario parse_scenario(const std::string& yaml_text, const std::string& origin,
 }
 
 void validate_scenario(const Scenario& s) {
-  if (s.format == SampleFormat::byte && s.if_hz == 0.0)
-    throw std::invalid_argument("field 'if_hz': real sample format 'byte' needs a non-zero IF (the signal would alias onto itself)");
-  if (s.format == SampleFormat::byte && std::abs(s.if_hz) + 1.1e6 > s.sample_rate_hz / 2)
+  if (!is_complex(s.format) && s.if_hz == 0.0)
+    throw std::invalid_argument(fmt::format(
+        "field 'if_hz': real sample format '{}' needs a non-zero IF (the signal would alias onto itself)",
+        to_string(s.format)));
+  if (!is_complex(s.format) && std::abs(s.if_hz) + 1.1e6 > s.sample_rate_hz / 2)
     throw std::invalid_argument(fmt::format("field 'if_hz': real sampling at {} Hz cannot hold the 2 MHz C/A band at IF {} Hz",
                                             s.sample_rate_hz, s.if_hz));
   if (s.sample_rate_hz < 1.023e6 * 1.0)
@@ -530,7 +532,12 @@ void validate_scenario(const Scenario& s) {
     if (std::abs(stride - std::round(stride)) > 1e-9)
       throw std::invalid_argument(fmt::format("field '{}': {} Hz does not divide 1000 Hz (truth rows fall on whole milliseconds)", name, rate));
   }
-  const int max_bits = s.format == SampleFormat::ishort ? 16 : (s.format == SampleFormat::gr_complex ? 16 : 8);
+  if (const auto spw = samples_per_word(s.format); std::llround(s.sample_rate_hz / 1000.0) % static_cast<long long>(spw) != 0)
+    throw std::invalid_argument(fmt::format(
+        "field 'sample_rate_hz': {} Hz gives {} samples a millisecond, not whole words of format '{}' ({} samples "
+        "a word)",
+        s.sample_rate_hz, std::llround(s.sample_rate_hz / 1000.0), to_string(s.format), spw));
+  const int max_bits = value_bits(s.format);
   if (s.adc.bits > max_bits)
     throw std::invalid_argument(fmt::format("field 'adc.bits': {} bits do not fit format '{}' (at most {})", s.adc.bits,
                                             to_string(s.format), max_bits));

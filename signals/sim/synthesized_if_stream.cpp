@@ -10,7 +10,11 @@ namespace deepnav {
 SynthesizedIfStream::SynthesizedIfStream(std::shared_ptr<const IfSynthesizer> synthesizer, unsigned threads)
     : synth_(std::move(synthesizer)),
       generator_(synth_->chunk_generator(threads)),
-      bytes_per_sample_(bytes_per_sample(synth_->scenario().format)) {}
+      bytes_per_sample_(bytes_per_word(synth_->scenario().format)) {
+  if (is_packed(synth_->scenario().format))
+    throw std::invalid_argument("synthesized stream: packed format " + to_string(synth_->scenario().format) +
+                                " is written to files only, not streamed");
+}
 
 SampleFormat SynthesizedIfStream::format() const { return synth_->scenario().format; }
 double SynthesizedIfStream::sample_rate_hz() const { return synth_->scenario().sample_rate_hz; }

@@ -54,6 +54,63 @@ TEST(FileSampleSource, ReadsIbyte) {
   EXPECT_TRUE(source.warnings().empty());
 }
 
+TEST(FileSampleSource, ReadsCu8AsOddLevelsAroundTheMidpoint) {
+  // u - 127.5 in half units: 0 -> -255, 255 -> +255, 127 -> -1, 128 -> +1.
+  const std::uint8_t data[] = {0, 255, 127, 128, 128, 127, 200, 3};
+  auto o = options(write_file("cu8.bin", data, sizeof data), SampleFormat::cu8);
+  {
+    FileSampleSource source(o);
+    EXPECT_EQ(source.total_samples(), 4);
+    EXPECT_FALSE(source.is_real());
+    const auto s = read_all(source);
+    ASSERT_EQ(s.size(), 4u);
+    EXPECT_EQ(s[0], Sample(-255, 255));
+    EXPECT_EQ(s[1], Sample(-1, 1));
+    EXPECT_EQ(s[2], Sample(1, -1));
+    EXPECT_EQ(s[3], Sample(145, -249));
+  }
+  o.inverted_spectrum = true;
+  FileSampleSource inverted(o);
+  const auto s = read_all(inverted);
+  ASSERT_EQ(s.size(), 4u);
+  EXPECT_EQ(s[0], Sample(-255, -255));
+  EXPECT_EQ(s[3], Sample(145, 249));
+}
+
+TEST(FileSampleSource, ReadsPackedWordsInPiecesAndSkipsIntoAWord) {
+  // two_bit_packed, 4 real samples a byte from bits 1..0 up: 0xE4 is +1 +3 -3 -1.
+  const std::uint8_t data[] = {0xE4, 0x1B, 0xE4};
+  auto o = options(write_file("packed2.bin", data, sizeof data), parse_sample_format("two_bit_packed"));
+  {
+    FileSampleSource source(o);
+    EXPECT_EQ(source.total_samples(), 12);
+    EXPECT_TRUE(source.is_real());
+    const auto s = read_all(source, 3);  // blocks shorter than a word
+    ASSERT_EQ(s.size(), 12u);
+    const int expected[] = {1, 3, -3, -1, -1, -3, 3, 1, 1, 3, -3, -1};
+    for (std::size_t i = 0; i < 12; ++i) EXPECT_EQ(s[i], Sample(static_cast<std::int16_t>(expected[i]), 0)) << i;
+  }
+  o.skip_s = 0.006;  // sample 6, inside the second byte
+  FileSampleSource skipped(o);
+  EXPECT_EQ(skipped.next_sample_index(), 6);
+  const auto s = read_all(skipped, 5);
+  ASSERT_EQ(s.size(), 6u);
+  EXPECT_EQ(s[0], Sample(3, 0));
+  EXPECT_EQ(s[1], Sample(1, 0));
+  EXPECT_EQ(s[2], Sample(1, 0));
+  // Complex, Q first, first value in the top bits, with the spectrum inverted: 0b01'10'11'00
+  // is Q +3, I -3, then Q -1, I +1.
+  const std::uint8_t cpx[] = {0b01101100};
+  auto c = options(write_file("cpx.bin", cpx, sizeof cpx), parse_sample_format("two_bit_cpx"));
+  c.inverted_spectrum = true;
+  FileSampleSource complex_source(c);
+  EXPECT_FALSE(complex_source.is_real());
+  const auto z = read_all(complex_source, 1);
+  ASSERT_EQ(z.size(), 2u);
+  EXPECT_EQ(z[0], Sample(-3, -3));
+  EXPECT_EQ(z[1], Sample(1, 1));
+}
+
 TEST(FileSampleSource, ReadsIshortAndInvertsSpectrumWithSaturation) {
   const std::int16_t data[] = {1000, -2000, -32768, -32768, 7, 32767};
   auto o = options(write_file("ishort.bin", data, sizeof data), SampleFormat::ishort);

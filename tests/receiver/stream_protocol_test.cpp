@@ -72,6 +72,14 @@ TEST(StreamProtocol, HeaderFrameAndRequestRoundTrip) {
   EXPECT_TRUE(r.stop);
 }
 
+TEST(StreamProtocol, Cu8IsFormatCodeFour) {
+  StreamHeader h = test_header();
+  h.format = SampleFormat::cu8;
+  const auto bytes = encode(h);
+  EXPECT_EQ(bytes[8], std::byte{4});
+  EXPECT_EQ(decode_header(bytes).format, SampleFormat::cu8);
+}
+
 TEST(StreamProtocol, BadHeadersAreClearErrors) {
   auto bytes = encode(test_header());
   auto with = [&](std::size_t at, std::byte value) {

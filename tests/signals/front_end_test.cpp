@@ -220,7 +220,8 @@ TEST(FrontEnd, OutputDoesNotDependOnBlockBoundaries) {
 
 TEST(FrontEnd, EveryFormatRoundTripsThroughItsBytes) {
   const Block x = {{1.25f, -3.5f}, {0.0f, 7.75f}, {-100.0f, 2.0f}};
-  for (SampleFormat format : {SampleFormat::ibyte, SampleFormat::ishort, SampleFormat::gr_complex, SampleFormat::byte}) {
+  for (SampleFormat format :
+       {SampleFormat::ibyte, SampleFormat::ishort, SampleFormat::gr_complex, SampleFormat::byte, SampleFormat::cu8}) {
     const int bits = format == SampleFormat::gr_complex ? 0 : format == SampleFormat::ishort ? 12 : 4;
     FrontEndConfig c = config(format, bits);
     c.adc.agc_enabled = false;
@@ -253,6 +254,64 @@ TEST(FrontEnd, EveryFormatRoundTripsThroughItsBytes) {
     ASSERT_EQ(back.size(), bytes.size());
     EXPECT_EQ(std::memcmp(back.data(), bytes.data(), bytes.size()), 0);
     std::filesystem::remove(path);
+  }
+}
+
+TEST(FrontEnd, PackedFormatsHoldTheQuantizerLevelsInTimeOrder) {
+  Block x(32);
+  for (std::size_t k = 0; k < x.size(); ++k)
+    x[k] = {static_cast<float>(k % 7) - 3.3f, 2.6f - static_cast<float>(k % 5) * 1.1f};
+  for (const char* name : {"packed2_iq", "packed4", "packed1_qi_msb", "packed2_sm_bytemsb_w16be", "packed4_iq_ob_w32le"}) {
+    const SampleFormat format = parse_sample_format(name);
+    const int bits = format.packed.bits;
+    FrontEndConfig c = config(format, bits);
+    c.adc.agc_enabled = false;
+    c.adc.fixed_gain = 2.0;
+    c.thermal_noise = false;
+    FrontEnd fe(c, 1);
+    Block in = x;
+    std::vector<std::byte> bytes;
+    fe.process(in, 0, bytes);
+    ASSERT_EQ(bytes.size(), x.size() / samples_per_word(format) * bytes_per_word(format)) << name;
+    std::vector<float> values(is_complex(format) ? 2 * x.size() : x.size());
+    unpack_levels(bytes.data(), values.size(), bits, format, values.data());
+    for (std::size_t k = 0; k < values.size(); ++k) {
+      // In time order: I, Q of each sample (the unpacked values of a qi layout come Q first).
+      const bool complex = is_complex(format);
+      const std::size_t sample = complex ? k / 2 : k;
+      const bool q = complex && ((k % 2 == 1) != format.packed.q_first);
+      const float component = complex ? (q ? x[sample].imag() : x[sample].real()) : std::sqrt(2.0f) * x[sample].real();
+      const float y = 2.0f * component;
+      const float max_level = std::ldexp(1.0f, bits) - 1.0f;
+      EXPECT_EQ(values[k], std::clamp(2.0f * std::floor(y / 2.0f) + 1.0f, -max_level, max_level)) << name << " value " << k;
+    }
+  }
+  Block odd(3);
+  std::vector<std::byte> bytes;
+  FrontEnd fe(config(parse_sample_format("packed2"), 2), 1);
+  EXPECT_THROW(fe.process(odd, 0, bytes), std::logic_error);  // 3 samples are not whole bytes of 4
+}
+
+TEST(FrontEnd, Cu8StoresEightBitLevelsAroundTheMidpoint) {
+  // An 8-bit ADC in cu8 fills 0..255 (level L stored as (L + 255) / 2); four bits sit in the
+  // middle of the range, 120..135.
+  for (const int bits : {8, 4}) {
+    FrontEndConfig c = config(SampleFormat::cu8, bits);
+    c.adc.agc_enabled = false;
+    c.adc.fixed_gain = 1.0;
+    c.thermal_noise = false;
+    FrontEnd fe(c, 1);
+    Block x = {{-1000.0f, 1000.0f}, {0.4f, -0.4f}, {3.0f, -3.0f}};
+    std::vector<std::byte> bytes;
+    fe.process(x, 0, bytes);
+    ASSERT_EQ(bytes.size(), 6u);
+    const int top = (1 << (bits - 1)) + 127, bottom = 128 - (1 << (bits - 1));
+    EXPECT_EQ(std::to_integer<int>(bytes[0]), bottom) << bits;
+    EXPECT_EQ(std::to_integer<int>(bytes[1]), top) << bits;
+    EXPECT_EQ(std::to_integer<int>(bytes[2]), 128) << bits;  // level +1
+    EXPECT_EQ(std::to_integer<int>(bytes[3]), 127) << bits;  // level -1
+    EXPECT_EQ(std::to_integer<int>(bytes[4]), 129) << bits;  // level +3
+    EXPECT_EQ(std::to_integer<int>(bytes[5]), 126) << bits;  // level -3
   }
 }
 
