@@ -61,7 +61,7 @@ BENCHMARK(BM_Jammer)
 void BM_AgcQuantizePack(benchmark::State& state) {
   deepnav::FrontEndConfig c;
   c.sample_rate_hz = kFs;
-  c.format = static_cast<deepnav::SampleFormat>(state.range(0));
+  c.format = deepnav::SampleFormat{static_cast<deepnav::SampleKind>(state.range(0)), {}};
   c.adc.bits = static_cast<int>(state.range(1));
   c.thermal_noise = false;
   deepnav::FrontEnd fe(c, 1);
