@@ -5,11 +5,14 @@
 # resident memory comes from the run's summary.json (`resources.peak_rss_mib`). Products
 # are written as the run goes, so the peak must not grow with the run's length.
 #   usage: tools/stream_memory.sh [--json FILE] [DURATION_S ...]   (default: 60 600)
-#   DEEPNAV=path overrides the binary; SCENARIO=path the scenario (default static_120s.yaml).
+#   DEEPNAV=path overrides the binary; SCENARIO=path the scenario (default static_120s.yaml);
+#   PACE=multiple of real time the server keeps (default 1: a live stream; 0: as fast as the
+#   receiver reads, where the receive queue, up to 64 MiB, fills when the server outruns it).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 deepnav=${DEEPNAV:-$root/build/tools/deepnav}
 scenario=${SCENARIO:-$root/data/scenarios/static_120s.yaml}
+pace=${PACE:-1}
 json=
 durations=()
 while [[ $# -gt 0 ]]; do
@@ -27,7 +30,7 @@ trap '[[ -n $server ]] && kill $server 2>/dev/null; rm -rf "$work"' EXIT
 rows=()
 for d in "${durations[@]}"; do
   rm -f "$work/ports"
-  "$deepnav" -q serve --scenario "$scenario" --duration "$d" --tcp 0 --pace 0 --sessions 1 --port-file "$work/ports" &
+  "$deepnav" -q serve --scenario "$scenario" --duration "$d" --tcp 0 --pace "$pace" --sessions 1 --port-file "$work/ports" &
   server=$!
   for _ in $(seq 300); do [[ -s $work/ports ]] && break; sleep 0.1; done
   port=$(awk '$1 == "tcp" {print $2}' "$work/ports")
@@ -50,11 +53,11 @@ PY
   rm -rf "$work/run_$d"
 done
 printf '%s\n' "${rows[@]}" > "$work/rows.jsonl"
-python3 - "$work/rows.jsonl" "$json" <<'PY'
+python3 - "$work/rows.jsonl" "$json" "$pace" <<'PY'
 import json, sys
 rows = [json.loads(l) for l in open(sys.argv[1])]
 cols = ["duration_s", "fixes", "peak_rss_mib", "cpu_s", "lost_samples", "products_mib"]
-print("Peak memory of a streamed run (deepnav run on tcp://, every product written)")
+print(f"Peak memory of a streamed run (deepnav run on tcp://, every product written; server pace {sys.argv[3]})")
 print(" ".join(f"{c:>13}" for c in cols))
 for r in rows:
     print(" ".join(f"{r[c]:>13.1f}" if isinstance(r[c], float) else f"{r[c]:>13}" for c in cols))
@@ -62,5 +65,5 @@ if len(rows) > 1:
     print(f"peak RSS, longest run / shortest run: {rows[-1]['peak_rss_mib'] / rows[0]['peak_rss_mib']:.3f}")
 if sys.argv[2]:
     with open(sys.argv[2], "w") as f:
-        json.dump({"rows": rows}, f, indent=2)
+        json.dump({"pace": float(sys.argv[3]), "rows": rows}, f, indent=2)
 PY
