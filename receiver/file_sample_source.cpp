@@ -27,7 +27,8 @@ FileSampleSourceOptions checked(FileSampleSourceOptions o) {
 FileSampleSource::FileSampleSource(FileSampleSourceOptions options)
     : options_(checked(std::move(options))),
       file_(IfFileStreamOptions{options_.path, options_.format, options_.sample_rate_hz,
-                                options_.intermediate_frequency_hz, std::nullopt}),
+                                options_.intermediate_frequency_hz, std::nullopt, options_.header_bytes,
+                                options_.footer_bytes, options_.length_bytes}),
       converter_(options_.format, options_.inverted_spectrum) {
   const auto skip_samples = static_cast<std::int64_t>(std::llround(options_.skip_s * options_.sample_rate_hz));
   if (skip_samples >= total_samples())

@@ -5,6 +5,7 @@
 // this adds the skip, the spectrum inversion and the conversion to samples.
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,11 @@ struct FileSampleSourceOptions {
   double skip_s = 0.0;
   /// Deliver I - jQ instead of I + jQ (front ends that mix with the high-side LO).
   bool inverted_spectrum = false;
+  /// Bytes before the first sample and after the last, and at most this many bytes of
+  /// samples (a metadata file's block header, footer and cycles).
+  std::uint64_t header_bytes = 0;
+  std::uint64_t footer_bytes = 0;
+  std::optional<std::uint64_t> length_bytes;
 };
 
 class FileSampleSource final : public SampleSource {

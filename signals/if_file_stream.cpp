@@ -28,16 +28,30 @@ IfFileStream::IfFileStream(IfFileStreamOptions options) : options_(std::move(opt
   if (ec) throw std::runtime_error(fmt::format("cannot read the size of sample file '{}': {}", name, ec.message()));
   const std::size_t bpw = bytes_per_word(options_.format);
   if (size_bytes == 0) throw std::runtime_error(fmt::format("sample file '{}' is empty", name));
-  total_samples_ = static_cast<std::int64_t>(size_bytes / bpw * samples_per_word(options_.format));
-  if (const auto trailing = size_bytes % bpw; trailing != 0)
+  const std::uint64_t outside = options_.header_bytes + options_.footer_bytes;
+  if (outside >= size_bytes)
+    throw std::runtime_error(fmt::format("sample file '{}' ({} bytes) holds nothing beyond its {}-byte header and "
+                                         "{}-byte footer",
+                                         name, size_bytes, options_.header_bytes, options_.footer_bytes));
+  std::uint64_t data_bytes = size_bytes - outside;
+  if (options_.length_bytes) {
+    if (*options_.length_bytes > data_bytes)
+      warnings_.push_back(fmt::format("sample file '{}': {} bytes of samples were announced, the file holds {}: "
+                                      "reading those",
+                                      name, *options_.length_bytes, data_bytes));
+    data_bytes = std::min(data_bytes, *options_.length_bytes);
+  }
+  total_samples_ = static_cast<std::int64_t>(data_bytes / bpw * samples_per_word(options_.format));
+  if (const auto trailing = data_bytes % bpw; trailing != 0)
     warnings_.push_back(fmt::format(
         "sample file '{}': its last {} byte(s) are ignored (a partial {}: the size {} is not a multiple of "
         "the {} bytes of one {} {})",
-        name, trailing, is_packed(options_.format) ? "word" : "sample", size_bytes, bpw, to_string(options_.format),
+        name, trailing, is_packed(options_.format) ? "word" : "sample", data_bytes, bpw, to_string(options_.format),
         is_packed(options_.format) ? "word" : "sample"));
   if (total_samples_ == 0)
     throw std::runtime_error(fmt::format("sample file '{}' holds no whole {} sample ({} bytes)", name,
-                                         to_string(options_.format), size_bytes));
+                                         to_string(options_.format), data_bytes));
+  if (options_.header_bytes > 0) position_at(0);
 }
 
 IfFileStream::~IfFileStream() {
@@ -78,7 +92,8 @@ void IfFileStream::seek(std::int64_t sample_index) {
 
 void IfFileStream::position_at(std::int64_t sample_index) {
   const auto word = sample_index / static_cast<std::int64_t>(samples_per_word(options_.format));
-  const auto offset = static_cast<off_t>(word) * static_cast<off_t>(bytes_per_word(options_.format));
+  const auto offset = static_cast<off_t>(options_.header_bytes) +
+                      static_cast<off_t>(word) * static_cast<off_t>(bytes_per_word(options_.format));
   if (::fseeko(file_, offset, SEEK_SET) != 0)
     throw std::runtime_error(
         fmt::format("cannot seek in sample file '{}': {}", options_.path.string(), std::strerror(errno)));

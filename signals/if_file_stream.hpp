@@ -16,6 +16,12 @@ struct IfFileStreamOptions {
   double sample_rate_hz = 0.0;
   double if_hz = 0.0;
   std::optional<GpsTime> start_time;  ///< GPS time of the file's first sample, when known
+  /// Where the samples are in the file (a recording's header and footer, as a metadata file
+  /// describes them): bytes before the first sample, bytes after the last one, and at most
+  /// this many bytes of samples.
+  std::uint64_t header_bytes = 0;
+  std::uint64_t footer_bytes = 0;
+  std::optional<std::uint64_t> length_bytes;
 };
 
 class IfFileStream final : public IfByteStream {

@@ -11,6 +11,7 @@
 #include "receiver/file_sample_source.hpp"
 #include "tools/cli_checks.hpp"
 #include "tools/command_registry.hpp"
+#include "tools/sample_source_factory.hpp"
 
 namespace deepnav::cli {
 namespace {
@@ -22,6 +23,8 @@ struct AcquireOptions {
   double if_hz = 0.0;
   double skip_s = 0.0;
   bool inverted = false;
+  std::string metadata;
+  bool format_given = false, fs_given = false, if_given = false, inverted_given = false;
   AcquisitionConfig acq;
   std::string prn_list;
   std::string json_path;
@@ -57,21 +60,21 @@ nlohmann::json to_json(const AcquisitionResult& r) {
 }
 
 void run_acquire(AcquireOptions o) {
-  SampleFormat format;
-  try {
-    format = parse_sample_format(o.format);
-  } catch (const std::invalid_argument& e) {
-    throw UserError(std::string("--format: ") + e.what());
-  }
-  FileSampleSourceOptions src_opt;
-  src_opt.path = o.input;
-  src_opt.format = format;
-  src_opt.sample_rate_hz = o.fs_hz;
-  src_opt.intermediate_frequency_hz = o.if_hz;
-  src_opt.skip_s = o.skip_s;
-  src_opt.inverted_spectrum = o.inverted;
-  o.acq.sample_rate_hz = o.fs_hz;
-  o.acq.if_hz = o.if_hz;
+  SourceRequest request;
+  request.input = o.input;
+  request.format = o.format;
+  request.fs_hz = o.fs_hz;
+  request.if_hz = o.if_hz;
+  request.skip_s = o.skip_s;
+  request.inverted = o.inverted;
+  request.metadata = o.metadata;
+  request.format_given = o.format_given;
+  request.fs_given = o.fs_given;
+  request.if_given = o.if_given;
+  request.inverted_given = o.inverted_given;
+  const FileSampleSourceOptions src_opt = file_source_options(request);
+  o.acq.sample_rate_hz = src_opt.sample_rate_hz;
+  o.acq.if_hz = src_opt.intermediate_frequency_hz;
   if (!o.prn_list.empty()) o.acq.prns = parse_prns(o.prn_list);
   std::vector<AcquisitionResult> results;
   try {
@@ -98,7 +101,9 @@ void run_acquire(AcquireOptions o) {
   if (!o.json_path.empty()) {
     nlohmann::json all = nlohmann::json::array();
     for (const auto& r : results) all.push_back(to_json(r));
-    const std::string text = nlohmann::json{{"input", o.input}, {"sample_rate_hz", o.fs_hz}, {"if_hz", o.if_hz},
+    const std::string text = nlohmann::json{{"input", src_opt.path.string()},
+                                            {"sample_rate_hz", src_opt.sample_rate_hz},
+                                            {"if_hz", src_opt.intermediate_frequency_hz},
                                             {"results", all}}.dump(2) + "\n";
     if (o.json_path == "-") {
       std::cout << text;
@@ -115,19 +120,25 @@ void run_acquire(AcquireOptions o) {
     for (const auto& r : results) {
       if (!r.detected) continue;
       fmt::print("{:>4} {:>11.1f} {:>13.2f} {:>12.3f} {:>9.1f} {:>10.1f} {:>10.1f}\n", r.prn, r.doppler_hz,
-                 r.delay_samples, r.delay_samples * 1.023e6 / o.fs_hz, r.cn0_dbhz, r.statistic, r.threshold);
+                 r.delay_samples, r.delay_samples * 1.023e6 / src_opt.sample_rate_hz, r.cn0_dbhz, r.statistic, r.threshold);
     }
   }
-  if (detected == 0) throw UserError("no satellite acquired: check --fs, --if, --format, --inverted-spectrum", 3);
+  if (detected == 0)
+    throw UserError(o.metadata.empty() ? "no satellite acquired: check --fs, --if, --format, --inverted-spectrum"
+                                       : "no satellite acquired: check the metadata file '" + o.metadata + "'",
+                    3);
 }
 
 const bool registered = register_command([](CommandParents& parents) {
   auto o = std::make_shared<AcquireOptions>();
   CLI::App* cmd = parents.root.add_subcommand("acquire", "Cold-start FFT acquisition of an IF file: detected PRNs, Doppler, code delay");
-  cmd->add_option("--input", o->input, "IF sample file")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--input", o->input, "IF sample file")->check(CLI::ExistingFile);
+  cmd->add_option("--metadata", o->metadata,
+                  "ION GNSS SDR metadata file (XML) describing the IF file (format, rate, IF, inversion; the file "
+                  "unless --input names it); flags given as well override it")
+      ->check(CLI::ExistingFile);
   cmd->add_option("--format", o->format, sample_format_choices())->capture_default_str();
-  cmd->add_option("--fs", o->fs_hz, "Sample rate (Hz)")
-      ->required()
+  cmd->add_option("--fs", o->fs_hz, "Sample rate (Hz); required without --metadata")
       ->check(finite_in(1.023e6, kMaxAcquisitionSampleRate_hz, "a sample rate in Hz"));
   cmd->add_option("--if", o->if_hz, "Intermediate frequency (Hz), 0 for complex baseband")
       ->check(finite_in(-kMaxAcquisitionSampleRate_hz / 2, kMaxAcquisitionSampleRate_hz / 2, "a frequency in Hz"))
@@ -153,7 +164,13 @@ const bool registered = register_command([](CommandParents& parents) {
       ->capture_default_str();
   cmd->add_option("--prn", o->prn_list, "Only these PRNs, e.g. 1,5,31");
   cmd->add_option("--json", o->json_path, "Write every searched PRN as JSON to FILE ('-': stdout instead of the table)");
-  cmd->callback([o] { run_acquire(*o); });
+  cmd->callback([o, cmd] {
+    o->format_given = cmd->count("--format") > 0;
+    o->fs_given = cmd->count("--fs") > 0;
+    o->if_given = cmd->count("--if") > 0;
+    o->inverted_given = cmd->count("--inverted-spectrum") > 0;
+    run_acquire(*o);
+  });
 });
 
 }  // namespace

@@ -33,6 +33,8 @@ struct RunOptions {
   std::string input, format = "ibyte", out_dir, truth_path, assist_nav;
   double fs_hz = 0.0, if_hz = 0.0, skip_s = 0.0;
   bool inverted = false, raw = false;
+  std::string metadata;
+  bool format_given = false, fs_given = false, if_given = false, inverted_given = false;
   double reconnect_timeout_s = 30.0;
   std::string mitigation = "none";
   ReceiverConfig receiver;
@@ -107,7 +109,7 @@ nlohmann::json run_summary(const RunOptions& o, const OpenedSource& opened, aidi
                            const RunStatistics& stats, bool scored, const std::vector<ImuGap>& imu_gaps) {
   ScalarReceiver& receiver = session.receiver();
   nlohmann::json summary = {
-      {"input", o.input},
+      {"input", opened.input},
       // What the run processed: a file's length only when it was read to the end (not after
       // Ctrl-C), and a stream's from its first sample (not from sample 0).
       {"duration_s", receiver.processed_s()},
@@ -204,8 +206,22 @@ void run_receiver(RunOptions o) {
   }
   // A file or a tcp:// / udp:// stream; Ctrl-C ends the source, so the products are still written.
   StopOnSignals stop_signals;
-  OpenedSource opened = open_sample_source({o.input, o.format, o.fs_hz, o.if_hz, o.skip_s, o.inverted, o.raw,
-                                            o.reconnect_timeout_s, &stop_signals.flag()});
+  SourceRequest request;
+  request.input = o.input;
+  request.format = o.format;
+  request.fs_hz = o.fs_hz;
+  request.if_hz = o.if_hz;
+  request.skip_s = o.skip_s;
+  request.inverted = o.inverted;
+  request.raw = o.raw;
+  request.reconnect_timeout_s = o.reconnect_timeout_s;
+  request.stop = &stop_signals.flag();
+  request.metadata = o.metadata;
+  request.format_given = o.format_given;
+  request.fs_given = o.fs_given;
+  request.if_given = o.if_given;
+  request.inverted_given = o.inverted_given;
+  OpenedSource opened = open_sample_source(request);
   std::error_code ec;
   std::filesystem::create_directories(o.out_dir, ec);
   if (ec) throw UserError("cannot create output folder '" + o.out_dir + "': " + ec.message());
@@ -218,7 +234,7 @@ void run_receiver(RunOptions o) {
     spdlog::warn("{}:{}: no IMU data from t = {:.3f} s to {:.3f} s: the INS stops across the gap", o.imu_path, g.line,
                  g.t_before_s, g.t_after_s);
   std::vector<std::unique_ptr<ProductSink>> products =
-      file_products(o.out_dir, std::filesystem::path(o.input).filename().string(), 1.0 / o.receiver.observation_rate_hz);
+      file_products(o.out_dir, std::filesystem::path(opened.input).filename().string(), 1.0 / o.receiver.observation_rate_hz);
   aiding::NavigationSession session(session_config(o, mode), *opened.source, std::move(imu), opened.duration_s);
   RunStatistics stats(truth ? &*truth : nullptr);
   SummarySink summary((std::filesystem::path(o.out_dir) / "summary.json").string(),
@@ -253,7 +269,11 @@ void run_receiver(RunOptions o) {
 const bool registered = register_command([](CommandParents& parents) {
   auto o = std::make_shared<RunOptions>();
   CLI::App* cmd = parents.root.add_subcommand("run", "Run the receiver on an IF file: PVT and products in --out");
-  cmd->add_option("--input", o->input, "IF sample file, tcp://HOST:PORT, udp://HOST:PORT (subscribe) or udp://@HOST:PORT (listen)")->required();
+  cmd->add_option("--input", o->input, "IF sample file, tcp://HOST:PORT, udp://HOST:PORT (subscribe) or udp://@HOST:PORT (listen)");
+  cmd->add_option("--metadata", o->metadata,
+                  "ION GNSS SDR metadata file (XML) describing the IF file: its format, rate, IF and inversion, and "
+                  "the file itself unless --input names it; flags given as well override it")
+      ->check(CLI::ExistingFile);
   cmd->add_option("--format", o->format, sample_format_choices())->capture_default_str();
   cmd->add_option("--fs", o->fs_hz, "Sample rate (Hz); a framed stream's header carries it")
       ->check(finite_in(kMinSampleRate_hz, kMaxSampleRate_hz, "a sample rate in Hz"));
@@ -321,6 +341,10 @@ const bool registered = register_command([](CommandParents& parents) {
     if (o->print_config) return fmt::print("{}", effective_config(*cmd));
     if (cmd->get_option("--week")->count() > 0) check_week_option(o->receiver.reference_week);
     o->receiver.reference_week_origin = "--week";
+    o->format_given = cmd->count("--format") > 0;
+    o->fs_given = cmd->count("--fs") > 0;
+    o->if_given = cmd->count("--if") > 0;
+    o->inverted_given = cmd->count("--inverted-spectrum") > 0;
     run_receiver(*o);
   });
 });

@@ -37,6 +37,7 @@ nlohmann::json summary_json(const Scenario& sc, const SynthesisSummary& s) {
                     {"code_phase_chips", sat.code_phase_start_chips}});
   }
   return {{"if_file", std::filesystem::path(s.if_path).filename().string()},
+          {"metadata_file", std::filesystem::path(s.metadata_path).filename().string()},
           {"format", std::string(to_string(sc.format))},
           {"sample_rate_hz", sc.sample_rate_hz},
           {"if_hz", sc.if_hz},

@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "receiver/file_sample_source.hpp"
+#include "signals/if_metadata.hpp"
 #include "receiver/stream/tcp_sample_source.hpp"
 #include "receiver/stream/udp_sample_source.hpp"
 #include "tools/command_registry.hpp"
@@ -158,6 +159,7 @@ OpenedSource open_stream(const SourceRequest& r, const ParsedUrl& url) {
   spdlog::info("{}: {} at {} Hz, IF {} Hz, from sample {}", url_text, to_string(source->header().format),
                source->sample_rate_hz(), source->intermediate_frequency_hz(), source->header().start_sample_index);
   OpenedSource o;
+  o.input = r.input;
   o.is_stream = true;
   StreamSampleSource* s = source.get();
   o.report = [s] { return stats_json(*s); };
@@ -184,22 +186,67 @@ void use_thread_safe_logger() {
   spdlog::set_level(level);
 }
 
-OpenedSource open_sample_source(const SourceRequest& r) {
-  if (const auto url = parse_url(r.input)) return open_stream(r, *url);
-  if (r.raw) throw UserError("--raw applies to tcp:// and udp:// inputs only");
-  if (!std::filesystem::exists(r.input)) throw UserError(fmt::format("--input: file '{}' does not exist", r.input));
-  if (!(r.fs_hz > 0.0)) throw UserError(fmt::format("--input '{}': a file needs its sample rate (--fs)", r.input));
+FileSampleSourceOptions file_source_options(const SourceRequest& r) {
   FileSampleSourceOptions so;
-  so.path = r.input;
-  try {
-    so.format = parse_sample_format(r.format);
-  } catch (const std::invalid_argument& e) {
-    throw UserError(std::string("--format: ") + e.what());
-  }
-  so.sample_rate_hz = r.fs_hz;
-  so.intermediate_frequency_hz = r.if_hz;
   so.skip_s = r.skip_s;
-  so.inverted_spectrum = r.inverted;
+  std::optional<IfMetadata> meta;
+  if (!r.metadata.empty()) {
+    try {
+      meta = read_if_metadata(r.metadata);
+    } catch (const std::exception& e) {
+      throw UserError(e.what());
+    }
+    so.path = r.input.empty() ? meta->data_path : std::filesystem::path(r.input);
+    if (so.path.empty())
+      throw UserError(fmt::format("--metadata '{}' names no <file>: give the samples with --input", r.metadata));
+    so.format = meta->format;
+    so.sample_rate_hz = meta->sample_rate_hz;
+    so.intermediate_frequency_hz = meta->if_hz;
+    so.inverted_spectrum = meta->inverted_spectrum;
+    so.header_bytes = meta->header_bytes;
+    so.footer_bytes = meta->footer_bytes;
+    so.length_bytes = meta->length_bytes;
+    spdlog::info("{}: {} at {} Hz, IF {} Hz{}, from '{}'", r.metadata, to_string(so.format), so.sample_rate_hz,
+                 so.intermediate_frequency_hz, so.inverted_spectrum ? ", inverted spectrum" : "", so.path.string());
+  } else {
+    if (r.input.empty()) throw UserError("give the samples: --input FILE (or --metadata FILE.xml)");
+    so.path = r.input;
+  }
+  auto overrides = [&](bool given, const std::string& flag, const std::string& value, const std::string& from_meta) {
+    if (given && meta && value != from_meta)
+      spdlog::warn("{} {} overrides the metadata's {} ({})", flag, value, from_meta, r.metadata);
+    return given || !meta;
+  };
+  if (overrides(r.format_given, "--format", r.format, meta ? to_string(meta->format) : "")) {
+    try {
+      so.format = parse_sample_format(r.format);
+    } catch (const std::invalid_argument& e) {
+      throw UserError(std::string("--format: ") + e.what());
+    }
+  }
+  if (overrides(r.fs_given, "--fs", fmt::format("{}", r.fs_hz), meta ? fmt::format("{}", meta->sample_rate_hz) : ""))
+    so.sample_rate_hz = r.fs_hz;
+  if (overrides(r.if_given, "--if", fmt::format("{}", r.if_hz), meta ? fmt::format("{}", meta->if_hz) : ""))
+    so.intermediate_frequency_hz = r.if_hz;
+  if (overrides(r.inverted_given, "--inverted-spectrum", r.inverted ? "true" : "false",
+                meta ? (meta->inverted_spectrum ? "true" : "false") : ""))
+    so.inverted_spectrum = r.inverted;
+  if (!std::filesystem::exists(so.path))
+    throw UserError(meta && r.input.empty()
+                        ? fmt::format("--metadata '{}': its sample file '{}' does not exist", r.metadata, so.path.string())
+                        : fmt::format("--input: file '{}' does not exist", so.path.string()));
+  if (!(so.sample_rate_hz > 0.0))
+    throw UserError(fmt::format("--input '{}': a file needs its sample rate (--fs, or --metadata)", so.path.string()));
+  return so;
+}
+
+OpenedSource open_sample_source(const SourceRequest& r) {
+  if (const auto url = parse_url(r.input)) {
+    if (!r.metadata.empty()) throw UserError("--metadata describes files; a stream says its own format");
+    return open_stream(r, *url);
+  }
+  if (r.raw) throw UserError("--raw applies to tcp:// and udp:// inputs only");
+  const FileSampleSourceOptions so = file_source_options(r);
   std::unique_ptr<FileSampleSource> file;
   try {
     file = std::make_unique<FileSampleSource>(so);
@@ -208,7 +255,8 @@ OpenedSource open_sample_source(const SourceRequest& r) {
   }
   for (const auto& w : file->warnings()) spdlog::warn("{}", w);
   OpenedSource o;
-  o.duration_s = static_cast<double>(file->total_samples()) / r.fs_hz;
+  o.input = so.path.string();
+  o.duration_s = static_cast<double>(file->total_samples()) / so.sample_rate_hz;
   auto stoppable = std::make_unique<StoppableFileSource>(std::move(file), r.stop);
   StoppableFileSource* s = stoppable.get();
   o.interrupted = [s] { return s->interrupted(); };

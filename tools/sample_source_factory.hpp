@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 
+#include "receiver/file_sample_source.hpp"
 #include "receiver/sample_source.hpp"
 
 namespace deepnav::cli {
@@ -23,10 +24,16 @@ struct SourceRequest {
   bool raw = false;         ///< streams only: bare samples without the deepnav framing
   double reconnect_timeout_s = 30.0;
   const std::atomic<bool>* stop = nullptr;  ///< once set, the source ends (Ctrl-C)
+  /// An ION GNSS SDR metadata file (XML) describing the file: its format, rate, IF,
+  /// inversion and, when --input is empty, the file itself. Files only.
+  std::string metadata;
+  /// Which flags the command line gave: with --metadata they override its values (warned).
+  bool format_given = false, fs_given = false, if_given = false, inverted_given = false;
 };
 
 struct OpenedSource {
   std::unique_ptr<SampleSource> source;
+  std::string input;  ///< the file path or URL read (a metadata file's <file> when --input was not given)
   std::optional<double> duration_s;  ///< the signal length, when known in advance (files)
   bool is_stream = false;
   /// For the run summary: transport statistics of a stream (null for files).
@@ -39,6 +46,10 @@ struct OpenedSource {
 
 /// Opens the source; throws UserError naming the input and the problem.
 OpenedSource open_sample_source(const SourceRequest& request);
+
+/// A file source's options from --input, --metadata and the flags (what `run` and
+/// `acquire` read); throws UserError naming the file, flag or metadata element.
+FileSampleSourceOptions file_source_options(const SourceRequest& request);
 
 /// Network sources and the server log from their I/O threads: the default logger is
 /// replaced by a thread-safe one with the same sink, pattern and level.

@@ -22,6 +22,7 @@
 #include "ins/sim/trajectory_presets.hpp"
 #include "signals/ca_code.hpp"
 #include "signals/sim/error_world.hpp"
+#include "signals/if_metadata.hpp"
 #include "signals/sim/front_end.hpp"
 #include "signals/sim/if_file_writer.hpp"
 #include "signals/gps_constants.hpp"
@@ -556,6 +557,20 @@ SynthesisSummary IfSynthesizer::run(const std::string& out_dir, const SynthesisO
 
   // Everything written: only now do the files take their final names.
   if_writer.finish();
+  {
+    summary.metadata_path = metadata_path_for(summary.if_path).string();
+    IfMetadataDescription d;
+    d.data_file_name = std::filesystem::path(summary.if_path).filename().string();
+    d.format = m.sc.format;
+    d.sample_rate_hz = m.sc.sample_rate_hz;
+    d.if_hz = m.sc.if_hz;
+    d.comment = fmt::format("scenario {}, {} s from GPS week {} second {:.3f}, ADC {} bits", m.sc.name,
+                            static_cast<double>(total_samples()) / m.sc.sample_rate_hz, m.sc.start_time.week,
+                            m.sc.start_time.sow, make_front_end_config(m.sc).adc.bits);
+    TextOutputFile metadata(summary.metadata_path);
+    metadata.write(if_metadata_xml(d));
+    metadata.commit();
+  }
   if (!options.if_only) {
     truth->commit();
     sat_truth->commit();

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # cu8 (unsigned 8-bit I/Q, zero at 127.5, as an RTL-SDR writes it) round trip: a static
 # scenario is synthesized at 2.048 Msps with an 8-bit ADC into if_cu8.bin, and the receiver
-# (assisted start) fixes from it within a few metres of the truth; the same file served over
-# TCP (framed, as fast as read) gives the same fixes. A misspelt format names the accepted
+# (assisted start) fixes from it within a few metres of the truth; run from the metadata file
+# the synthesizer wrote beside it, and served over TCP (framed, as fast as read), it gives the
+# same fixes. A misspelt format names the accepted
 # ones and exits non-zero.
 #   usage: format_cu8.sh <deepnav binary> <source dir>
 set -uo pipefail
@@ -32,6 +33,11 @@ for name, ok, value in checks:
     bad += not ok
 sys.exit(1 if bad else 0)
 PY
+"$deepnav" -q run --metadata "$work/sim/if_cu8.xml" --week 2190 \
+  --iono-from "$src/data/brdc0010.22n" --ephemeris-from "$src/data/brdc0010.22n" --out "$work/meta" > /dev/null \
+  || fail "run --metadata"
+cmp -s "$work/run/pvt.csv" "$work/meta/pvt.csv" || fail "pvt.csv from --metadata differs from the flags run's"
+echo "ok   cu8 from if_cu8.xml alone: pvt.csv identical to the flags run's"
 "$deepnav" -q serve --file "$work/sim/if_cu8.bin" --format cu8 --fs 2048000 --tcp 0 --pace 0 --sessions 1 \
   --port-file "$work/ports" &
 server=$!

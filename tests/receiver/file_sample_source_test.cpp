@@ -111,6 +111,38 @@ TEST(FileSampleSource, ReadsPackedWordsInPiecesAndSkipsIntoAWord) {
   EXPECT_EQ(z[1], Sample(1, 1));
 }
 
+TEST(FileSampleSource, SkipsAHeaderAndFooterAndStopsAtTheAnnouncedLength) {
+  // 3 header bytes, then ibyte samples (1,-1) (2,-2) (3,-3) (4,-4), then a 1-byte footer.
+  const std::int8_t data[] = {9, 9, 9, 1, -1, 2, -2, 3, -3, 4, -4, 9};
+  auto o = options(write_file("header.bin", data, sizeof data), SampleFormat::ibyte);
+  o.header_bytes = 3;
+  o.footer_bytes = 1;
+  {
+    FileSampleSource source(o);
+    EXPECT_EQ(source.total_samples(), 4);
+    const auto s = read_all(source);
+    ASSERT_EQ(s.size(), 4u);
+    EXPECT_EQ(s[0], Sample(1, -1));
+    EXPECT_EQ(s[3], Sample(4, -4));
+    EXPECT_TRUE(source.warnings().empty());
+  }
+  o.length_bytes = 4;  // two samples, as a block's cycles say
+  o.skip_s = 0.001;
+  FileSampleSource two(o);
+  EXPECT_EQ(two.total_samples(), 2);
+  const auto s = read_all(two);
+  ASSERT_EQ(s.size(), 1u);
+  EXPECT_EQ(s[0], Sample(2, -2));
+  o.length_bytes = 100;  // more than there is: read what there is, and say so
+  o.skip_s = 0.0;
+  FileSampleSource longer(o);
+  EXPECT_EQ(longer.total_samples(), 4);
+  ASSERT_EQ(longer.warnings().size(), 1u);
+  EXPECT_NE(longer.warnings()[0].find("100 bytes of samples were announced"), std::string::npos);
+  o.header_bytes = 12;
+  EXPECT_THROW(FileSampleSource{o}, std::runtime_error);
+}
+
 TEST(FileSampleSource, ReadsIshortAndInvertsSpectrumWithSaturation) {
   const std::int16_t data[] = {1000, -2000, -32768, -32768, 7, 32767};
   auto o = options(write_file("ishort.bin", data, sizeof data), SampleFormat::ishort);
