@@ -9,6 +9,7 @@
 #include <thread>
 
 #include <algorithm>
+#include <limits>
 #include <chrono>
 #include <cmath>
 #include <set>
@@ -348,6 +349,14 @@ void ScalarReceiver::run(const std::function<void(const ReceiverEpoch&)>& on_epo
       // re-acquisition window restarts after it and the next observables are flagged.
       recent.clear();
       m.gap_since_epoch = true;
+      if (!m.src.gap_sizes_exact() && !m.channels.empty()) {
+        // A gap known only roughly leaves every code phase off by its error: start over
+        // from acquisition as soon as the window after the gap is full.
+        spdlog::info("a gap of estimated size at sample {}: every channel re-acquires", block.first_sample_index);
+        for (const Channel& ch : m.channels) m.add_status(m.finished_status, ch);
+        m.channels.clear();
+        m.last_reacquire_s = -std::numeric_limits<double>::infinity();
+      }
     }
     expected_first = block.first_sample_index + static_cast<std::int64_t>(block.samples.size());
     prepare_for_correlation(block);
