@@ -12,6 +12,7 @@ the samples it left out. One session, then it exits.
 usage: rtltcp_server.py FILE --rate HZ --port-file F [--commands F] [--drop-at S --drop-seconds D]
 """
 import argparse
+import os
 import socket
 import struct
 import sys
@@ -66,7 +67,6 @@ def main():
     srv.listen(1)
     with open(a.port_file + ".tmp", "w") as f:
         f.write(f"{srv.getsockname()[1]}\n")
-    import os
     os.replace(a.port_file + ".tmp", a.port_file)
     srv.settimeout(30)
     conn, _ = srv.accept()
