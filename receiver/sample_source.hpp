@@ -56,6 +56,10 @@ class SampleSource {
   virtual std::int64_t next_sample_index() const = 0;
   /// True once read() has returned 0 (nothing more will ever come).
   virtual bool at_end() const = 0;
+  /// False for a source whose gap sizes are estimates (rtl_tcp: told from arrival times, to
+  /// some microseconds): the receiver then re-acquires every satellite after a gap instead
+  /// of carrying its channels across it (a code phase a few samples off is no phase at all).
+  virtual bool gap_sizes_exact() const { return true; }
 
   /// One read() of up to max_samples into block (its buffer is reused), with the
   /// index of its first sample; false at the end. The block may be short.

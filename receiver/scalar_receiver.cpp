@@ -8,6 +8,7 @@
 #include <thread>
 
 #include <algorithm>
+#include <limits>
 #include <chrono>
 #include <cmath>
 #include <set>
@@ -432,6 +433,14 @@ void ScalarReceiver::run(const std::function<void(const ReceiverEpoch&)>& on_epo
       // point at or after the samples come back (one step, however long the gap).
       if (next_obs >= 0 && next_obs < block.first_sample_index)
         next_obs += (block.first_sample_index - next_obs + obs_step - 1) / obs_step * obs_step;
+      if (!m.src.gap_sizes_exact() && !m.channels.empty()) {
+        // A gap known only roughly leaves every code phase off by its error: start over
+        // from acquisition as soon as the window after the gap is full.
+        spdlog::info("a gap of estimated size at sample {}: every channel re-acquires", block.first_sample_index);
+        for (const Channel& ch : m.channels) m.add_status(m.finished_status, ch);
+        m.channels.clear();
+        m.last_reacquire_s = -std::numeric_limits<double>::infinity();
+      }
     }
     expected_first = block.first_sample_index + static_cast<std::int64_t>(block.samples.size());
     if (m.first_index < 0) m.first_index = block.first_sample_index;

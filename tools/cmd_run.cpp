@@ -35,6 +35,9 @@ struct RunOptions {
   bool inverted = false, raw = false;
   std::string metadata;
   bool format_given = false, fs_given = false, if_given = false, inverted_given = false;
+  std::string rtl_gain = "auto";
+  bool rtl_agc = false, rtl_bias_tee = false;
+  int rtl_ppm = 0;
   double reconnect_timeout_s = 30.0;
   std::string mitigation = "none";
   ReceiverConfig receiver;
@@ -221,6 +224,10 @@ void run_receiver(RunOptions o) {
   request.fs_given = o.fs_given;
   request.if_given = o.if_given;
   request.inverted_given = o.inverted_given;
+  request.rtl_gain = o.rtl_gain;
+  request.rtl_agc = o.rtl_agc;
+  request.rtl_ppm = o.rtl_ppm;
+  request.rtl_bias_tee = o.rtl_bias_tee;
   OpenedSource opened = open_sample_source(request);
   std::error_code ec;
   std::filesystem::create_directories(o.out_dir, ec);
@@ -269,7 +276,9 @@ void run_receiver(RunOptions o) {
 const bool registered = register_command([](CommandParents& parents) {
   auto o = std::make_shared<RunOptions>();
   CLI::App* cmd = parents.root.add_subcommand("run", "Run the receiver on an IF file: PVT and products in --out");
-  cmd->add_option("--input", o->input, "IF sample file, tcp://HOST:PORT, udp://HOST:PORT (subscribe) or udp://@HOST:PORT (listen)");
+  cmd->add_option("--input", o->input,
+                  "IF sample file, tcp://HOST:PORT, udp://HOST:PORT (subscribe), udp://@HOST:PORT (listen) or "
+                  "rtltcp://HOST:PORT (an rtl_tcp server: RTL-SDR, cu8 at --fs, default 2048000)");
   cmd->add_option("--metadata", o->metadata,
                   "ION GNSS SDR metadata file (XML) describing the IF file: its format, rate, IF and inversion, and "
                   "the file itself unless --input names it; flags given as well override it")
@@ -281,9 +290,14 @@ const bool registered = register_command([](CommandParents& parents) {
   cmd->add_option("--reconnect-timeout", o->reconnect_timeout_s, "Seconds a dropped stream is retried (with backoff)")
       ->check(finite_in(0.0, 86400.0, "seconds"))
       ->capture_default_str();
-  cmd->add_option("--if", o->if_hz, "Intermediate frequency (Hz)")
+  cmd->add_option("--if", o->if_hz, "Intermediate frequency (Hz); rtltcp://: the dongle is tuned to 1575.42 MHz minus it")
       ->check(finite_in(-kMaxSampleRate_hz / 2, kMaxSampleRate_hz / 2, "a frequency in Hz, below half the sample rate"))
       ->capture_default_str();
+  cmd->add_option("--rtl-gain", o->rtl_gain, "rtltcp://: tuner gain in dB (the nearest step), or auto (the tuner's AGC)")
+      ->capture_default_str();
+  cmd->add_flag("--rtl-agc", o->rtl_agc, "rtltcp://: switch on the RTL2832's digital AGC");
+  cmd->add_option("--rtl-ppm", o->rtl_ppm, "rtltcp://: crystal frequency correction (ppm)")->capture_default_str();
+  cmd->add_flag("--rtl-bias-tee", o->rtl_bias_tee, "rtltcp://: power an active antenna through the coax (bias tee)");
   cmd->add_option("--skip", o->skip_s, "Seconds skipped at the start")
       ->check(finite_in(0.0, 1e7, "seconds"))
       ->capture_default_str();

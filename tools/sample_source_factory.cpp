@@ -4,6 +4,7 @@
 #include <spdlog/sinks/stdout_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include <cmath>
 #include <csignal>
 #include <cstdlib>
 #include <filesystem>
@@ -11,7 +12,9 @@
 
 #include "receiver/file_sample_source.hpp"
 #include "signals/if_metadata.hpp"
+#include "receiver/stream/rtltcp_sample_source.hpp"
 #include "receiver/stream/tcp_sample_source.hpp"
+#include "signals/gps_constants.hpp"
 #include "receiver/stream/udp_sample_source.hpp"
 #include "tools/command_registry.hpp"
 
@@ -63,7 +66,7 @@ std::optional<ParsedUrl> parse_url(const std::string& input) {
   const auto sep = input.find("://");
   if (sep == std::string::npos) return std::nullopt;
   u.scheme = input.substr(0, sep);
-  if (u.scheme != "tcp" && u.scheme != "udp") return std::nullopt;
+  if (u.scheme != "tcp" && u.scheme != "udp" && u.scheme != "rtltcp") return std::nullopt;
   std::string rest = input.substr(sep + 3);
   if (!rest.empty() && rest.front() == '@') {
     if (u.scheme != "udp") throw UserError(fmt::format("--input '{}': '@' (listen) is for udp:// only", input));
@@ -92,7 +95,7 @@ nlohmann::json stats_json(const StreamSampleSource& s) {
   nlohmann::json lost = nlohmann::json::array(), gaps = nlohmann::json::array();
   for (const auto& [a, b] : st.lost_frame_ranges) lost.push_back({a, b});
   for (const auto& g : st.gaps) gaps.push_back({{"first_missing_sample", g.first_missing_index}, {"missing_samples", g.missing_count}});
-  return {{"url", s.url()},
+  nlohmann::json out = {{"url", s.url()},
           {"format", std::string(to_string(s.header().format))},
           {"start_sample", s.header().start_sample_index},
           {"bytes_received", st.bytes_received},
@@ -110,6 +113,52 @@ nlohmann::json stats_json(const StreamSampleSource& s) {
           {"gaps", gaps},
           {"end", st.end_reason},
           {"failed", st.failed}};
+  if (const auto* rtl = dynamic_cast<const RtlTcpSampleSource*>(&s)) {
+    const rtltcp::Tuning& t = rtl->rtl_settings().tuning;
+    out["dongle"] = {{"tuner", rtltcp::tuner_name(rtl->dongle().tuner_type)},
+                     {"tuner_type", rtl->dongle().tuner_type},
+                     {"gain_steps", rtl->dongle().gain_count},
+                     {"center_frequency_hz", t.center_frequency_hz},
+                     {"sample_rate_hz", t.sample_rate_hz},
+                     {"gain_db", t.gain_db ? nlohmann::json(*t.gain_db) : nlohmann::json("auto")},
+                     {"rtl_agc", t.rtl_agc},
+                     {"ppm", t.ppm},
+                     {"bias_tee", t.bias_tee}};
+  }
+  return out;
+}
+
+/// An rtl_tcp dongle: cu8 at --fs (default 2.048 Msps), tuned so that L1 lands at --if.
+std::unique_ptr<StreamSampleSource> open_rtltcp(const SourceRequest& r, const ParsedUrl& url) {
+  if (r.raw) throw UserError("--raw does not apply to rtltcp:// (the stream is always bare cu8)");
+  if (r.format_given && r.format != "cu8")
+    throw UserError(fmt::format("--format {}: an rtl_tcp server sends cu8 (leave --format out)", r.format));
+  if (r.inverted) throw UserError("--inverted-spectrum does not apply to rtltcp:// (an RTL-SDR's spectrum is upright)");
+  StreamSourceSettings st;
+  st.host = url.host;
+  st.port = url.port;
+  st.stop = r.stop;
+  st.raw_if_hz = r.if_hz;
+  RtlTcpSettings rtl;
+  const double fs = r.fs_given || r.fs_hz > 0.0 ? r.fs_hz : 2048000.0;
+  if (!(fs > 0.0) || fs != std::floor(fs) || fs > 4.0e9) throw UserError(fmt::format("--fs {}: not a sample rate in Hz", fs));
+  rtl.tuning.sample_rate_hz = static_cast<std::uint32_t>(fs);
+  rtl.tuning.center_frequency_hz = gps::kL1_Hz - r.if_hz;
+  if (r.rtl_gain != "auto") {
+    char* end = nullptr;
+    const double g = std::strtod(r.rtl_gain.c_str(), &end);
+    if (r.rtl_gain.empty() || *end != '\0')
+      throw UserError(fmt::format("--rtl-gain '{}': expected a gain in dB or 'auto' (the tuner's AGC)", r.rtl_gain));
+    rtl.tuning.gain_db = g;
+  }
+  rtl.tuning.rtl_agc = r.rtl_agc;
+  rtl.tuning.ppm = r.rtl_ppm;
+  rtl.tuning.bias_tee = r.rtl_bias_tee;
+  try {
+    return std::make_unique<RtlTcpSampleSource>(st, rtl);
+  } catch (const std::exception& e) {
+    throw UserError(e.what());
+  }
 }
 
 OpenedSource open_stream(const SourceRequest& r, const ParsedUrl& url) {
@@ -122,7 +171,11 @@ OpenedSource open_stream(const SourceRequest& r, const ParsedUrl& url) {
   st.inverted_spectrum = r.inverted;
   st.reconnect_timeout_s = r.reconnect_timeout_s;
   st.stop = r.stop;
-  if (r.raw) {
+  if (r.skip_s != 0.0) throw UserError("--skip applies to files only, not to streams");
+  std::unique_ptr<StreamSampleSource> source;
+  if (url.scheme == "rtltcp") {
+    source = open_rtltcp(r, url);
+  } else if (r.raw) {
     try {
       st.raw_format = parse_sample_format(r.format);
     } catch (const std::invalid_argument& e) {
@@ -135,10 +188,10 @@ OpenedSource open_stream(const SourceRequest& r, const ParsedUrl& url) {
     st.raw_sample_rate_hz = r.fs_hz;
     st.raw_if_hz = r.if_hz;
   }
-  if (r.skip_s != 0.0) throw UserError("--skip applies to files only, not to streams");
-  std::unique_ptr<StreamSampleSource> source;
   try {
-    if (url.scheme == "tcp") {
+    if (source) {
+      // rtltcp:// opened above
+    } else if (url.scheme == "tcp") {
       source = std::make_unique<TcpSampleSource>(st);
     } else {
       auto udp = std::make_unique<UdpSampleSource>(st);
@@ -148,13 +201,14 @@ OpenedSource open_stream(const SourceRequest& r, const ParsedUrl& url) {
   } catch (const std::exception& e) {
     throw UserError(e.what());
   }
-  if (!r.raw && r.fs_hz > 0.0 && r.fs_hz != source->sample_rate_hz())
+  if (!r.raw && url.scheme != "rtltcp" && r.fs_hz > 0.0 && r.fs_hz != source->sample_rate_hz())
     throw UserError(fmt::format("--fs {} Hz disagrees with the sample rate {} Hz of the stream {}", r.fs_hz,
                                 source->sample_rate_hz(), source->url()));
   const std::string url_text = source->url();
-  source->set_gap_handler([url_text, fs = source->sample_rate_hz()](const SampleGap& g) {
-    spdlog::warn("{}: {} samples lost at sample {} (t = {:.6f} s): channels coast across the gap", url_text,
-                 g.missing_count, g.first_missing_index, static_cast<double>(g.first_missing_index) / fs);
+  source->set_gap_handler([url_text, fs = source->sample_rate_hz(), exact = source->gap_sizes_exact()](const SampleGap& g) {
+    spdlog::warn("{}: {} samples {}lost at sample {} (t = {:.6f} s): {}", url_text, g.missing_count,
+                 exact ? "" : "(estimated) ", g.first_missing_index, static_cast<double>(g.first_missing_index) / fs,
+                 exact ? "channels coast across the gap" : "every satellite is acquired again after it");
   });
   spdlog::info("{}: {} at {} Hz, IF {} Hz, from sample {}", url_text, to_string(source->header().format),
                source->sample_rate_hz(), source->intermediate_frequency_hz(), source->header().start_sample_index);

@@ -1,7 +1,8 @@
 #pragma once
-// Where `deepnav run` gets its samples: an IF file path, tcp://HOST:PORT, udp://HOST:PORT
-// (subscribe to a `deepnav serve`) or udp://@HOST:PORT (listen for datagrams sent
-// there), framed (deepnav protocol) or raw (bare samples).
+// Where `deepnav run` gets its samples: an IF file path (with its metadata file, or flags),
+// tcp://HOST:PORT, udp://HOST:PORT (subscribe to a `deepnav serve`) or udp://@HOST:PORT
+// (listen for datagrams sent there), framed (deepnav protocol) or raw (bare samples), or
+// rtltcp://HOST:PORT (an rtl_tcp server with an RTL-SDR dongle).
 #include <atomic>
 #include <functional>
 #include <memory>
@@ -29,6 +30,12 @@ struct SourceRequest {
   std::string metadata;
   /// Which flags the command line gave: with --metadata they override its values (warned).
   bool format_given = false, fs_given = false, if_given = false, inverted_given = false;
+  /// rtltcp:// only: tuner gain in dB or "auto" (the tuner's AGC), the RTL2832's digital
+  /// AGC, crystal correction (ppm), bias tee (power for an active antenna).
+  std::string rtl_gain = "auto";
+  bool rtl_agc = false;
+  int rtl_ppm = 0;
+  bool rtl_bias_tee = false;
 };
 
 struct OpenedSource {

@@ -39,6 +39,7 @@ class MitigationSampleSource final : public SampleSource {
   std::size_t read(std::span<Sample> out) override;
   std::int64_t next_sample_index() const override { return next_index_; }
   bool at_end() const override { return at_end_; }
+  bool gap_sizes_exact() const override { return inner_.gap_sizes_exact(); }
 
   MitigationMode mode() const { return config_.mode; }
   /// Gain the level control applies now (1 for none and blanking).

@@ -1,0 +1,169 @@
+#include "receiver/stream/rtltcp_sample_source.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <boost/asio/connect.hpp>
+#include <boost/asio/read.hpp>
+#include <boost/asio/write.hpp>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "receiver/stream/asio_wait.hpp"
+
+namespace deepnav {
+namespace {
+
+namespace asio = boost::asio;
+using asio::ip::tcp;
+using asio_wait::Clock;
+
+constexpr std::size_t kReadBytes = 1 << 16;
+constexpr double kIdleTimeout_s = 10.0;  // a dongle that sends nothing this long is gone
+
+Clock::time_point after(double seconds) {
+  return Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
+}
+
+double seconds_now() {
+  return std::chrono::duration<double>(Clock::now().time_since_epoch()).count();
+}
+
+StreamSourceSettings as_raw_cu8(StreamSourceSettings s, const RtlTcpSettings& rtl) {
+  rtltcp::validate(rtl.tuning);
+  s.raw = true;
+  s.listen = false;
+  s.raw_format = SampleFormat::cu8;
+  s.raw_sample_rate_hz = rtl.tuning.sample_rate_hz;
+  return s;
+}
+
+}  // namespace
+
+RtlTcpSampleSource::RtlTcpSampleSource(StreamSourceSettings settings, RtlTcpSettings rtl)
+    : StreamSampleSource(as_raw_cu8(settings, rtl), fmt::format("rtltcp://{}:{}", settings.host, settings.port)),
+      rtl_(rtl),
+      socket_(io_),
+      detector_(rtl.tuning.sample_rate_hz, rtl.loss_threshold_s, rtl.loss_horizon_s) {
+  const auto deadline = after(settings_.connect_timeout_s);
+  const std::atomic<bool> never{false};
+  const std::atomic<bool>& cancel = settings_.stop != nullptr ? *settings_.stop : never;
+  boost::system::error_code ec;
+  tcp::resolver resolver(io_);
+  const auto endpoints = resolver.resolve(settings_.host, std::to_string(settings_.port), ec);
+  if (ec) throw std::runtime_error(fmt::format("{}: cannot resolve '{}': {}", url_, settings_.host, ec.message()));
+  bool done = false;
+  asio::async_connect(socket_, endpoints, [&](const boost::system::error_code& e, const tcp::endpoint&) {
+    ec = e;
+    done = true;
+  });
+  if (!asio_wait::run_until_done(io_, done, deadline, cancel, [&] { socket_.close(); }))
+    throw std::runtime_error(fmt::format("{}: no connection within {} s", url_, settings_.connect_timeout_s));
+  if (ec) throw std::runtime_error(fmt::format("{}: cannot connect: {}", url_, ec.message()));
+
+  std::array<std::byte, rtltcp::kDongleInfoBytes> header{};
+  std::size_t got = 0;
+  done = false;
+  asio::async_read(socket_, asio::buffer(header), [&](const boost::system::error_code& e, std::size_t n) {
+    ec = e;
+    got = n;
+    done = true;
+  });
+  if (!asio_wait::run_until_done(io_, done, deadline, cancel, [&] { socket_.close(); }))
+    throw std::runtime_error(fmt::format("{}: no rtl_tcp dongle header within {} s", url_, settings_.connect_timeout_s));
+  if (ec)
+    throw std::runtime_error(fmt::format("{}: the dongle header ended after {} of its {} bytes: {}", url_, got,
+                                         header.size(), ec.message()));
+  try {
+    dongle_ = rtltcp::decode_dongle_info(header);
+  } catch (const stream::ProtocolError& e) {
+    throw std::runtime_error(fmt::format("{}: {}", url_, e.what()));
+  }
+
+  std::vector<std::byte> commands;
+  for (const auto& c : rtltcp::tuning_commands(rtl_.tuning)) commands.insert(commands.end(), c.begin(), c.end());
+  done = false;
+  asio::async_write(socket_, asio::buffer(commands), [&](const boost::system::error_code& e, std::size_t) {
+    ec = e;
+    done = true;
+  });
+  if (!asio_wait::run_until_done(io_, done, deadline, cancel, [&] { socket_.close(); }) || ec)
+    throw std::runtime_error(fmt::format("{}: cannot send the tuning commands: {}", url_, ec ? ec.message() : "timed out"));
+  const auto& t = rtl_.tuning;
+  spdlog::info("{}: {} tuner ({} gain steps); tuned to {:.6f} MHz at {} samples/s, gain {}, RTL AGC {}, {} ppm, bias tee {}",
+               url_, rtltcp::tuner_name(dongle_.tuner_type), dongle_.gain_count, t.center_frequency_hz / 1e6,
+               t.sample_rate_hz, t.gain_db ? fmt::format("{:.1f} dB", *t.gain_db) : std::string("auto (tuner AGC)"),
+               t.rtl_agc ? "on" : "off", t.ppm, t.bias_tee ? "on" : "off");
+  start_io([this] { io_loop(); });
+}
+
+RtlTcpSampleSource::~RtlTcpSampleSource() { stop_io(); }
+
+bool RtlTcpSampleSource::release(bool flush) {
+  for (const ArrivalLossDetector::Verdict& v : detector_.release(seconds_now(), flush)) {
+    StreamPiece piece;
+    piece.raw = std::move(held_bytes_.front());
+    held_bytes_.pop_front();
+    if (v.missing_before > 0)
+      spdlog::warn("{}: {} samples ({:.3f} s) went missing before sample {}: the server dropped data", url_,
+                   v.missing_before, static_cast<double>(v.missing_before) / rtl_.tuning.sample_rate_hz,
+                   next_index_ + v.missing_before);
+    next_index_ += v.missing_before;
+    piece.first_sample_index = next_index_;
+    next_index_ += v.count;
+    if (!queue_.try_push(std::move(piece))) {
+      // The receiver falls behind: arrival times now say when we read, not when the dongle
+      // sampled, so they cannot tell losses until a new baseline stands.
+      detector_.backlogged(seconds_now());
+      spdlog::warn("{}: the receiver falls behind the stream; samples the server drops meanwhile cannot be counted",
+                   url_);
+      if (!queue_.push(std::move(piece), cancel_)) return false;
+    }
+  }
+  return true;
+}
+
+void RtlTcpSampleSource::io_loop() {
+  std::vector<std::byte> buffer(kReadBytes);
+  std::vector<std::byte> data;
+  auto settle_bytes = static_cast<std::int64_t>(2 * std::llround(rtl_.settle_s * rtl_.tuning.sample_rate_hz));
+  std::string why;
+  while (!cancel_) {
+    bool done = false;
+    boost::system::error_code ec;
+    std::size_t got = 0;
+    socket_.async_read_some(asio::buffer(buffer), [&](const boost::system::error_code& e, std::size_t n) {
+      ec = e;
+      got = n;
+      done = true;
+    });
+    if (!asio_wait::run_until_done(io_, done, after(kIdleTimeout_s), cancel_, [&] { socket_.close(); })) {
+      why = cancel_ ? "interrupted" : fmt::format("nothing received for {} s", kIdleTimeout_s);
+      break;
+    }
+    if (ec) {
+      why = ec == asio::error::eof ? "the server closed the connection" : ec.message();
+      break;
+    }
+    update_stats([&](StreamStats& s) { s.bytes_received += static_cast<std::int64_t>(got); });
+    // cu8 samples are byte pairs: a read may end inside one (data keeps that byte).
+    data.insert(data.end(), buffer.begin(), buffer.begin() + static_cast<std::ptrdiff_t>(got));
+    if (settle_bytes > 0) {
+      const auto drop = static_cast<std::size_t>(std::min<std::int64_t>(settle_bytes, static_cast<std::int64_t>(data.size())));
+      data.erase(data.begin(), data.begin() + static_cast<std::ptrdiff_t>(drop));
+      settle_bytes -= static_cast<std::int64_t>(drop);
+    }
+    const std::size_t whole = data.size() / 2 * 2;
+    if (whole > 0) {
+      detector_.arrived(seconds_now(), static_cast<std::int64_t>(whole / 2));
+      held_bytes_.emplace_back(data.begin(), data.begin() + static_cast<std::ptrdiff_t>(whole));
+      data.erase(data.begin(), data.begin() + static_cast<std::ptrdiff_t>(whole));
+    }
+    if (!release(false)) break;
+  }
+  if (!cancel_ && release(true)) queue_.finish({why, false});
+  if (cancel_) queue_.finish({"interrupted", false});
+}
+
+}  // namespace deepnav
