@@ -61,6 +61,7 @@ BENCHMARK(BM_Jammer)
 void BM_AgcQuantizePack(benchmark::State& state) {
   deepnav::FrontEndConfig c;
   c.sample_rate_hz = kFs;
+  // 0 ibyte, 1 ishort, 2 gr_complex, 3 byte, 4 cu8, 5 packed (two_bit_packed: real 2-bit codes, four a byte)
   c.format = deepnav::SampleFormat{static_cast<deepnav::SampleKind>(state.range(0)), {}};
   c.adc.bits = static_cast<int>(state.range(1));
   c.thermal_noise = false;
@@ -77,7 +78,7 @@ void BM_AgcQuantizePack(benchmark::State& state) {
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kBlock));
   state.SetLabel(std::string(deepnav::to_string(c.format)) + " " + std::to_string(c.adc.bits) + "-bit");
 }
-BENCHMARK(BM_AgcQuantizePack)->Args({0, 2})->Args({1, 12})->Args({2, 0})->Args({3, 2});
+BENCHMARK(BM_AgcQuantizePack)->Args({0, 2})->Args({1, 12})->Args({2, 0})->Args({3, 2})->Args({4, 8})->Args({5, 2});
 
 void BM_FrontEndNoiseQuantizePack(benchmark::State& state) {
   deepnav::FrontEndConfig c;
