@@ -23,7 +23,7 @@ constexpr double kRecentPvt_s = 3.0;
 
 }  // namespace
 
-struct AidedReceiver::Impl : ChannelSteering {
+struct AidedReceiver::Impl : ChannelAiding {
   AidedReceiverConfig cfg;
   ScalarReceiver rx;
   ImuLog imu;
@@ -59,7 +59,7 @@ struct AidedReceiver::Impl : ChannelSteering {
         faults(cfg.faults),
         troposphere_check(cfg.troposphere_mismatch),
         fs(source.sample_rate_hz()) {
-    rx.set_channel_steering(this);
+    rx.set_channel_aiding(this);
   }
 
   ChannelController* controller_for(int prn) override { return ultra.controller_for(prn); }
@@ -94,7 +94,7 @@ struct AidedReceiver::Impl : ChannelSteering {
 
   void propagate_to(double t) {
     // A gap in the IMU data: nothing to propagate the INS with, so it stops (and restarts
-    // from the fixes after the gap) instead of steering channels and publishing solutions
+    // from the fixes after the gap) instead of driving channels and publishing solutions
     // from a state that no longer moves with the vehicle.
     if (current_gap && t >= imu.gaps[*current_gap].t_after_s) current_gap.reset();
     while (next_gap < imu.gaps.size() && t > imu.gaps[next_gap].t_before_s + 1.5 * imu.nominal_interval_s) {

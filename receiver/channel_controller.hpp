@@ -9,8 +9,8 @@
 //
 // Two implementations: ScalarChannelControl (the channel's own PLL/FLL/DLL loops, below)
 // and the INS-steered controller of the aiding layer (aiding/steered_channel_controller),
-// which the receiver obtains from a ChannelSteering. Between blocks the receiver hands the
-// steering side a read-only BlockSnapshot of every channel; the steering side publishes
+// which the receiver obtains from a ChannelAiding. Between blocks the receiver hands the
+// aiding side a read-only BlockSnapshot of every channel; the aiding side publishes
 // its commands into its own controllers, which the receiver collects with
 // between_blocks() before the next sample is tracked.
 #include <cstdint>
@@ -48,7 +48,7 @@ class ChannelController {
   virtual ~ChannelController() = default;
   /// A completed integration of the channel (its NCOs stand at the epoch's end).
   virtual ChannelDecision on_epoch(const CorrelatorEpoch& epoch, const ChannelView& view) = 0;
-  /// Between blocks (after the steering side's after_block(), and before the next block is
+  /// Between blocks (after the aiding side's after_block(), and before the next block is
   /// tracked): what has been published for this channel since the last call.
   virtual ChannelDecision between_blocks(const ChannelView& view) = 0;
 };
@@ -71,7 +71,7 @@ class ScalarChannelControl final : public ChannelController {
   LoopBandwidths pull_in_, tracking_;
 };
 
-/// One channel as the steering side sees it between blocks.
+/// One channel as the aiding side sees it between blocks.
 struct ChannelStatus {
   int prn = 0;
   ChannelState state{};
@@ -92,7 +92,7 @@ struct ReceiverClockReference {
   }
 };
 
-/// The receiver after a block, read-only for the steering side.
+/// The receiver after a block, read-only for the aiding side.
 struct BlockSnapshot {
   std::int64_t end_sample = 0;  ///< one past the block's last sample
   double sample_rate_hz = 0.0;
@@ -103,10 +103,10 @@ struct BlockSnapshot {
 };
 
 /// An outside filter that steers channels (ultra-tight aiding).
-class ChannelSteering {
+class ChannelAiding {
  public:
-  virtual ~ChannelSteering() = default;
-  /// The controller of a channel tracking `prn` (owned by the steering side and stable for
+  virtual ~ChannelAiding() = default;
+  /// The controller of a channel tracking `prn` (owned by the aiding side and stable for
   /// the receiver's life), or nullptr to leave the channel to its own loops. Called when
   /// the channel starts; its on_epoch may run on a worker thread.
   virtual ChannelController* controller_for(int prn) = 0;

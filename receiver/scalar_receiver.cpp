@@ -54,7 +54,7 @@ struct ScalarReceiver::Impl {
   std::int64_t first_index = -1, end_index = -1;  ///< span of the samples read so far
   bool gap_since_epoch = false;  ///< samples lost since the last observation epoch
   double last_reacquire_s = 0.0;
-  ChannelSteering* steering = nullptr;  ///< an outside filter steering channels, or none
+  ChannelAiding* aiding = nullptr;  ///< an outside filter driving channels, or none
   std::vector<int> tracked_prns;        ///< channels of the block just tracked, lost ones included
   struct EpochRecord {
     CorrelatorEpoch epoch;
@@ -191,7 +191,7 @@ struct ScalarReceiver::Impl {
       Channel ch;
       ch.trk = std::make_unique<TrackingChannel>(cfg.tracking, ChannelStart{r.prn, r.doppler_hz, r.code_phase_chips, first});
       ch.loop = std::make_unique<ScalarChannelControl>(r.doppler_hz, cfg.pll_order, cfg.pull_in, cfg.tracking_loops);
-      if (steering) ch.steered = steering->controller_for(r.prn);
+      if (aiding) ch.steered = aiding->controller_for(r.prn);
       ch.nav = std::make_unique<NavDecoder>(r.prn, resolution_week());
       ch.last_doppler_hz = r.doppler_hz;
       ch.start_t_s = static_cast<double>(first) / fs;
@@ -453,15 +453,15 @@ void ScalarReceiver::run(const std::function<void(const ReceiverEpoch&)>& on_epo
       next_obs = block.first_sample_index + obs_step;
       first = false;
     }
-    if (m.steering) {
-      m.steering->before_block();
+    if (m.aiding) {
+      m.aiding->before_block();
       m.collect_published();
     }
     m.track(block, on_correlation);
     const std::int64_t end = block.first_sample_index + static_cast<std::int64_t>(block.samples.size());
     m.take_signal_week(end);
-    if (m.steering) {
-      m.steering->after_block(m.snapshot(end));
+    if (m.aiding) {
+      m.aiding->after_block(m.snapshot(end));
       m.collect_published();
     }
     // Keep the last acquisition window of samples for re-acquisition, while a channel is free.
@@ -501,9 +501,9 @@ const Ephemeris* ScalarReceiver::ephemeris(int prn) const {
   return it == impl_->ephs.end() ? nullptr : &it->second;
 }
 
-void ScalarReceiver::set_channel_steering(ChannelSteering* steering) {
-  impl_->steering = steering;
-  for (Channel& ch : impl_->channels) ch.steered = steering ? steering->controller_for(ch.trk->prn()) : nullptr;
+void ScalarReceiver::set_channel_aiding(ChannelAiding* aiding) {
+  impl_->aiding = aiding;
+  for (Channel& ch : impl_->channels) ch.steered = aiding ? aiding->controller_for(ch.trk->prn()) : nullptr;
 }
 
 std::optional<GpsTime> ScalarReceiver::receiver_time(std::int64_t sample_index) const {

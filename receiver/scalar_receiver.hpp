@@ -132,7 +132,7 @@ class ScalarReceiver {
   /// (nullptr: the channels' own loops only). Not owned. Channels with an outside
   /// controller still track on the worker threads: the filter sees them only through
   /// the BlockSnapshot after each block.
-  void set_channel_steering(ChannelSteering* steering);
+  void set_channel_aiding(ChannelAiding* aiding);
   /// Receiver clock time at an absolute sample index, once the clock is set.
   std::optional<GpsTime> receiver_time(std::int64_t sample_index) const;
   /// Sum of the steps the receiver clock has been steered by since it was set (s). An

@@ -383,7 +383,7 @@ void find_gaps(ObservationFile& f, std::optional<double> interval_s) {
 /// Dopplers take the motion and the clock drift, and what is left is code noise and
 /// multipath, a metre or two at most (the walk_0827 recording: 1.0 m); a common step beyond
 /// kMinStepConsecutive_m is a re-set, whether by whole milliseconds (u-blox and most
-/// receivers) or by microseconds (a receiver steering its time tags, as deepnav's own does:
+/// receivers) or by microseconds (a receiver adjusting its time tags, as deepnav's own does:
 /// steps of about 1 km). Across a gap the Dopplers' mean misses the motion in between, and
 /// only a step beyond 1/10 ms of range (30 km) counts.
 constexpr double kMinStepConsecutive_m = 100.0;
