@@ -22,9 +22,7 @@ using asio_wait::Clock;
 constexpr std::size_t kReadBytes = 1 << 16;
 constexpr double kIdleTimeout_s = 10.0;  // a dongle that sends nothing this long is gone
 
-Clock::time_point after(double seconds) {
-  return Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
-}
+using asio_wait::after;
 
 double seconds_now() {
   return std::chrono::duration<double>(Clock::now().time_since_epoch()).count();
@@ -130,22 +128,8 @@ void RtlTcpSampleSource::io_loop() {
   auto settle_bytes = static_cast<std::int64_t>(2 * std::llround(rtl_.settle_s * rtl_.tuning.sample_rate_hz));
   std::string why;
   while (!cancel_) {
-    bool done = false;
-    boost::system::error_code ec;
-    std::size_t got = 0;
-    socket_.async_read_some(asio::buffer(buffer), [&](const boost::system::error_code& e, std::size_t n) {
-      ec = e;
-      got = n;
-      done = true;
-    });
-    if (!asio_wait::run_until_done(io_, done, after(kIdleTimeout_s), cancel_, [&] { socket_.close(); })) {
-      why = cancel_ ? "interrupted" : fmt::format("nothing received for {} s", kIdleTimeout_s);
-      break;
-    }
-    if (ec) {
-      why = ec == asio::error::eof ? "the server closed the connection" : ec.message();
-      break;
-    }
+    const std::size_t got = asio_wait::read_some(io_, socket_, buffer, kIdleTimeout_s, cancel_, why);
+    if (got == 0) break;
     update_stats([&](StreamStats& s) { s.bytes_received += static_cast<std::int64_t>(got); });
     // cu8 samples are byte pairs: a read may end inside one (data keeps that byte).
     data.insert(data.end(), buffer.begin(), buffer.begin() + static_cast<std::ptrdiff_t>(got));

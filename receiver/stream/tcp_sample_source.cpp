@@ -21,9 +21,7 @@ constexpr std::size_t kReadBytes = 1 << 16;
 constexpr double kIdleTimeout_s = 10.0;  // a connection silent this long is taken as dropped
 constexpr double kFirstBackoff_s = 0.1, kMaxBackoff_s = 5.0;
 
-Clock::time_point after(double seconds) {
-  return Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
-}
+using asio_wait::after;
 
 bool same_stream(const stream::StreamHeader& a, const stream::StreamHeader& b) {
   return a.format == b.format && a.sample_rate_hz == b.sample_rate_hz && a.if_hz == b.if_hz &&
@@ -61,23 +59,7 @@ bool TcpSampleSource::connect(tcp::socket& socket, std::string& why) {
 }
 
 std::size_t TcpSampleSource::read_some(tcp::socket& socket, std::vector<std::byte>& buffer, std::string& why) {
-  bool done = false;
-  boost::system::error_code ec;
-  std::size_t got = 0;
-  socket.async_read_some(asio::buffer(buffer), [&](const boost::system::error_code& e, std::size_t n) {
-    ec = e;
-    got = n;
-    done = true;
-  });
-  if (!asio_wait::run_until_done(io_, done, after(kIdleTimeout_s), cancel_, [&] { socket.close(); })) {
-    why = cancel_ ? "interrupted" : fmt::format("nothing received for {} s", kIdleTimeout_s);
-    return 0;
-  }
-  if (ec) {
-    why = ec == asio::error::eof ? "the server closed the connection" : ec.message();
-    return 0;
-  }
-  return got;
+  return asio_wait::read_some(io_, socket, buffer, kIdleTimeout_s, cancel_, why);
 }
 
 TcpSampleSource::SessionEnd TcpSampleSource::receive_framed(tcp::socket& socket, std::string& why) {
