@@ -11,7 +11,7 @@ namespace deepnav::aiding {
 StateMatrix initial_covariance(const InitialUncertainty& u) {
   StateVector sigma;
   sigma << u.position_ned_m, u.velocity_ned_mps, u.attitude_rad, u.accel_bias_mps2, u.gyro_bias_radps, u.clock_bias_m,
-      u.clock_drift_mps, u.troposphere_zenith_m;
+      u.clock_drift_mps, u.troposphere_zenith_m, u.ionosphere_scale;
   return sigma.cwiseAbs2().asDiagonal();
 }
 
@@ -24,6 +24,8 @@ AidedNavigator::AidedNavigator(const NavState& initial, double clock_bias_m, dou
       clock_drift_mps_(clock_drift_mps) {
   const double rw = cfg_.troposphere.random_walk_m_per_sqrt_h;
   cfg_.noise.psd(kTropo) = cfg_.troposphere.enabled ? rw * rw / 3600.0 : 0.0;
+  const double iono_rw = cfg_.ionosphere.random_walk_per_sqrt_h;
+  cfg_.noise.psd(kIono) = cfg_.ionosphere.enabled ? iono_rw * iono_rw / 3600.0 : 0.0;
 }
 
 void AidedNavigator::enable_troposphere_state(double sigma_m) {
@@ -37,12 +39,24 @@ void AidedNavigator::enable_troposphere_state(double sigma_m) {
   cfg_.noise.psd(kTropo) = rw * rw / 3600.0;
 }
 
+void AidedNavigator::enable_ionosphere_state(double sigma) {
+  cfg_.ionosphere.enabled = true;
+  kf_.reopen_state(kIono, sigma);
+  // As for the troposphere: the height and clock took the model's error until now (the
+  // model's zenith delay is a few metres by day; 5 m of room per unit of scale).
+  kf_.add_variance(kPos + 2, 5.0 * sigma);
+  kf_.add_variance(kClockBias, 5.0 * sigma);
+  const double rw = cfg_.ionosphere.random_walk_per_sqrt_h;
+  cfg_.noise.psd(kIono) = rw * rw / 3600.0;
+}
+
 double AidedNavigator::residual_delay_m(const RangePrediction& p) const {
-  return cfg_.troposphere.enabled ? troposphere_residual_m_ * p.troposphere_mapping : 0.0;
+  // A state that is off stays at 0.
+  return troposphere_residual_m_ * p.troposphere_mapping + ionosphere_scale_residual_ * p.ionosphere_m;
 }
 
 double AidedNavigator::residual_delay_rate_mps(const RangePrediction& p) const {
-  return cfg_.troposphere.enabled ? troposphere_residual_m_ * p.troposphere_mapping_rate_per_s : 0.0;
+  return troposphere_residual_m_ * p.troposphere_mapping_rate_per_s - ionosphere_scale_residual_ * p.ionosphere_rate_mps;
 }
 
 void AidedNavigator::propagate(const ImuSample& sample) {
@@ -131,11 +145,14 @@ KalmanUpdate AidedNavigator::update_ranges(const std::vector<RangeMeasurement>& 
                                            const std::vector<RangeMeasurement>& test_only) {
   const wgs84::Llh& at = ins_.state().llh;
   const bool troposphere = cfg_.troposphere.enabled;
+  const bool ionosphere = cfg_.ionosphere.enabled;
   const auto append = [&](const RangeMeasurement& m, RangeRows& rows) {
     const Eigen::Vector3d u_ned = ecef_to_ned_vector(at, m.geometry.los_ecef);
     if (m.pseudorange_m) {
-      rows.h.push_back(pseudorange_row(u_ned, lever_arm_ned_m(),
-                                       troposphere ? std::optional(m.geometry.troposphere_mapping) : std::nullopt));
+      rows.h.push_back(pseudorange_row(
+          u_ned, lever_arm_ned_m(),
+          {.troposphere = troposphere ? std::optional(m.geometry.troposphere_mapping) : std::nullopt,
+           .ionosphere = ionosphere ? std::optional(m.geometry.ionosphere_m) : std::nullopt}));
       rows.z.push_back(m.geometry.pseudorange_m(clock_bias_m() + clock_drift_mps() * m.time_offset_s) +
                        residual_delay_m(m.geometry) - *m.pseudorange_m);
       rows.r.push_back(m.pseudorange_sigma_m * m.pseudorange_sigma_m);
@@ -144,8 +161,10 @@ KalmanUpdate AidedNavigator::update_ranges(const std::vector<RangeMeasurement>& 
     if (m.rate_mps) {
       const RangePrediction& g = m.rate_at_own_time ? m.rate_geometry : m.geometry;
       const double offset = m.rate_at_own_time ? m.rate_time_offset_s : m.time_offset_s;
-      rows.h.push_back(pseudorange_rate_row(ecef_to_ned_vector(at, g.los_ecef),
-                                            troposphere ? std::optional(g.troposphere_mapping_rate_per_s) : std::nullopt));
+      rows.h.push_back(pseudorange_rate_row(
+          ecef_to_ned_vector(at, g.los_ecef),
+          {.troposphere = troposphere ? std::optional(g.troposphere_mapping_rate_per_s) : std::nullopt,
+           .ionosphere = ionosphere ? std::optional(-g.ionosphere_rate_mps) : std::nullopt}));
       rows.z.push_back(g.pseudorange_rate_mps(antenna_velocity_ecef_at(time_s() + offset), clock_drift_mps()) +
                        residual_delay_rate_mps(g) - *m.rate_mps);
       rows.r.push_back(m.rate_sigma_mps * m.rate_sigma_mps);
@@ -190,6 +209,7 @@ void AidedNavigator::feed_back() {
   clock_bias_m_ -= x(kClockBias);
   clock_drift_mps_ -= x(kClockDrift);
   troposphere_residual_m_ -= x(kTropo);
+  ionosphere_scale_residual_ -= x(kIono);
   kf_.clear_state();
 }
 

@@ -35,6 +35,9 @@ struct InitialUncertainty {
   /// Zenith troposphere residual: what a standard atmosphere misses (weather, a site far
   /// from it) is a few centimetres to decimetres; without a receiver model, the whole delay.
   double troposphere_zenith_m = 0.5;
+  /// Scale error of the ionosphere model: Klobuchar removes about half of the delay in
+  /// practice, so its scale is uncertain by about that much.
+  double ionosphere_scale = 0.5;
 };
 
 /// The zenith troposphere residual state (error_state.hpp): a common delay, mapped to each
@@ -45,9 +48,22 @@ struct InitialUncertainty {
 struct TroposphereResidualConfig {
   bool enabled = false;
   /// Take the state when the pseudorange residuals show the troposphere model over the
-  /// signal at the zenith (troposphere_mismatch_detector.hpp).
+  /// signal at the zenith (delay_mismatch_detector.hpp).
   bool enable_on_mismatch = true;
   double random_walk_m_per_sqrt_h = 0.02;  ///< wet delay wander (1-3 cm/sqrt(h) in the literature)
+};
+
+/// The ionosphere scale state (error_state.hpp): the signal's ionospheric delay is (1 + s)
+/// times the receiver model's, s common to the satellites. The delay is mapped to each
+/// satellite by the model itself, and the carrier sees it advanced at the model's rate with
+/// the opposite sign; a Doppler row predicted with the model's rate the signal does not
+/// have would otherwise be turned into velocity and, integrated, into height.
+struct IonosphereResidualConfig {
+  bool enabled = false;
+  /// Take the state when the pseudorange residuals show the model's delay missing from
+  /// the signal (delay_mismatch_detector.hpp).
+  bool enable_on_mismatch = true;
+  double random_walk_per_sqrt_h = 0.1;  ///< the model's error changes over hours (the TEC's day)
 };
 
 struct NavigatorConfig {
@@ -55,6 +71,7 @@ struct NavigatorConfig {
   Eigen::Vector3d lever_arm_imu_to_antenna_b_m = Eigen::Vector3d::Zero();
   double gate_sigma = 5.0;   ///< innovation gate of the GNSS updates (0: none)
   TroposphereResidualConfig troposphere;
+  IonosphereResidualConfig ionosphere;
 };
 
 /// A satellite's measurement for a range update; either part may be absent.
@@ -119,10 +136,19 @@ class AidedNavigator {
   bool troposphere_state_enabled() const { return cfg_.troposphere.enabled; }
   /// The estimated zenith troposphere residual (m; 0 while the state is off).
   double troposphere_residual_m() const { return troposphere_residual_m_; }
+  /// Starts estimating the ionosphere model's scale error from now on, from 0 with this
+  /// 1-sigma; the height and clock variances grow to match.
+  void enable_ionosphere_state(double sigma);
+  bool ionosphere_state_enabled() const { return cfg_.ionosphere.enabled; }
+  /// The estimated scale error of the ionosphere model (0 while the state is off).
+  double ionosphere_scale_residual() const { return ionosphere_scale_residual_; }
   /// What the filter adds to a predicted pseudorange beyond the clock: the troposphere
-  /// residual mapped to the satellite's elevation.
+  /// residual mapped to the satellite's elevation and the ionosphere model's delay times
+  /// its scale error.
   double residual_delay_m(const RangePrediction& p) const;
-  /// Its rate as the satellite's elevation changes (m/s), for predicted rates and Dopplers.
+  /// What it adds to a predicted carrier rate (m/s, for predicted rates and Dopplers): the
+  /// troposphere residual's rate as the elevation changes, and the ionosphere residual's
+  /// rate with the carrier's sign.
   double residual_delay_rate_mps(const RangePrediction& p) const;
   const StateMatrix& covariance() const { return kf_.P(); }
   /// 1-sigma position uncertainty, north/east/down (m).
@@ -148,6 +174,7 @@ class AidedNavigator {
   NavigatorConfig cfg_;
   double clock_bias_m_, clock_drift_mps_;  ///< receiver clock model (c * dt, c * dt')
   double troposphere_residual_m_ = 0.0;
+  double ionosphere_scale_residual_ = 0.0;
   Eigen::Vector3d last_f_b_mps2_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d last_w_b_radps_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d last_accel_ned_mps2_ = Eigen::Vector3d::Zero();  ///< INS velocity change over the last IMU interval / dt

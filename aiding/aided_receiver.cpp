@@ -36,8 +36,12 @@ struct AidedReceiver::Impl : ChannelAiding {
   ModeManager modes;
   InnovationMonitor innovations;
   SatelliteFaultMonitor faults;
-  TroposphereMismatchDetector troposphere_check;
-  std::optional<double> troposphere_mismatch_found_s, troposphere_state_from_s;
+  /// One atmosphere model watched for a mismatch with the signal, and what came of it.
+  struct MismatchWatch {
+    DelayMismatchDetector check;
+    DelayMismatchReport report;
+  };
+  MismatchWatch troposphere_watch, ionosphere_watch;
   std::string start_method;
   int restarts = 0;
   double fs;
@@ -57,7 +61,8 @@ struct AidedReceiver::Impl : ChannelAiding {
               cfg.receiver.atmosphere),
         modes(cfg.mode, cfg.limits),
         faults(cfg.faults),
-        troposphere_check(cfg.troposphere_mismatch),
+        troposphere_watch{DelayMismatchDetector(cfg.troposphere_mismatch), {}},
+        ionosphere_watch{DelayMismatchDetector(cfg.ionosphere_mismatch), {}},
         fs(source.sample_rate_hz()) {
     rx.set_channel_aiding(this);
   }
@@ -200,7 +205,10 @@ struct AidedReceiver::Impl : ChannelAiding {
     nc.noise = process_noise_from(cfg.imu, cfg.oscillator);
     nc.lever_arm_imu_to_antenna_b_m = cfg.lever_arm_imu_to_antenna_b_m;
     nc.troposphere = cfg.troposphere;
-    if (troposphere_mismatch_found_s) nc.troposphere.enabled = true;  // a restart keeps what was found
+    nc.ionosphere = cfg.ionosphere;
+    // A restart keeps what was found.
+    if (troposphere_watch.report.found_at_s) nc.troposphere.enabled = true;
+    if (ionosphere_watch.report.found_at_s) nc.ionosphere.enabled = true;
     const double dt = start->state.t_s - ep.t_s;
     // The fix's clock bias is against the receiver clock before this epoch's re-setting
     // (observe() steers it right after the fix, before the next block's follow): move it
@@ -286,36 +294,60 @@ struct AidedReceiver::Impl : ChannelAiding {
         spdlog::info("t = {:.2f} s: PRN {:2d} agrees with the filter again: re-admitted", t_s, prn);
   }
 
-  /// Looks for a troposphere model the signal does not match, and once one is found has
-  /// the filter estimate the zenith residual whenever it takes pseudoranges (tight and
+  /// Looks for atmosphere models the signal does not match, and once one is found has
+  /// the filter estimate that model's residual whenever it takes pseudoranges (tight and
   /// ultra-tight; loose coupling has no rows that could see it).
-  void watch_troposphere(const ReceiverEpoch& ep) {
-    if (cfg.troposphere.enabled || !cfg.troposphere.enable_on_mismatch) return;
-    if (!troposphere_mismatch_found_s) find_troposphere_mismatch(ep);
-    const bool ranging_mode = modes.mode() == NavMode::tight || modes.mode() == NavMode::ultra;
-    if (!troposphere_mismatch_found_s || !nav || !ranging_mode || nav->troposphere_state_enabled()) return;
-    // From 0 with room for the error the fixes show (the prior's half metre would take
-    // minutes to reach it).
-    nav->enable_troposphere_state(std::max(0.5, std::abs(troposphere_check.zenith_error_m())));
-    if (!troposphere_state_from_s) troposphere_state_from_s = ep.t_s;
-    spdlog::info("t = {:.2f} s: the aided filter estimates the zenith troposphere residual from now on", ep.t_s);
+  void watch_atmosphere(const ReceiverEpoch& ep) {
+    if (!cfg.troposphere.enabled && cfg.troposphere.enable_on_mismatch) {
+      find_mismatch(ep, troposphere_watch);
+      if (troposphere_watch.report.found_at_s && take_state(ep, troposphere_watch, nav && nav->troposphere_state_enabled())) {
+        // From 0 with room for the error the fixes show (the prior's half metre would take
+        // minutes to reach it).
+        nav->enable_troposphere_state(std::max(0.5, std::abs(troposphere_watch.report.fitted_error)));
+        spdlog::info("t = {:.2f} s: the aided filter estimates the zenith troposphere residual from now on", ep.t_s);
+      }
+    }
+    if (!cfg.ionosphere.enabled && cfg.ionosphere.enable_on_mismatch) {
+      find_mismatch(ep, ionosphere_watch);
+      if (ionosphere_watch.report.found_at_s && take_state(ep, ionosphere_watch, nav && nav->ionosphere_state_enabled())) {
+        nav->enable_ionosphere_state(std::max(0.5, std::abs(ionosphere_watch.report.fitted_error)));
+        spdlog::info("t = {:.2f} s: the aided filter estimates the ionosphere model's scale error from now on", ep.t_s);
+      }
+    }
   }
 
-  void find_troposphere_mismatch(const ReceiverEpoch& ep) {
+  /// Whether the filter is to take a found mismatch's state now (a ranging mode, the
+  /// state not yet on); notes when it first did.
+  bool take_state(const ReceiverEpoch& ep, MismatchWatch& w, bool state_on) {
+    const bool ranging_mode = modes.mode() == NavMode::tight || modes.mode() == NavMode::ultra;
+    if (!nav || !ranging_mode || state_on) return false;
+    if (!w.report.state_from_s) w.report.state_from_s = ep.t_s;
+    return true;
+  }
+
+  void find_mismatch(const ReceiverEpoch& ep, MismatchWatch& w) {
+    if (w.report.found_at_s) return;  // the detector takes no more epochs: its fit stays as found
     if (nav && modes.mode() == NavMode::ultra) {
       // Steered channels' pseudoranges echo the filter: the discriminators tell instead.
-      troposphere_check.add(ultra.take_mean_pseudorange_residuals(), cfg.receiver.pvt.range_errors);
+      w.check.add(ultra.mean_pseudorange_residuals(), cfg.receiver.pvt.range_errors);
     } else {
       if (!ep.pvt.valid) return;
-      troposphere_check.add(fix_residuals(ep.pvt, cn0_by_prn(ep)), cfg.receiver.pvt.range_errors);
+      w.check.add(fix_residuals(ep.pvt, cn0_by_prn(ep)), cfg.receiver.pvt.range_errors);
     }
-    spdlog::debug("t = {:.2f} s: troposphere model error fitted at the zenith {:+.3f} m", ep.t_s,
-                  troposphere_check.zenith_error_m());
-    if (!troposphere_check.mismatch()) return;
-    troposphere_mismatch_found_s = ep.t_s;  // the detector takes no more epochs: its fit stays as found
-    spdlog::warn("t = {:.2f} s: the fixes fit a troposphere model error of {:+.2f} m at the zenith: the signal does not "
-                 "match the receiver's troposphere model (IF without troposphere? then use --troposphere none)",
-                 ep.t_s, troposphere_check.zenith_error_m());
+    w.report.fitted_error = w.check.fitted_error();
+    const bool troposphere = &w == &troposphere_watch;
+    spdlog::debug("t = {:.2f} s: {} model error fitted {:+.3f}", ep.t_s, troposphere ? "troposphere" : "ionosphere",
+                  w.report.fitted_error);
+    if (!w.check.mismatch()) return;
+    w.report.found_at_s = ep.t_s;
+    if (troposphere)
+      spdlog::warn("t = {:.2f} s: the fixes fit a troposphere model error of {:+.2f} m at the zenith: the signal does not "
+                   "match the receiver's troposphere model (IF without troposphere? then use --troposphere none)",
+                   ep.t_s, w.report.fitted_error);
+    else
+      spdlog::warn("t = {:.2f} s: the fixes fit the ionosphere model's delay scaled by {:+.2f}: the signal does not match "
+                   "the receiver's ionosphere model (IF without ionosphere? then use --ionosphere none)",
+                   ep.t_s, 1.0 + w.report.fitted_error);
   }
 
   AidedEpoch on_observation(const ReceiverEpoch& ep) {
@@ -324,7 +356,8 @@ struct AidedReceiver::Impl : ChannelAiding {
     for (const auto& o : ep.observations)
       if (rx.ephemeris(o.prn)) ++ranging;
     if (!nav && ep.pvt.valid && !current_gap) start_ins(ep);
-    watch_troposphere(ep);
+    watch_atmosphere(ep);
+    ultra.clear_pseudorange_residuals();
     if (nav) {
       if (modes.mode() == NavMode::loose) loose_update(ep);
       if (modes.mode() == NavMode::tight) tight_update(ep);
@@ -393,10 +426,7 @@ const std::vector<ModeChange>& AidedReceiver::mode_changes() const { return impl
 const std::string& AidedReceiver::ins_start_method() const { return impl_->start_method; }
 int AidedReceiver::filter_restarts() const { return impl_->restarts; }
 int AidedReceiver::satellite_exclusions() const { return impl_->faults.exclusions(); }
-std::optional<double> AidedReceiver::troposphere_mismatch_found_s() const { return impl_->troposphere_mismatch_found_s; }
-std::optional<double> AidedReceiver::troposphere_state_from_s() const { return impl_->troposphere_state_from_s; }
-double AidedReceiver::troposphere_mismatch_zenith_m() const {
-  return impl_->troposphere_mismatch_found_s ? impl_->troposphere_check.zenith_error_m() : 0.0;
-}
+const DelayMismatchReport& AidedReceiver::troposphere_mismatch() const { return impl_->troposphere_watch.report; }
+const DelayMismatchReport& AidedReceiver::ionosphere_mismatch() const { return impl_->ionosphere_watch.report; }
 
 }  // namespace deepnav::aiding

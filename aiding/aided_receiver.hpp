@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "aiding/aided_navigator.hpp"
-#include "aiding/troposphere_mismatch_detector.hpp"
+#include "aiding/delay_mismatch_detector.hpp"
 #include "aiding/mode_manager.hpp"
 #include "aiding/ultra_tight_tracker.hpp"
 #include "ins/imu_file.hpp"
@@ -33,10 +33,13 @@ struct AidedReceiverConfig {
   /// update at the receiver's observation epochs.
   double pvt_position_sigma_scale_m = 2.0;  ///< loose: position sigma = DOP x this
   double pvt_velocity_sigma_mps = 0.1;
-  /// Tight and ultra-tight: the zenith troposphere residual state, and per-satellite fault
+  /// Tight and ultra-tight: the zenith troposphere residual and ionosphere scale states
+  /// (each taken when its model is found not to match the signal), and per-satellite fault
   /// exclusion on the pseudorange innovations (satellite_fault_monitor.hpp).
   TroposphereResidualConfig troposphere;
-  TroposphereMismatchConfig troposphere_mismatch;
+  IonosphereResidualConfig ionosphere;
+  DelayMismatchConfig troposphere_mismatch;
+  DelayMismatchConfig ionosphere_mismatch{.signature = DelaySignature::ionosphere_scale, .threshold = 0.75};
   bool fault_exclusion = true;
   SatelliteFaultConfig faults;
 };
@@ -80,13 +83,10 @@ class AidedReceiver {
   int filter_restarts() const;
   /// Times a satellite was excluded by the per-satellite fault monitor.
   int satellite_exclusions() const;
-  /// When the fixes showed a troposphere model mismatch (nullopt: they did not), the
-  /// zenith error fitted then, and when the filter took its zenith troposphere state on
-  /// it (its first tight or ultra-tight epoch from then; a state on from the start is not
-  /// reported here).
-  std::optional<double> troposphere_mismatch_found_s() const;
-  double troposphere_mismatch_zenith_m() const;
-  std::optional<double> troposphere_state_from_s() const;
+  /// What the watch for a troposphere (zenith error, m) and an ionosphere (scale error)
+  /// model mismatch found; a state on from the start is not reported here.
+  const DelayMismatchReport& troposphere_mismatch() const;
+  const DelayMismatchReport& ionosphere_mismatch() const;
 
  private:
   struct Impl;

@@ -48,19 +48,21 @@ Eigen::Matrix<double, 3, kStates> velocity_rows() {
 }
 
 StateRow pseudorange_row(const Eigen::Vector3d& los_ned, const Eigen::Vector3d& lever_ned,
-                         std::optional<double> troposphere_mapping) {
+                         const DelayStateColumns& delay) {
   // The range falls as the antenna moves towards the satellite: d(rho) = -u . d(r).
   StateRow h = -antenna_position_row(los_ned, lever_ned);
   h(kClockBias) = 1.0;
-  if (troposphere_mapping) h(kTropo) = *troposphere_mapping;
+  if (delay.troposphere) h(kTropo) = *delay.troposphere;
+  if (delay.ionosphere) h(kIono) = *delay.ionosphere;
   return h;
 }
 
-StateRow pseudorange_rate_row(const Eigen::Vector3d& los_ned, std::optional<double> troposphere_mapping_rate_per_s) {
+StateRow pseudorange_rate_row(const Eigen::Vector3d& los_ned, const DelayStateColumns& delay) {
   StateRow h = StateRow::Zero();
   h.segment<3>(kVel) = -los_ned.transpose();
   h(kClockDrift) = 1.0;
-  if (troposphere_mapping_rate_per_s) h(kTropo) = *troposphere_mapping_rate_per_s;
+  if (delay.troposphere) h(kTropo) = *delay.troposphere;
+  if (delay.ionosphere) h(kIono) = *delay.ionosphere;
   return h;
 }
 

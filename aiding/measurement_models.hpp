@@ -32,14 +32,22 @@ StateRow antenna_position_row(const Eigen::Vector3d& u_ned, const Eigen::Vector3
 Eigen::Matrix<double, 6, kStates> position_velocity_rows(const Eigen::Vector3d& lever_ned);
 /// The IMU's NED velocity (a zero-velocity update).
 Eigen::Matrix<double, 3, kStates> velocity_rows();
+/// The columns of the delay states (troposphere, ionosphere) in one row; a state that is
+/// off has none.
+struct DelayStateColumns {
+  std::optional<double> troposphere;
+  std::optional<double> ionosphere;
+};
 /// A pseudorange along the line of sight los_ned (receiver to satellite): the range falls
-/// as the antenna moves towards the satellite, the clock bias adds, and with the
-/// troposphere state on, its mapping function times the zenith residual.
+/// as the antenna moves towards the satellite, the clock bias adds, and with a delay state
+/// on, its column: the troposphere's mapping function (per metre of zenith residual), the
+/// ionosphere model's delay (per unit of scale error).
 StateRow pseudorange_row(const Eigen::Vector3d& los_ned, const Eigen::Vector3d& lever_ned,
-                         std::optional<double> troposphere_mapping);
-/// A pseudorange rate: the velocity along the line of sight, the clock drift and, with
-/// the troposphere state on, the rate of the residual's mapping.
-StateRow pseudorange_rate_row(const Eigen::Vector3d& los_ned, std::optional<double> troposphere_mapping_rate_per_s);
+                         const DelayStateColumns& delay = {});
+/// A pseudorange rate: the velocity along the line of sight, the clock drift and, with a
+/// delay state on, its column: the rate of the troposphere's mapping, minus the ionosphere
+/// model's rate (the carrier is advanced).
+StateRow pseudorange_rate_row(const Eigen::Vector3d& los_ned, const DelayStateColumns& delay = {});
 
 // ---- Noise (1 sigma) ----
 

@@ -80,14 +80,13 @@ std::optional<RangeMeasurement> UltraTightTracker::to_measurement(const Discrimi
   return m;
 }
 
-std::vector<RangeResidual> UltraTightTracker::take_mean_pseudorange_residuals() {
+std::vector<RangeResidual> UltraTightTracker::mean_pseudorange_residuals() const {
   std::vector<RangeResidual> out;
   for (const auto& [prn, sum] : residual_sums_) {
     RangeResidual r = sum.latest;
     r.residual_m = sum.sum_m / sum.count;
     out.push_back(r);
   }
-  residual_sums_.clear();
   return out;
 }
 
@@ -107,7 +106,7 @@ KalmanUpdate UltraTightTracker::update_and_steer(AidedNavigator& nav, const Bloc
         const double predicted = g.pseudorange_m(nav.clock_bias_m() + nav.clock_drift_mps() * m->time_offset_s) +
                                  nav.residual_delay_m(g);
         ResidualSum& sum = residual_sums_[d.prn];
-        sum.latest = {g.los_ecef, g.elevation_rad, d.cn0_dbhz, *m->pseudorange_m - predicted};
+        sum.latest = {g.los_ecef, g.elevation_rad, d.cn0_dbhz, *m->pseudorange_m - predicted, g.ionosphere_m};
         sum.sum_m += sum.latest.residual_m;
         ++sum.count;
       }

@@ -32,7 +32,7 @@
 
 #include "aiding/aided_navigator.hpp"
 #include "aiding/steered_channel_controller.hpp"
-#include "aiding/troposphere_mismatch_detector.hpp"
+#include "aiding/delay_mismatch_detector.hpp"
 #include "receiver/channel_controller.hpp"
 
 namespace deepnav::aiding {
@@ -67,9 +67,10 @@ class UltraTightTracker {
   /// Channels whose last integration was strong enough to be a measurement.
   int measuring_channels() const { return measuring_; }
   /// Per satellite, the mean of its discriminator pseudoranges against the filter's
-  /// prediction (measured minus predicted) since the last call (one integration's code
+  /// prediction (measured minus predicted) since the last clear (one integration's code
   /// noise is metres; a second's mean of them is what a scalar DLL would give).
-  std::vector<RangeResidual> take_mean_pseudorange_residuals();
+  std::vector<RangeResidual> mean_pseudorange_residuals() const;
+  void clear_pseudorange_residuals() { residual_sums_.clear(); }
 
  private:
   /// The filter's view of one satellite at an absolute sample index.

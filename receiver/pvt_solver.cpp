@@ -184,7 +184,9 @@ Fit solve_once(const GpsTime& t_rx, const std::vector<PseudorangeObservation>& o
     double corr = 0.0;
     if (atmosphere.ionosphere == IonosphereModel::klobuchar && iono.valid) {
       const LookAngles la = look_angles(sol.llh, sol.r_ecef_m, g.r);
-      corr += atmosphere.ionosphere_delay_m(iono, sol.llh.lat_rad, sol.llh.lon_rad, la.azimuth_rad, el, t_rx.sow);
+      sol.ionosphere_m[o.prn] =
+          atmosphere.ionosphere_delay_m(iono, sol.llh.lat_rad, sol.llh.lon_rad, la.azimuth_rad, el, t_rx.sow);
+      corr += sol.ionosphere_m[o.prn];
     }
     corr += atmosphere.troposphere_delay_m(sol.llh.lat_rad, sol.llh.height_m, el);
     fit.residuals_m(i) = o.pseudorange_m - (d.norm() + sol.clock_bias_m - g.clock_m + corr);

@@ -69,6 +69,7 @@ struct PvtSolution {
   std::map<int, double> residuals_m;
   std::map<int, double> elevation_rad;
   std::map<int, double> azimuth_rad;
+  std::map<int, double> ionosphere_m;  ///< the ionosphere model's delay applied to each pseudorange
   int iterations = 0;
 };
 

@@ -67,6 +67,8 @@ RangePrediction predict_range(const Ephemeris& eph, const GpsTime& t_rx, double 
   const Atmosphere after = atmosphere_at(r_rx_ecef_m + h * v_rx_ecef_mps, p.r_sat_ecef_m + h * p.v_sat_ecef_mps, iono,
                                          models, t_rx.sow + h);
   p.carrier_atmosphere_rate_mps = ((after.tropo_m - after.iono_m) - (before.tropo_m - before.iono_m)) / (2.0 * h);
+  p.ionosphere_m = now.iono_m;
+  p.ionosphere_rate_mps = (after.iono_m - before.iono_m) / (2.0 * h);
   p.troposphere_mapping = troposphere_mapping(now.elevation_rad);
   p.troposphere_mapping_rate_per_s =
       (troposphere_mapping(after.elevation_rad) - troposphere_mapping(before.elevation_rad)) / (2.0 * h);

@@ -44,6 +44,11 @@ struct RangePrediction {
   /// pseudorange and its rate.
   double troposphere_mapping = 1.0;
   double troposphere_mapping_rate_per_s = 0.0;
+  /// The ionosphere model's code delay at this look (m, part of atmosphere_m) and its rate
+  /// (m/s; the carrier is advanced at minus this rate): how an error in the scale of the
+  /// model's delay reaches this pseudorange and the carrier's rate.
+  double ionosphere_m = 0.0;
+  double ionosphere_rate_mps = 0.0;
 
   /// Pseudorange with the receiver clock bias c*dt (m).
   double pseudorange_m(double clock_bias_m) const {

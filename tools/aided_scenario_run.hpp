@@ -47,6 +47,8 @@ struct AidedRunSettings {
   AtmosphereModels atmosphere;
   /// Tight and ultra-tight: the zenith troposphere residual state (an 18th state).
   bool filter_troposphere = false;
+  /// Tight and ultra-tight: the ionosphere model's scale state (a 19th state).
+  bool filter_ionosphere = false;
 };
 
 /// The session for a synthesized scenario in `mode`: its week, its navigation file's

@@ -70,6 +70,7 @@ struct CouplingOptions {
   std::uint64_t seed = 300;
   bool list_commands = false;
   bool filter_troposphere = false;  ///< tight/ultra: the zenith troposphere residual state
+  bool filter_ionosphere = false;   ///< tight/ultra: the ionosphere model's scale state
   AtmosphereModels atmosphere;  ///< the receiver's (the scenario decides what is synthesized)
 };
 
@@ -101,6 +102,7 @@ nlohmann::json point_settings(const CouplingOptions& o, const std::string& traje
           {"receiver_troposphere", to_string(o.atmosphere.troposphere)}};
   // Only when set, so points made before the option existed still match.
   if (o.filter_troposphere) s["filter_troposphere"] = true;
+  if (o.filter_ionosphere) s["filter_ionosphere"] = true;
   return s;
 }
 
@@ -126,6 +128,7 @@ nlohmann::json run_point(const CouplingOptions& o, const std::string& trajectory
   run_settings.pll_order = trajectory.rfind("air", 0) == 0 ? 3 : 2;
   run_settings.atmosphere = o.atmosphere;
   run_settings.filter_troposphere = o.filter_troposphere;
+  run_settings.filter_ionosphere = o.filter_ionosphere;
   nlohmann::json point = settings;
   for (const auto& m : o.modes) {
     const AidedRunResult r = run_aided_scenario(sc, s, aiding::parse_nav_mode(m), run_settings);
@@ -254,6 +257,7 @@ std::vector<std::string> point_command(const CouplingOptions& o, const std::stri
           std::to_string(o.seed), "--ionosphere", to_string(o.atmosphere.ionosphere), "--troposphere",
           to_string(o.atmosphere.troposphere), "--out", o.out_dir};
   if (o.filter_troposphere) cmd.push_back("--filter-troposphere");
+  if (o.filter_ionosphere) cmd.push_back("--filter-ionosphere");
   return cmd;
 }
 
@@ -370,9 +374,10 @@ void run_coupling(CouplingOptions o) {
   report.add_note("errors", o.errors);
   report.add_note("imu_grade", o.imu_grade);
   report.add_note("scenario", source_relative(o.base_scenario));
-  report.add_note("receiver_models", fmt::format("ionosphere {}, troposphere {}{}", to_string(o.atmosphere.ionosphere),
+  report.add_note("receiver_models", fmt::format("ionosphere {}, troposphere {}{}{}", to_string(o.atmosphere.ionosphere),
                                                  to_string(o.atmosphere.troposphere),
-                                                 o.filter_troposphere ? ", zenith troposphere state" : ""));
+                                                 o.filter_troposphere ? ", zenith troposphere state" : "",
+                                                 o.filter_ionosphere ? ", ionosphere scale state" : ""));
   report.add_note("scoring", fmt::format("n/e/d_at: north/east/down 1-sigma over runs at t = {} s (RMS across runs); "
                                          "rms_h/rms_3d: each run's RMS over every epoch from {} s to {} s, mean and "
                                          "standard deviation over the runs",
@@ -408,6 +413,8 @@ const bool registered = register_command([](CommandParents& parents) {
   cmd->add_option("--out", o->out_dir, "Folder of finished points (points/*.json): a rerun resumes from it");
   cmd->add_flag("--filter-troposphere", o->filter_troposphere,
                  "Tight and ultra-tight: estimate a zenith troposphere residual (an 18th state)");
+  cmd->add_flag("--filter-ionosphere", o->filter_ionosphere,
+                "Tight and ultra-tight: estimate the ionosphere model's scale error (a 19th state)");
   cmd->add_flag("--list-commands", o->list_commands, "Print one command per unfinished point and stop");
   cmd->add_option("--work-dir", o->work_dir, "Where the (deleted) IF files are written");
   cmd->add_option("--csv", o->csv_path, "Per-epoch errors of every run");

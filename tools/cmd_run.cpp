@@ -46,8 +46,10 @@ struct RunOptions {
   std::string mode = "scalar", imu_path, imu_grade = "tactical", imu_grades_file = "data/imu_grades.yaml";
   std::vector<double> imu_lever_arm_m{0.0, 0.0, 0.0};
   bool filter_troposphere = false;
+  bool filter_ionosphere = false;
   bool fault_exclusion = true;
   bool detect_troposphere_mismatch = true;
+  bool detect_ionosphere_mismatch = true;
   bool print_config = false;
 };
 
@@ -78,7 +80,9 @@ aiding::AidedReceiverConfig aided_config(const RunOptions& o, aiding::NavMode mo
   }
   c.lever_arm_imu_to_antenna_b_m = -Eigen::Vector3d(o.imu_lever_arm_m[0], o.imu_lever_arm_m[1], o.imu_lever_arm_m[2]);
   c.troposphere.enabled = o.filter_troposphere;
+  c.ionosphere.enabled = o.filter_ionosphere;
   c.troposphere.enable_on_mismatch = o.detect_troposphere_mismatch;
+  c.ionosphere.enable_on_mismatch = o.detect_ionosphere_mismatch;
   c.fault_exclusion = o.fault_exclusion;
   return c;
 }
@@ -151,12 +155,15 @@ nlohmann::json run_summary(const RunOptions& o, const OpenedSource& opened, aidi
     for (const ImuGap& g : imu_gaps) gaps.push_back({{"from_s", g.t_before_s}, {"to_s", g.t_after_s}, {"line", g.line}});
     summary["imu_gaps"] = gaps;
     summary["satellite_exclusions"] = aided->satellite_exclusions();
-    if (const auto found = aided->troposphere_mismatch_found_s()) {
-      const auto from = aided->troposphere_state_from_s();
-      summary["troposphere_mismatch"] = {{"found_at_s", *found},
-                                         {"zenith_error_m", aided->troposphere_mismatch_zenith_m()},
-                                         {"state_from_s", from ? nlohmann::json(*from) : nlohmann::json(nullptr)}};
-    }
+    const auto state_from = [](const aiding::DelayMismatchReport& m) {
+      return m.state_from_s ? nlohmann::json(*m.state_from_s) : nlohmann::json(nullptr);
+    };
+    if (const aiding::DelayMismatchReport& m = aided->troposphere_mismatch(); m.found_at_s)
+      summary["troposphere_mismatch"] = {
+          {"found_at_s", *m.found_at_s}, {"zenith_error_m", m.fitted_error}, {"state_from_s", state_from(m)}};
+    if (const aiding::DelayMismatchReport& m = aided->ionosphere_mismatch(); m.found_at_s)
+      summary["ionosphere_mismatch"] = {
+          {"found_at_s", *m.found_at_s}, {"scale_error", m.fitted_error}, {"state_from_s", state_from(m)}};
   }
   summary["interrupted"] = opened.interrupted();
   // What failed, if anything: the run itself (the products hold what came before), and
@@ -337,9 +344,15 @@ const bool registered = register_command([](CommandParents& parents) {
   cmd->add_option("--imu-grades-file", o->imu_grades_file, "IMU grades YAML file (relative: from here, else the project's data/)")->capture_default_str();
   cmd->add_flag("--filter-troposphere,!--no-filter-troposphere", o->filter_troposphere,
                "Tight/ultra: estimate a zenith troposphere residual (an 18th filter state)");
+  cmd->add_flag("--filter-ionosphere,!--no-filter-ionosphere", o->filter_ionosphere,
+               "Tight/ultra: estimate the ionosphere model's scale error (a 19th filter state)");
   cmd->add_flag("--troposphere-mismatch,!--no-troposphere-mismatch", o->detect_troposphere_mismatch,
                 "Tight/ultra: take the zenith troposphere state when the fixes show the troposphere model wrong by "
                 "over 1.5 m at the zenith (a signal without troposphere)")
+      ->default_str("true");
+  cmd->add_flag("--ionosphere-mismatch,!--no-ionosphere-mismatch", o->detect_ionosphere_mismatch,
+                "Tight/ultra: take the ionosphere scale state when the fixes show the signal without most of the "
+                "ionosphere model's delay (a signal without ionosphere)")
       ->default_str("true");
   cmd->add_flag("--fault-exclusion,!--no-fault-exclusion", o->fault_exclusion,
                 "Tight/ultra: exclude a satellite whose pseudorange innovations disagree with the filter")

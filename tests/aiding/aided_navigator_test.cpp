@@ -115,6 +115,7 @@ struct TightRun {
   NavData nav_data = read_rinex_nav(std::string(DEEPNAV_SOURCE_DIR) + "/data/brdc0010.22n");
   GpsTime t0 = gps_time_from_calendar(CalendarTime{2022, 1, 1, 2, 0, 0.0});
   double clock_bias0_m = 3000.0, clock_drift_mps = 90.0;  // 10 us and 0.3 ppm
+  bool signal_has_ionosphere = true;  ///< false: the measurements lack the delay the navigator models
 
   /// Satellite `e` measured from the truth at t_s (pseudorange and rate noise in sigmas
   /// given, plus `pseudorange_fault_m`), predicted from the navigator's own state.
@@ -124,7 +125,8 @@ struct TightRun {
     std::normal_distribution<double> n01;
     const GpsTime t_rx = t0.plus_seconds(t_s);
     const double b = clock_bias0_m + clock_drift_mps * t_s;
-    const RangePrediction actual = predict_range(e, t_rx, b, truth.r_ecef_m, truth.v_ecef_mps, nav_data.iono);
+    const RangePrediction actual = predict_range(e, t_rx, b, truth.r_ecef_m, truth.v_ecef_mps,
+                                                 signal_has_ionosphere ? nav_data.iono : IonoParameters{});
     RangeMeasurement m;
     m.prn = e.prn;
     m.geometry = predict_range(e, t_rx, nav.clock_bias_m(), nav.antenna_ecef_m(), nav.antenna_velocity_ecef_mps(),
@@ -175,6 +177,55 @@ TEST(AidedNavigator, TightCouplingKeepsEstimatingWithThreeSatellites) {
   EXPECT_LT(worst_three_m, 5.0);
 }
 
+/// Tight coupling on the land circle from measurements without ionosphere, the navigator
+/// predicting with Klobuchar (the mismatch a generator without ionosphere gives): the mean
+/// down error over the last minute and the estimated scale error of the model at the end.
+struct IonosphereMismatchOutcome {
+  double mean_down_m = 0.0;
+  double scale_residual = 0.0;
+  bool healthy = false;
+};
+
+IonosphereMismatchOutcome run_ionosphere_mismatch(bool ionosphere_state) {
+  const SimulatedRun run("land-circle", "tactical", 180.0, 100.0, 13);
+  TightRun tr;
+  tr.signal_has_ionosphere = false;
+  const auto sats = tr.visible(run.trajectory->at(0.0).r_ecef_m);
+  NavigatorConfig cfg = testing::navigator_config(run.imu_model);
+  cfg.ionosphere.enabled = ionosphere_state;
+  AidedNavigator nav(run.perturbed_start({2.0, -2.0, 3.0}, {0.1, 0.1, -0.1}, {0.1 * kDeg, 0.1 * kDeg, 1.0 * kDeg}),
+                     tr.clock_bias0_m, tr.clock_drift_mps, cfg, InitialUncertainty{});
+  std::mt19937_64 rng(41);
+  double next = 1.0, sum_down = 0.0;
+  int scored = 0;
+  for (const ImuSample& s : run.imu) {
+    nav.propagate(s);
+    if (std::abs(s.t_s - next) > 1e-6) continue;
+    next += 1.0;
+    const TrajectoryState truth = run.trajectory->at(s.t_s);
+    std::vector<RangeMeasurement> ms;
+    for (const Ephemeris* e : sats) ms.push_back(tr.measure(*e, nav, truth, s.t_s, 1.0, 0.02, rng));
+    nav.update_ranges(ms);
+    if (s.t_s >= 120.0) {
+      sum_down += testing::antenna_error_ned(nav, *run.trajectory)(2);
+      ++scored;
+    }
+  }
+  return {sum_down / scored, nav.ionosphere_scale_residual(), nav.healthy()};
+}
+
+TEST(AidedNavigator, IonosphereScaleStateTakesTheModelsDelayTheSignalLacks) {
+  const IonosphereMismatchOutcome without = run_ionosphere_mismatch(false), with = run_ionosphere_mismatch(true);
+  ASSERT_TRUE(without.healthy);
+  ASSERT_TRUE(with.healthy);
+  // Off, the state never moves and the model's elevation pattern goes into the height.
+  EXPECT_EQ(without.scale_residual, 0.0);
+  EXPECT_GT(std::abs(without.mean_down_m), 2.0);
+  // On, it finds that the signal has none of the model's delay (scale -1) and the height
+  // comes back.
+  EXPECT_NEAR(with.scale_residual, -1.0, 0.3);
+  EXPECT_LT(std::abs(with.mean_down_m), 0.25 * std::abs(without.mean_down_m));
+}
 
 /// Tight coupling on the land circle with a pseudorange step of `step_m` on the first
 /// satellite from t = 60 s, the rows fed through the per-satellite fault monitor as the

@@ -1,54 +1,5 @@
 #!/usr/bin/env bash
-# IF synthesized without a troposphere, the receiver keeping its default (Saastamoinen)
-# model, land circle with a tactical IMU, 90 s: tight and ultra-tight find the mismatch in
-# the pseudorange residuals, take the zenith troposphere state (summary.json
-# troposphere_mismatch, a warning naming --troposphere none) and end no worse than loose
-# coupling horizontally and well ahead vertically; --no-troposphere-mismatch keeps the
-# 17-state filter (no state taken).
+# IF without troposphere, the receiver's default models: the aided modes find the mismatch,
+# take the troposphere state and stay ahead of loose coupling (lib/atmosphere_mismatch.sh).
 #   usage: aided_troposphere_mismatch.sh <deepnav binary> <source dir>
-set -uo pipefail
-deepnav=$1
-src=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cp "$src/data/scenarios/land_circle_aided_90s_no_troposphere.yaml" "$work/s.yaml"
-"$deepnav" -q sim --scenario "$work/s.yaml" --out "$work/sim" > /dev/null || { echo "FAIL sim"; exit 1; }
-run() {  # run MODE OUT [options]
-  local mode=$1 out=$2
-  shift 2
-  "$deepnav" run --input "$work/sim/if_ibyte.bin" --fs 2600000 --week 2190 --mode "$mode" --imu "$work/sim/imu.csv" \
-    --imu-lever-arm 0.8 -0.3 0.4 --ephemeris-from "$src/data/brdc0010.22n" --iono-from "$src/data/brdc0010.22n" \
-    --truth "$work/sim/truth.csv" --out "$work/$out" "$@" > /dev/null 2> "$work/$out.log"
-}
-for m in loose tight ultra; do run $m $m || { echo "FAIL run $m"; cat "$work/$m.log"; exit 1; }; done
-run ultra ultra_off --no-troposphere-mismatch || { echo "FAIL run ultra --no-troposphere-mismatch"; exit 1; }
-failures=0
-for m in tight ultra; do
-  grep -q "troposphere none" "$work/$m.log" || { echo "FAIL $m: no warning naming --troposphere none"; failures=$((failures + 1)); }
-done
-python3 - "$work" <<'PY' || failures=$((failures + 1))
-import json, sys
-w = sys.argv[1]
-s = {m: json.load(open(f"{w}/{m}/summary.json")) for m in ["loose", "tight", "ultra", "ultra_off"]}
-h = {m: s[m]["horizontal_error_m"]["rms"] for m in s}
-v = {m: s[m]["vertical_error_m"]["rms"] for m in s}
-bad = []
-for m in ["tight", "ultra"]:
-    t = s[m].get("troposphere_mismatch")
-    if not t or not (-3.0 < t["zenith_error_m"] < -1.5) or t["state_from_s"] is None:
-        bad.append(f"{m}: troposphere_mismatch {t} (expected a zenith error near -2.3 m and the state taken)")
-    if h[m] > h["loose"]:
-        bad.append(f"{m}: horizontal RMS {h[m]:.2f} m above loose's {h['loose']:.2f} m")
-    if v[m] > 0.6 * v["loose"]:
-        bad.append(f"{m}: vertical RMS {v[m]:.2f} m not well under loose's {v['loose']:.2f} m")
-lt = s["loose"].get("troposphere_mismatch")
-if not lt or lt["state_from_s"] is not None:
-    bad.append(f"loose: troposphere_mismatch {lt} (expected found, no state: loose has no ranges)")
-if "troposphere_mismatch" in s["ultra_off"]:
-    bad.append("--no-troposphere-mismatch still took the state")
-print(" ".join(f"{m}: h {h[m]:.2f} v {v[m]:.2f}" for m in s))
-for b in bad: print("FAIL", b)
-sys.exit(1 if bad else 0)
-PY
-[[ $failures -eq 0 ]] && echo "ok   the mismatch is found and the aided modes stay ahead of loose"
-exit $((failures > 0))
+exec bash "$(dirname "$0")/lib/atmosphere_mismatch.sh" "$1" "$2" troposphere

@@ -1,4 +1,4 @@
-#include "aiding/troposphere_mismatch_detector.hpp"
+#include "aiding/delay_mismatch_detector.hpp"
 
 #include <Eigen/Dense>
 #include <cmath>
@@ -19,12 +19,13 @@ std::vector<RangeResidual> fix_residuals(const PvtSolution& fix, const std::map<
     r.elevation_rad = el->second;
     if (const auto c = cn0_dbhz.find(prn); c != cn0_dbhz.end()) r.cn0_dbhz = c->second;
     r.residual_m = res->second;
+    if (const auto i = fix.ionosphere_m.find(prn); i != fix.ionosphere_m.end()) r.ionosphere_model_m = i->second;
     out.push_back(r);
   }
   return out;
 }
 
-void TroposphereMismatchDetector::add(const std::vector<RangeResidual>& epoch, const RangeErrorModel& weights) {
+void DelayMismatchDetector::add(const std::vector<RangeResidual>& epoch, const RangeErrorModel& weights) {
   const auto n = static_cast<Eigen::Index>(epoch.size());
   if (n < 6) return;  // five unknowns with the zenith error: one redundant satellite at least
   Eigen::MatrixXd H(n, 4);
@@ -33,10 +34,11 @@ void TroposphereMismatchDetector::add(const std::vector<RangeResidual>& epoch, c
     const RangeResidual& e = epoch[static_cast<std::size_t>(i)];
     H.row(i) << e.los.transpose(), 1.0;  // position (along the line of sight) and clock
     w(i) = 1.0 / weights.pseudorange_variance_m2(e.elevation_rad, e.cn0_dbhz);
-    m(i) = troposphere_mapping(e.elevation_rad);
+    m(i) = cfg_.signature == DelaySignature::troposphere_zenith ? troposphere_mapping(e.elevation_rad)
+                                                                : e.ionosphere_model_m;
     r(i) = e.residual_m;
   }
-  // z with position and clock eliminated (Schur complement): information m' W m - b' N^-1 b
+  // e with position and clock eliminated (Schur complement): information m' W m - b' N^-1 b
   // and right-hand side m' W r - b' N^-1 H' W r, b = H' W m.
   const Eigen::Matrix4d N = H.transpose() * w.asDiagonal() * H;
   const auto solver = N.ldlt();
@@ -49,7 +51,7 @@ void TroposphereMismatchDetector::add(const std::vector<RangeResidual>& epoch, c
   while (static_cast<int>(window_.size()) > cfg_.window_fixes) window_.pop_front();
 }
 
-double TroposphereMismatchDetector::zenith_error_m() const {
+double DelayMismatchDetector::fitted_error() const {
   if (static_cast<int>(window_.size()) < cfg_.min_fixes) return 0.0;
   double information = 0.0, sum = 0.0;
   for (const FixTerm& t : window_) {
@@ -59,6 +61,6 @@ double TroposphereMismatchDetector::zenith_error_m() const {
   return sum / information;
 }
 
-bool TroposphereMismatchDetector::mismatch() const { return zenith_error_m() < -cfg_.threshold_zenith_m; }
+bool DelayMismatchDetector::mismatch() const { return fitted_error() < -cfg_.threshold; }
 
 }  // namespace deepnav::aiding

@@ -1,4 +1,4 @@
-// The troposphere mismatch detector: a zenith error in the residuals is recovered whatever
+// The delay mismatch detector: a zenith error in the residuals is recovered whatever
 // the position and clock errors are (they are nuisances), a position/clock error alone
 // reads as none, and no verdict comes before the window has its fixes.
 #include <gtest/gtest.h>
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <random>
 
-#include "aiding/troposphere_mismatch_detector.hpp"
+#include "aiding/delay_mismatch_detector.hpp"
 #include "signals/atmosphere.hpp"
 
 namespace deepnav::aiding {
@@ -29,36 +29,36 @@ std::vector<RangeResidual> sky(const Eigen::Vector3d& d_enu, double clock_m, dou
   return out;
 }
 
-TEST(TroposphereMismatchDetector, RecoversTheZenithErrorWhateverThePositionAndClock) {
-  TroposphereMismatchDetector d;
+TEST(DelayMismatchDetector, RecoversTheZenithErrorWhateverThePositionAndClock) {
+  DelayMismatchDetector d;
   const RangeErrorModel weights;
   std::mt19937 rng(5);
   std::normal_distribution<double> metres(0.0, 5.0);
   for (int k = 0; k < 30; ++k)
     d.add(sky(Eigen::Vector3d(metres(rng), metres(rng), metres(rng)), metres(rng), -2.3), weights);
-  EXPECT_NEAR(d.zenith_error_m(), -2.3, 1e-9);
+  EXPECT_NEAR(d.fitted_error(), -2.3, 1e-9);
   EXPECT_TRUE(d.mismatch());
 }
 
-TEST(TroposphereMismatchDetector, PositionAndClockErrorsAloneAreNoMismatch) {
-  TroposphereMismatchDetector d;
+TEST(DelayMismatchDetector, PositionAndClockErrorsAloneAreNoMismatch) {
+  DelayMismatchDetector d;
   const RangeErrorModel weights;
   for (int k = 0; k < 30; ++k) d.add(sky(Eigen::Vector3d(3.0, -2.0, 8.0), 40.0, 0.0), weights);
-  EXPECT_NEAR(d.zenith_error_m(), 0.0, 1e-9);
+  EXPECT_NEAR(d.fitted_error(), 0.0, 1e-9);
   EXPECT_FALSE(d.mismatch());
 }
 
-TEST(TroposphereMismatchDetector, ExtraDelayIsNoMismatch) {
+TEST(DelayMismatchDetector, ExtraDelayIsNoMismatch) {
   // Multipath and non-line-of-sight signals add delay: a positive fit is never taken.
-  TroposphereMismatchDetector d;
+  DelayMismatchDetector d;
   const RangeErrorModel weights;
   for (int k = 0; k < 30; ++k) d.add(sky(Eigen::Vector3d::Zero(), 0.0, +2.3), weights);
-  EXPECT_NEAR(d.zenith_error_m(), 2.3, 1e-9);
+  EXPECT_NEAR(d.fitted_error(), 2.3, 1e-9);
   EXPECT_FALSE(d.mismatch());
 }
 
-TEST(TroposphereMismatchDetector, NeedsItsFixesAndSixSatellites) {
-  TroposphereMismatchDetector d;
+TEST(DelayMismatchDetector, NeedsItsFixesAndSixSatellites) {
+  DelayMismatchDetector d;
   const RangeErrorModel weights;
   for (int k = 0; k < 19; ++k) d.add(sky(Eigen::Vector3d::Zero(), 0.0, -2.3), weights);
   EXPECT_FALSE(d.mismatch()) << "a verdict before min_fixes";
@@ -70,13 +70,14 @@ TEST(TroposphereMismatchDetector, NeedsItsFixesAndSixSatellites) {
   EXPECT_TRUE(d.mismatch());
 }
 
-TEST(TroposphereMismatchDetector, FixResidualsCarryTheFixsLookAngles) {
+TEST(DelayMismatchDetector, FixResidualsCarryTheFixsLookAngles) {
   PvtSolution fix;
   fix.valid = true;
   fix.used_prns = {3, 7};
   fix.elevation_rad = {{3, 0.5}, {7, 1.0}};
   fix.azimuth_rad = {{3, 0.0}, {7, M_PI / 2}};
   fix.residuals_m = {{3, 1.5}, {7, -0.5}};
+  fix.ionosphere_m = {{3, 7.0}};
   const auto rows = fix_residuals(fix, {{3, 40.0}});
   ASSERT_EQ(rows.size(), 2u);
   EXPECT_NEAR(rows[0].los.y(), std::cos(0.5), 1e-12);  // north at azimuth 0
@@ -84,6 +85,36 @@ TEST(TroposphereMismatchDetector, FixResidualsCarryTheFixsLookAngles) {
   EXPECT_EQ(rows[0].cn0_dbhz, 40.0);
   EXPECT_EQ(rows[1].cn0_dbhz, 45.0);  // not given: the nominal
   EXPECT_EQ(rows[1].residual_m, -0.5);
+  EXPECT_EQ(rows[0].ionosphere_model_m, 7.0);
+  EXPECT_EQ(rows[1].ionosphere_model_m, 0.0);  // no model delay applied
+}
+
+/// The same sky with an ionosphere model of 4 m at the zenith (Klobuchar's obliquity
+/// factor) and residuals of that delay scaled by `scale`, plus position and clock errors.
+std::vector<RangeResidual> ionosphere_sky(const Eigen::Vector3d& d_enu, double clock_m, double scale) {
+  std::vector<RangeResidual> out = sky(d_enu, clock_m, 0.0);
+  for (RangeResidual& r : out) {
+    const double f = 1.0 + 16.0 * std::pow(0.53 - r.elevation_rad / M_PI, 3);
+    r.ionosphere_model_m = 4.0 * f;
+    r.residual_m += scale * r.ionosphere_model_m;
+  }
+  return out;
+}
+
+TEST(DelayMismatchDetector, IonosphereSignatureRecoversTheModelsScaleError) {
+  const DelayMismatchConfig cfg{.signature = DelaySignature::ionosphere_scale, .threshold = 0.75};
+  DelayMismatchDetector missing(cfg), weak(cfg);
+  const RangeErrorModel weights;
+  for (int k = 0; k < 30; ++k) {
+    // The signal without ionosphere: the model's whole delay is too much (scale -1).
+    missing.add(ionosphere_sky(Eigen::Vector3d(2.0, -1.0, 6.0), 25.0, -1.0), weights);
+    // A model that leaves 40 % of the delay out: an ordinary Klobuchar error.
+    weak.add(ionosphere_sky(Eigen::Vector3d(2.0, -1.0, 6.0), 25.0, 0.4), weights);
+  }
+  EXPECT_NEAR(missing.fitted_error(), -1.0, 1e-9);
+  EXPECT_TRUE(missing.mismatch());
+  EXPECT_NEAR(weak.fitted_error(), 0.4, 1e-9);
+  EXPECT_FALSE(weak.mismatch());
 }
 
 }  // namespace
