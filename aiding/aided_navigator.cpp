@@ -39,13 +39,17 @@ void AidedNavigator::enable_troposphere_state(double sigma_m) {
   cfg_.noise.psd(kTropo) = rw * rw / 3600.0;
 }
 
-void AidedNavigator::enable_ionosphere_state(double sigma) {
+void AidedNavigator::enable_ionosphere_state(double scale, double sigma) {
   cfg_.ionosphere.enabled = true;
+  // Starting from the fixes' fit takes the model's elevation pattern out of the rows at
+  // once: what is left in the height and clock is then a common offset the rows see
+  // directly (from 0 the state takes minutes to separate from them).
+  ionosphere_scale_residual_ = scale;
   kf_.reopen_state(kIono, sigma);
-  // As for the troposphere: the height and clock took the model's error until now (the
-  // model's zenith delay is a few metres by day; 5 m of room per unit of scale).
-  kf_.add_variance(kPos + 2, 5.0 * sigma);
-  kf_.add_variance(kClockBias, 5.0 * sigma);
+  // The height and clock took the model's error until now (a zenith delay of a few metres
+  // by day): room to move back.
+  kf_.add_variance(kPos + 2, 5.0 * std::abs(scale) + 1.0);
+  kf_.add_variance(kClockBias, 5.0 * std::abs(scale) + 1.0);
   const double rw = cfg_.ionosphere.random_walk_per_sqrt_h;
   cfg_.noise.psd(kIono) = rw * rw / 3600.0;
 }

@@ -136,9 +136,9 @@ class AidedNavigator {
   bool troposphere_state_enabled() const { return cfg_.troposphere.enabled; }
   /// The estimated zenith troposphere residual (m; 0 while the state is off).
   double troposphere_residual_m() const { return troposphere_residual_m_; }
-  /// Starts estimating the ionosphere model's scale error from now on, from 0 with this
-  /// 1-sigma; the height and clock variances grow to match.
-  void enable_ionosphere_state(double sigma);
+  /// Starts estimating the ionosphere model's scale error from now on, from `scale` (the
+  /// fixes' fit) with this 1-sigma; the height and clock variances grow to match.
+  void enable_ionosphere_state(double scale, double sigma);
   bool ionosphere_state_enabled() const { return cfg_.ionosphere.enabled; }
   /// The estimated scale error of the ionosphere model (0 while the state is off).
   double ionosphere_scale_residual() const { return ionosphere_scale_residual_; }

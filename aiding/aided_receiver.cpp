@@ -208,7 +208,6 @@ struct AidedReceiver::Impl : ChannelAiding {
     nc.ionosphere = cfg.ionosphere;
     // A restart keeps what was found.
     if (troposphere_watch.report.found_at_s) nc.troposphere.enabled = true;
-    if (ionosphere_watch.report.found_at_s) nc.ionosphere.enabled = true;
     const double dt = start->state.t_s - ep.t_s;
     // The fix's clock bias is against the receiver clock before this epoch's re-setting
     // (observe() steers it right after the fix, before the next block's follow): move it
@@ -217,6 +216,8 @@ struct AidedReceiver::Impl : ChannelAiding {
     const double bias = fix.clock_bias_m + fix.clock_drift_mps * dt + gps::kSpeedOfLight_mps * (steps_s - followed_clock_steps_s);
     followed_clock_steps_s = steps_s;
     nav.emplace(start->state, bias, fix.clock_drift_mps, nc, start->uncertainty);
+    if (ionosphere_watch.report.found_at_s && !nc.ionosphere.enabled)
+      nav->enable_ionosphere_state(ionosphere_watch.report.fitted_error, 0.2);
     start_method = start->method;
     const EulerAngles e = euler_from_quaternion(start->state.q_b_n);
     spdlog::info("t = {:.2f} s: INS started ({}): roll {:.2f} pitch {:.2f} yaw {:.2f} deg", ep.t_s, start_method,
@@ -310,7 +311,7 @@ struct AidedReceiver::Impl : ChannelAiding {
     if (!cfg.ionosphere.enabled && cfg.ionosphere.enable_on_mismatch) {
       find_mismatch(ep, ionosphere_watch);
       if (ionosphere_watch.report.found_at_s && take_state(ep, ionosphere_watch, nav && nav->ionosphere_state_enabled())) {
-        nav->enable_ionosphere_state(std::max(0.5, std::abs(ionosphere_watch.report.fitted_error)));
+        nav->enable_ionosphere_state(ionosphere_watch.report.fitted_error, 0.2);
         spdlog::info("t = {:.2f} s: the aided filter estimates the ionosphere model's scale error from now on", ep.t_s);
       }
     }
