@@ -97,6 +97,10 @@ class CsvTrajectory : public Trajectory {
 std::unique_ptr<Trajectory> load_csv_trajectory(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw std::runtime_error("cannot open trajectory file '" + path + "'");
+  return load_csv_trajectory(in, path);
+}
+
+std::unique_ptr<Trajectory> load_csv_trajectory(std::istream& in, const std::string& path) {
   auto fail = [&](int line, const std::string& what) -> void {
     throw std::runtime_error(path + ":" + std::to_string(line) + ": " + what);
   };
