@@ -36,10 +36,12 @@ for h in "${harnesses[@]}"; do
   [[ -f $root/tests/fuzz/${h}_fuzzer.cpp ]] || { echo "tools/fuzz.sh: no harness '$h' (tests/fuzz/${h}_fuzzer.cpp)" >&2; exit 2; }
 done
 
+build_start=$(date +%s)
 "$root/tools/install_deps.sh" clang libclang-rt-14-dev
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DDEEPNAV_FUZZ=ON -DDEEPNAV_WERROR=ON > /dev/null
 cmake --build "$build" -j "${DEEPNAV_BUILD_JOBS:-$(nproc)}" --target "${harnesses[@]/%/_fuzzer}"
+echo "fuzz build took $(($(date +%s) - build_start)) s" >&2
 
 # The seeds of tests/fuzz/seeds.txt, each cut to its byte limit, in <work>/<harness>/seeds.
 copy_seeds() {
@@ -55,12 +57,11 @@ copy_seeds() {
   done < <(grep -v '^#' "$root/tests/fuzz/seeds.txt")
 }
 
-# One harness: its log in <work>/<harness>/log, the files it writes on a finding in
-# <work>/<harness>/ (libFuzzer's crash-*, timeout-*, leak-*, oom-*).
+# One harness: its log in <work>/<harness>/log, the file it writes on a finding in
+# <work>/<harness>/ (libFuzzer's crash-*, timeout-*, leak-*, oom-*; earlier runs' stay).
 run_one() {
   local h=$1
   copy_seeds "$h"
-  rm -f "$work/$h"/{crash,timeout,leak,oom}-*
   "$build/tests/fuzz/${h}_fuzzer" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
     -artifact_prefix="$work/$h/" "$work/$h/corpus" "$root/tests/fuzz/corpus/$h" "$work/$h/seeds" \
     > "$work/$h/log" 2>&1
