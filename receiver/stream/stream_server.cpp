@@ -118,13 +118,18 @@ struct StreamServer::Impl {
     return completed && !ec;
   }
 
-  /// The end-of-stream frame. Also sent when the server stops (Ctrl-C), so that the client
-  /// sees the stream end instead of a dropped connection it would keep reconnecting to; a
-  /// client that does not read gets a second, not forever.
+  /// The end-of-stream frame: at the end of the stream, as slowly as the client reads, like
+  /// every frame; when the server stops (Ctrl-C) too, so that the client sees the stream end
+  /// instead of a dropped connection it would keep reconnecting to, but then a client that
+  /// does not read gets a second, not forever.
   void write_end(Session& s, std::uint64_t sequence, std::int64_t next_index) {
     static const std::atomic<bool> never{false};
     const auto end = stream::encode(stream::FrameHeader{sequence, next_index, 0, true});
-    write_until(s, {asio::buffer(end)}, asio_wait::after(1.0), never);
+    if (!stopping) {
+      write_all(s, {asio::buffer(end)});
+    } else {
+      write_until(s, {asio::buffer(end)}, asio_wait::after(1.0), never);
+    }
   }
 
   /// The client's request, or nullopt when it sent none in time (then: from the start).
