@@ -61,7 +61,10 @@ class Field {
     if (!is_map()) fail(node_.IsDefined() ? "expected a mapping" : "missing required field");
     const std::set<std::string> allowed(keys.begin(), keys.end());
     for (const auto& item : node_) {
-      const auto key = item.first.as<std::string>();
+      // YAML allows any node as a key ("{[a, b]: 1}"); a field's name is text.
+      if (!item.first.IsScalar())
+        Field(item.first, path_, origin_).fail("expected field names as keys, got a list, a map or an empty key");
+      const auto key = item.first.Scalar();
       if (!allowed.count(key)) {
         std::string list;
         for (const auto& k : allowed) list += (list.empty() ? "" : ", ") + k;

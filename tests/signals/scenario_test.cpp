@@ -115,6 +115,15 @@ TEST(Scenario, BadInputNamesTheField) {
   expect_error("", {"test.yaml"});
 }
 
+// Found by fuzzing (tests/fuzz/scenario_fuzzer.cpp): a key that is a list escaped as
+// yaml-cpp's "bad conversion", naming neither the file nor the field.
+TEST(Scenario, KeysThatAreNotNamesAreErrors) {
+  expect_error(std::string(kMinimal) + "imu: {grade: tactical, lever_arm_m: 0.8,[. .3, 0.4]}\n",
+               {"test.yaml:3", "field 'imu'", "expected field names as keys"});
+  expect_error(std::string(kMinimal) + "? [a, b]\n: 1\n", {"test.yaml:3", "expected field names as keys"});
+  expect_error(std::string(kMinimal) + "~: 1\n", {"test.yaml:3", "an empty key"});
+}
+
 // Found by fuzzing (tests/fuzz/scenario_fuzzer.cpp): a date-form start time in year 3738
 // (GPS week 91727) was accepted, and the scenario written beside the outputs, which has
 // it as {week, sow}, then failed to read ("start_time.week out of range").
