@@ -9,6 +9,7 @@
 #     --work  working corpora, logs and crash files (default build-fuzz/work; kept between
 #             runs, so that every run starts from what the last ones found)
 #     HARNESS names as in tests/fuzz/<name>_fuzzer.cpp (default: all)
+#   DEEPNAV_BUILD_JOBS: parallel compile jobs (default: all cores)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build="$root/build-fuzz"
@@ -21,7 +22,7 @@ while (($#)); do
     --time) seconds=$2; shift 2 ;;
     --jobs) jobs=$2; shift 2 ;;
     --work) work=$2; shift 2 ;;
-    -h|--help) sed -n '2,11p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,12p' "$0"; exit 0 ;;
     -*) echo "tools/fuzz.sh: unknown option '$1'" >&2; exit 2 ;;
     *) harnesses+=("$1"); shift ;;
   esac
