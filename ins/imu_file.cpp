@@ -163,6 +163,10 @@ ImuLog read_imu_csv(const std::string& path) {
   check_input_file(path, "IMU file", kMaxTextInputBytes);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("cannot open IMU file '" + path + "'");
+  return read_imu_csv(in, path);
+}
+
+ImuLog read_imu_csv(std::istream& in, const std::string& path) {
   ImuLog log;
   log.source = path;
   double declared_rate_hz = 0.0;

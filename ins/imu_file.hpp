@@ -13,6 +13,7 @@
 // is not an error: it is listed in ImuLog::gaps and never interpolated across; for
 // rate files the sample after a gap is integrated over one nominal interval only.
 #include <cstddef>
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -51,5 +52,7 @@ void write_imu_csv(const std::string& path, const std::vector<ImuSample>& sample
 
 /// Reads and validates an IMU CSV file (see the rules above).
 ImuLog read_imu_csv(const std::string& path);
+/// Same from a stream; `name` stands for the file in messages and ImuLog::source.
+ImuLog read_imu_csv(std::istream& in, const std::string& name);
 
 }  // namespace deepnav

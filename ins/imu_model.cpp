@@ -71,7 +71,11 @@ Eigen::Vector3d read_bias(const YAML::Node& map, const std::string& key, const s
 void reject_unknown_keys(const YAML::Node& map, const std::set<std::string>& known, const std::string& prefix,
                          const FieldContext& ctx) {
   for (const auto& item : map) {
-    const auto key = item.first.as<std::string>();
+    // YAML allows any node as a key ("{[a, b]: 1}"); a field's name is text.
+    if (!item.first.IsScalar())
+      throw std::runtime_error(ctx.where(prefix) + " at line " + std::to_string(item.first.Mark().line + 1) +
+                               ": expected field names as keys, got a list, a map or an empty key");
+    const auto key = item.first.Scalar();
     if (!known.count(key)) {
       std::string list;
       for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 
 #include "signals/sample_packing.hpp"
@@ -35,8 +36,11 @@ void SampleConverter::calibrate(std::span<const std::byte> first_samples) {
     if (std::isfinite(v)) power += static_cast<double>(v) * v;
   }
   const double rms = count > 0 ? std::sqrt(power / static_cast<double>(count)) : 0.0;
-  // An all-zero start gives no level to go by; unit scale at least keeps zeros zero.
-  float_scale_ = rms > 0.0 ? static_cast<float>(kTargetRms / rms) : 1.0f;
+  const double scale = rms > 0.0 ? kTargetRms / rms : 0.0;
+  // An all-zero start gives no level to go by, nor does one so faint (subnormal floats) that
+  // its scale overflows a float: an infinite scale would turn the zeros that follow into
+  // NaN (0 x inf). Unit scale at least keeps zeros zero.
+  float_scale_ = scale > 0.0 && scale <= std::numeric_limits<float>::max() ? static_cast<float>(scale) : 1.0f;
 }
 
 void SampleConverter::convert(std::span<const std::byte> raw_bytes, std::span<Sample> out,

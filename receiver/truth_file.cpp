@@ -45,6 +45,12 @@ TruthFile::TruthFile(const std::string& path) {
   check_input_file(path, "truth file", kMaxTextInputBytes);
   std::ifstream in(path);
   if (!in) throw std::runtime_error("cannot open truth file '" + path + "'");
+  read(in, path);
+}
+
+TruthFile::TruthFile(std::istream& in, const std::string& name) { read(in, name); }
+
+void TruthFile::read(std::istream& in, const std::string& path) {
   const auto fail = [&](int line, const std::string& what) -> void {
     throw std::runtime_error(fmt::format("{}:{}: {}", path, line, what));
   };

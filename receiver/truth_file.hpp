@@ -2,6 +2,7 @@
 // The synthesizer's receiver truth (truth.csv) for scoring a run: position and velocity
 // at receiver clock time t_s (seconds since the first sample), linearly interpolated.
 #include <Eigen/Core>
+#include <iosfwd>
 #include <optional>
 #include <string>
 #include <vector>
@@ -21,10 +22,13 @@ class TruthFile {
  public:
   /// Throws std::runtime_error naming the file and line for malformed input.
   explicit TruthFile(const std::string& path);
+  /// Same from a stream; `name` stands for the file in messages.
+  TruthFile(std::istream& in, const std::string& name);
   /// nullopt outside the file's time span.
   std::optional<TruthSample> at(double t_s) const;
 
  private:
+  void read(std::istream& in, const std::string& name);
   std::vector<TruthSample> rows_;
 };
 

@@ -2,6 +2,8 @@
 # Installs what is missing, builds and runs the whole test suite with ctest.
 #   tools/test.sh              Release build in build/
 #   tools/test.sh --sanitize   ASan+UBSan build in build-sanitize/
+# Then a brief fuzzing stage (tools/fuzz.sh): every harness for DEEPNAV_FUZZ_SECONDS
+# (default 10), two at a time; DEEPNAV_FUZZ_SECONDS=0 skips it.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build="$root/build"
@@ -16,5 +18,8 @@ done
 jobs=$(nproc)
 cmake -S "$root" -B "$build" -G Ninja "${cmake_args[@]}"
 cmake --build "$build" -j "$jobs"
-cd "$build"
-ctest --output-on-failure -j "$jobs" --timeout 600
+(cd "$build" && ctest --output-on-failure -j "$jobs" --timeout 600)
+fuzz_seconds=${DEEPNAV_FUZZ_SECONDS:-10}
+if ((fuzz_seconds > 0)); then
+  "$root/tools/fuzz.sh" --time "$fuzz_seconds" --jobs 2
+fi

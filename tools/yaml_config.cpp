@@ -150,7 +150,11 @@ std::vector<CLI::ConfigItem> YamlConfig::from_config(std::istream& input) const 
   std::vector<CLI::ConfigItem> items;
   for (const auto& entry : root) {
     const int line = entry.first.Mark().line + 1;
-    const std::string key = entry.first.as<std::string>();
+    // YAML allows any node as a key ("? [a, b]: 1", "? : 1"); an option's name is text.
+    if (!entry.first.IsScalar())
+      throw UserError(fmt::format("{}:{}: expected an option name as the key, got {}", file, line,
+                                  entry.first.IsNull() ? "an empty (null) key" : "a list or a map"));
+    const std::string key = entry.first.Scalar();
     std::string name = key;
     std::replace(name.begin(), name.end(), '_', '-');
     CLI::Option* op = command_.get_option_no_throw("--" + name);

@@ -55,10 +55,14 @@ class CsvTrajectory : public Trajectory {
     s.v_ned_mps = C_en * s.v_ecef_mps;
     s.a_ned_mps2 = C_en * s.a_ecef_mps2 - transport_rate_ned_radps(llh, s.v_ned_mps).cross(s.v_ned_mps);
     s.q_b_n = attitude(t);
-    // Differences need the attitude on both sides: stay inside the file's span.
-    const double h = 2e-3;
-    const double tc = std::clamp(t, position_.t_begin() + 2 * h, position_.t_end() - 2 * h);
-    const AttitudeRates rates = attitude_rates([this](double x) { return attitude(x); }, tc, attitude(tc), h);
+    // Differences need the attitude two steps on both sides of tc, inside the file's span:
+    // a step that fits a file shorter than four 2 ms steps, and each point clamped into the
+    // span against rounding ((t0 + 2h) - 2h can land an ulp before t0).
+    const double begin = position_.t_begin(), end = position_.t_end();
+    const double h = std::min(2e-3, (end - begin) / 5);
+    const double tc = std::clamp(t, begin + 2 * h, end - 2 * h);
+    const auto inside = [&](double x) { return attitude(std::clamp(x, begin, end)); };
+    const AttitudeRates rates = attitude_rates(inside, tc, attitude(tc), h);
     s.w_nb_b_radps = rates.w_nb_b_radps;
     s.dw_nb_b_radps2 = rates.dw_nb_b_radps2;
     return s;
@@ -97,6 +101,10 @@ class CsvTrajectory : public Trajectory {
 std::unique_ptr<Trajectory> load_csv_trajectory(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw std::runtime_error("cannot open trajectory file '" + path + "'");
+  return load_csv_trajectory(in, path);
+}
+
+std::unique_ptr<Trajectory> load_csv_trajectory(std::istream& in, const std::string& path) {
   auto fail = [&](int line, const std::string& what) -> void {
     throw std::runtime_error(path + ":" + std::to_string(line) + ": " + what);
   };

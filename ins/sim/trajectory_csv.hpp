@@ -13,6 +13,7 @@
 // 0.1 m/s). Body rates come from the attitude's time derivatives. Times outside the
 // file's span throw std::out_of_range. The time column is trajectory time: seconds
 // from the scenario start, so the file must cover [0, duration].
+#include <iosfwd>
 #include <memory>
 #include <string>
 
@@ -22,5 +23,7 @@ namespace deepnav {
 
 /// Throws std::runtime_error naming the file and line for malformed input.
 std::unique_ptr<Trajectory> load_csv_trajectory(const std::string& path);
+/// Same from a stream; `name` stands for the file in messages.
+std::unique_ptr<Trajectory> load_csv_trajectory(std::istream& in, const std::string& name);
 
 }  // namespace deepnav

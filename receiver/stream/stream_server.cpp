@@ -102,16 +102,34 @@ struct StreamServer::Impl {
 
   // ---------------------------------------------------------------- TCP
   bool write_all(Session& s, const std::vector<asio::const_buffer>& buffers) {
+    // No deadline: a slow client holds back its own session only (backpressure).
+    return write_until(s, buffers, Clock::time_point::max(), stopping);
+  }
+
+  bool write_until(Session& s, const std::vector<asio::const_buffer>& buffers, Clock::time_point deadline,
+                   const std::atomic<bool>& cancel) {
     bool done = false;
     boost::system::error_code ec;
     asio::async_write(*s.socket, buffers, [&](const boost::system::error_code& e, std::size_t) {
       ec = e;
       done = true;
     });
-    // No deadline: a slow client holds back its own session only (backpressure).
-    const bool completed = asio_wait::run_until_done(s.io, done, Clock::time_point::max(), stopping,
-                                                     [&] { s.socket->close(); });
+    const bool completed = asio_wait::run_until_done(s.io, done, deadline, cancel, [&] { s.socket->close(); });
     return completed && !ec;
+  }
+
+  /// The end-of-stream frame: at the end of the stream, as slowly as the client reads, like
+  /// every frame; when the server stops (Ctrl-C) too, so that the client sees the stream end
+  /// instead of a dropped connection it would keep reconnecting to, but then a client that
+  /// does not read gets a second, not forever.
+  void write_end(Session& s, std::uint64_t sequence, std::int64_t next_index) {
+    static const std::atomic<bool> never{false};
+    const auto end = stream::encode(stream::FrameHeader{sequence, next_index, 0, true});
+    if (!stopping) {
+      write_all(s, {asio::buffer(end)});
+    } else {
+      write_until(s, {asio::buffer(end)}, asio_wait::after(1.0), never);
+    }
   }
 
   /// The client's request, or nullopt when it sent none in time (then: from the start).
@@ -153,23 +171,25 @@ struct StreamServer::Impl {
       Pacer pacer{Clock::now(), start, opt.pace * src->sample_rate_hz()};
       std::vector<std::byte> bytes;
       std::uint64_t sequence = 0;
+      std::int64_t next_index = src->next_sample_index();
+      r.end = "end of stream";
       while (true) {
-        const std::int64_t first = src->next_sample_index();
+        const std::int64_t first = next_index;
         const std::size_t n = src->read(bytes, frame_samples(*src, payload));
         if (n == 0) break;
-        if (!pacer.wait_for(first + static_cast<std::int64_t>(n), stopping)) throw std::runtime_error("server stopping");
+        if (!pacer.wait_for(first + static_cast<std::int64_t>(n), stopping)) {
+          r.end = "server stopping";
+          break;
+        }
         const auto frame = stream::encode(stream::FrameHeader{sequence++, first, static_cast<std::uint32_t>(bytes.size()), false});
         const bool ok = opt.raw ? write_all(s, {asio::buffer(bytes)})
                                 : write_all(s, {asio::buffer(frame), asio::buffer(bytes)});
         if (!ok) throw std::runtime_error(stopping ? "server stopping" : "the client closed the connection");
         r.samples_sent += static_cast<std::int64_t>(n);
         ++r.frames_sent;
+        next_index = src->next_sample_index();
       }
-      if (!opt.raw) {
-        const auto end = stream::encode(stream::FrameHeader{sequence, src->next_sample_index(), 0, true});
-        write_all(s, {asio::buffer(end)});
-      }
-      r.end = "end of stream";
+      if (!opt.raw) write_end(s, sequence, next_index);
     } catch (const stream::ProtocolError& e) {
       r.end = fmt::format("bad request, connection closed: {}", e.what());
       spdlog::warn("{}: {}", client, r.end);
@@ -210,6 +230,11 @@ struct StreamServer::Impl {
     udp_socket->send_to(buffers, to, 0, ec);  // UDP: a failed send is a lost datagram, which the client detects
   }
 
+  void udp_send_end(std::uint64_t sequence, std::int64_t next_index, const udp::endpoint& to) {
+    const auto end = stream::encode(stream::FrameHeader{sequence, next_index, 0, true});
+    for (int i = 0; i < 3; ++i) udp_send({asio::buffer(end)}, to);  // three times: it may be lost too
+  }
+
   void udp_session(Session& s, udp::endpoint client_ep, std::int64_t start) {
     ServerSessionReport r;
     r.client = fmt::format("udp://{}:{}", client_ep.address().to_string(), client_ep.port());
@@ -240,14 +265,12 @@ struct StreamServer::Impl {
         const std::int64_t first = src->next_sample_index();
         const std::size_t n = src->read(bytes, frame_samples(*src, payload));
         if (n == 0) {
-          if (!opt.raw) {
-            const auto end = stream::encode(stream::FrameHeader{sequence, first, 0, true});
-            for (int i = 0; i < 3; ++i) udp_send({asio::buffer(end)}, client_ep);  // three times: it may be lost too
-          }
+          if (!opt.raw) udp_send_end(sequence, first, client_ep);
           break;
         }
         if (!pacer.wait_for(first + static_cast<std::int64_t>(n), stopping)) {
           r.end = "server stopping";
+          if (!opt.raw) udp_send_end(sequence, first, client_ep);  // the client ends, not waits for more
           break;
         }
         const std::uint64_t seq = sequence++;
@@ -306,11 +329,11 @@ struct StreamServer::Impl {
     });
   }
 
-  /// Joins the sessions that ended; returns how many.
-  int reap() {
+  /// Joins the sessions that ended (all of them when `all`: they are ending); returns how many.
+  int reap(bool all = false) {
     int ended = 0;
     for (auto it = sessions.begin(); it != sessions.end();) {
-      if ((*it)->done) {
+      if (all || (*it)->done) {
         (*it)->thread.join();
         for (auto u = udp_sessions.begin(); u != udp_sessions.end();) {
           u = u->second == it->get() ? udp_sessions.erase(u) : std::next(u);
@@ -387,9 +410,9 @@ void StreamServer::run(const std::atomic<bool>& stop, int max_sessions) {
   if (m.udp_socket) m.udp_socket->cancel(ignored);
   m.io.restart();
   m.io.poll();  // run the aborted handlers while the buffers above still exist
-  for (auto& s : m.sessions)
-    if (s->thread.joinable()) s->thread.join();
-  m.reap();
+  // Each session sees `stopping` and ends; reap joins each thread exactly once (a second
+  // join throws std::system_error "Invalid argument").
+  m.reap(true);
 }
 
 std::vector<ServerSessionReport> StreamServer::reports() const {

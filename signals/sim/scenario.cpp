@@ -61,7 +61,10 @@ class Field {
     if (!is_map()) fail(node_.IsDefined() ? "expected a mapping" : "missing required field");
     const std::set<std::string> allowed(keys.begin(), keys.end());
     for (const auto& item : node_) {
-      const auto key = item.first.as<std::string>();
+      // YAML allows any node as a key ("{[a, b]: 1}"); a field's name is text.
+      if (!item.first.IsScalar())
+        Field(item.first, path_, origin_).fail("expected field names as keys, got a list, a map or an empty key");
+      const auto key = item.first.Scalar();
       if (!allowed.count(key)) {
         std::string list;
         for (const auto& k : allowed) list += (list.empty() ? "" : ", ") + k;
@@ -121,11 +124,17 @@ class Field {
   YAML::Mark parent_mark_;
 };
 
+/// The last GPS week a scenario may start in (in 2171), whichever way start_time is written:
+/// the date form must not let through a week that the week form (which a scenario is
+/// written back in) rejects.
+constexpr int kMaxStartWeek = 10000;
+
 /// start_time: "YYYY-MM-DDThh:mm:ss" (GPS time scale) or {week: W, sow: S}.
 GpsTime parse_start_time(const Field& f) {
   if (f.is_map()) {
     f.allow_only({"week", "sow"});
-    return GpsTime::normalized(static_cast<int>(f["week"].integer_in(0, 10000)), f["sow"].number_in(0, kSecondsPerWeek - 1e-9));
+    return GpsTime::normalized(static_cast<int>(f["week"].integer_in(0, kMaxStartWeek)),
+                               f["sow"].number_in(0, kSecondsPerWeek - 1e-9));
   }
   const std::string s = f.text();
   // Exactly "YYYY-MM-DDThh:mm:ss[.fff]" (or a space for the T): no signs, no trailing text.
@@ -143,6 +152,9 @@ GpsTime parse_start_time(const Field& f) {
   if (!is_valid_calendar(c)) f.fail("'" + s + "' is not a real date and time (" + expected.substr(9) + ")");
   const GpsTime t = gps_time_from_calendar(c);
   if (t.week < 0) f.fail("'" + s + "' is before the GPS epoch (1980-01-06)");
+  if (t.week > kMaxStartWeek)
+    f.fail(fmt::format("'{}' is in GPS week {}, after the last one a scenario may start in ({})", s, t.week,
+                       kMaxStartWeek));
   return t;
 }
 

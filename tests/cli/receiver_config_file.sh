@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # `deepnav run --config FILE`: the file --print-config writes reproduces the flags' run
 # byte for byte; flags on the command line win over the file; a misspelt key, a value of
-# the wrong type or a choice not offered exits non-zero naming the file, line and key.
+# the wrong type, a choice not offered or a key that is not a name exits non-zero naming
+# the file, line and key.
 # Runs from a folder outside the project, in ultra-tight mode without --imu-grades-file:
 # the default IMU grades resolve from any working directory.
 #   usage: receiver_config_file.sh <deepnav binary> <source dir>
@@ -49,6 +50,10 @@ expect_error $'input: sim/if_ibyte.bin\nout: bad\nfs: fast' "bad.yaml:3:" "'fs'"
 expect_error $'input: sim/if_ibyte.bin\nout: bad\nmode: ultrax' "bad.yaml:3:" "'mode'" "ultra"
 expect_error $'input: sim/if_ibyte.bin\nout: bad\nimu-lever-arm: [1, 2]' "bad.yaml:3:" "expected 3"
 expect_error $'input: sim/if_ibyte.bin\nout: bad\npll-order: {value: 3}' "bad.yaml:3:" "'pll-order'"
+# Keys that are not names (found by fuzzing: yaml-cpp's "bad conversion", no file or line).
+expect_error $'input: sim/if_ibyte.bin\n? [out, fs]\n: bad' "bad.yaml:2:" "expected an option name as the key" "list or a map"
+expect_error $'? :' "bad.yaml:1:" "expected an option name as the key" "list or a map"
+expect_error $'input: sim/if_ibyte.bin\n~: 3' "bad.yaml:2:" "expected an option name as the key" "null"
 [[ -e bad ]] && fail "a rejected configuration made the output folder"
 [[ $failures -eq 0 ]] && echo "ok   --config reproduces the flags' run; flags win; bad keys named"
 exit $((failures > 0))

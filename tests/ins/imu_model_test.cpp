@@ -90,6 +90,16 @@ TEST(ImuGrades, MisspelledFieldIsRejected) {
   EXPECT_NE(error_of(path).find("accel.vrw_m_per_s"), std::string::npos) << error_of(path);
 }
 
+// The same class of input the scenario fuzzer found (a key that is a list): it escaped as
+// yaml-cpp's "bad conversion", without the file or the field.
+TEST(ImuGrades, KeyThatIsAListIsRejected) {
+  const auto path = write_temp_yaml("list_key", "grades:\n  g1:\n    sample_rate_hz: 100\n" + kGyroOk +
+                                                    "    accel: {[a, b]: 1}\n");
+  const std::string error = error_of(path);
+  EXPECT_NE(error.find("imu_model_test_list_key.yaml: grade 'g1', field 'accel.'"), std::string::npos) << error;
+  EXPECT_NE(error.find("expected field names as keys"), std::string::npos) << error;
+}
+
 TEST(ImuGrades, NegativeAndNonNumericValuesAreRejected) {
   auto path = write_temp_yaml("negative", "grades:\n  g1:\n    sample_rate_hz: -5\n");
   EXPECT_NE(error_of(path).find("sample_rate_hz"), std::string::npos);

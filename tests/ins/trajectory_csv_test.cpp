@@ -2,10 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
 #include <fstream>
+#include <sstream>
+#include <utility>
 
 #include "ins/sim/trajectory_presets.hpp"
 
@@ -65,6 +68,23 @@ TEST(TrajectoryCsv, DerivativesAreConsistent) {
     const Eigen::Vector3d v_fd = (csv->at(t + h).r_ecef_m - csv->at(t - h).r_ecef_m) / (2 * h);
     const TrajectoryState s = csv->at(t);
     EXPECT_LE((v_fd - s.v_ecef_mps).norm(), 1e-6 * s.v_ecef_mps.norm()) << t;
+  }
+}
+
+// Found by fuzzing (tests/fuzz/trajectory_csv_fuzzer.cpp): the attitude rates' finite
+// differences (steps of 2 ms) reached outside a file spanning under 8 ms, and at() threw
+// std::out_of_range for times inside the file; in a file whose first time is just below a
+// power of two, (t0 + 4 ms) - 4 ms rounds to an ulp before t0, with the same result.
+TEST(TrajectoryCsv, EveryTimeInsideTheFileIsDefined) {
+  const std::string rows[] = {"-3052000,4045000,3858000\n", "-3052000.001,4045000,3858000\n"};
+  for (const auto& [name, times] : std::initializer_list<std::pair<const char*, std::array<double, 4>>>{
+           {"span_3ms", {0.0, 0.001, 0.002, 0.003}}, {"rounding", {3.9972658455388332, 4.5, 5.0, 6.0}}}) {
+    std::string text = "t_s,x_ecef_m,y_ecef_m,z_ecef_m\n";
+    for (std::size_t i = 0; i < times.size(); ++i) text += fmt::format("{:.17g},", times[i]) + rows[i % 2];
+    std::istringstream in(text);
+    const auto trajectory = load_csv_trajectory(in, name);
+    for (double t : {times.front(), (times.front() + times.back()) / 2, times.back()})
+      EXPECT_NO_THROW(trajectory->at(t)) << name << " at " << t;
   }
 }
 

@@ -115,6 +115,27 @@ TEST(Scenario, BadInputNamesTheField) {
   expect_error("", {"test.yaml"});
 }
 
+// Found by fuzzing (tests/fuzz/scenario_fuzzer.cpp): a key that is a list escaped as
+// yaml-cpp's "bad conversion", naming neither the file nor the field.
+TEST(Scenario, KeysThatAreNotNamesAreErrors) {
+  expect_error(std::string(kMinimal) + "imu: {grade: tactical, lever_arm_m: 0.8,[. .3, 0.4]}\n",
+               {"test.yaml:3", "field 'imu'", "expected field names as keys"});
+  expect_error(std::string(kMinimal) + "? [a, b]\n: 1\n", {"test.yaml:3", "expected field names as keys"});
+  expect_error(std::string(kMinimal) + "~: 1\n", {"test.yaml:3", "an empty key"});
+}
+
+// Found by fuzzing (tests/fuzz/scenario_fuzzer.cpp): a date-form start time in year 3738
+// (GPS week 91727) was accepted, and the scenario written beside the outputs, which has
+// it as {week, sow}, then failed to read ("start_time.week out of range").
+TEST(Scenario, StartTimeBoundsAgreeInBothForms) {
+  expect_error("start_time: \"3738-01-01T02:00:00\"\nduration_s: 1\n", {"start_time", "GPS week 91727", "10000"});
+  expect_error("start_time: {week: 10001, sow: 0}\nduration_s: 1\n", {"start_time.week", "out of range"});
+  const Scenario late = parse_scenario("start_time: \"2171-08-01T00:00:00\"\nduration_s: 1\n", "test.yaml",
+                                       DEEPNAV_SOURCE_DIR, DEEPNAV_SOURCE_DIR);
+  EXPECT_EQ(late.start_time.week, 9995);
+  EXPECT_NO_THROW(parse_scenario(scenario_to_yaml(late), "written.yaml", DEEPNAV_SOURCE_DIR, DEEPNAV_SOURCE_DIR));
+}
+
 TEST(Scenario, ErrorsDefaultToNoneAndPresetsFillEveryField) {
   EXPECT_EQ(parse(kMinimal).errors, error_preset("none"));
   EXPECT_EQ(parse(std::string(kMinimal) + "errors: {preset: none}\n").errors, error_preset("none"));
