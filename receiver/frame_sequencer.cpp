@@ -49,6 +49,11 @@ void FrameSequencer::flush() {
   }
 }
 
+void FrameSequencer::finish(std::uint64_t end_sequence) {
+  flush();
+  declare_lost_until(end_sequence);
+}
+
 void FrameSequencer::deliver_ready() {
   for (auto it = waiting_.begin(); it != waiting_.end() && it->first == next_; it = waiting_.begin()) {
     stream::Frame f = std::move(it->second);

@@ -29,6 +29,9 @@ class FrameSequencer {
   void add(stream::Frame frame);
   /// The stream ended: frames still waiting are delivered, the holes before them lost.
   void flush();
+  /// The stream ended with the end-of-stream frame numbered `end_sequence`: as flush(), and
+  /// the numbers after the last frame that came, up to it, are lost too.
+  void finish(std::uint64_t end_sequence);
 
   std::int64_t duplicated() const { return duplicated_; }
   std::int64_t reordered() const { return reordered_; }

@@ -9,7 +9,9 @@
 #include <cstdint>
 #include <deque>
 #include <mutex>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace deepnav {
@@ -22,8 +24,14 @@ struct StreamPiece {
 /// How a stream ended: `failed` for a protocol violation or a connection that could not
 /// be re-established (the message says which), otherwise a normal end.
 struct StreamEnd {
+  StreamEnd() = default;
+  StreamEnd(std::string why, bool failed_, std::optional<std::int64_t> end_index = std::nullopt)
+      : reason(std::move(why)), failed(failed_), end_sample_index(end_index) {}
   std::string reason;
   bool failed = false;
+  /// One past the stream's last sample, when the end says so (the end-of-stream frame's
+  /// first sample index): samples missing before it are a gap like any other.
+  std::optional<std::int64_t> end_sample_index;
 };
 
 class StreamSampleQueue {

@@ -100,6 +100,7 @@ bool StreamSampleSource::next_piece() {
       case StreamSampleQueue::PopResult::end: {
         ended_ = true;
         const StreamEnd end = queue_.end();
+        end_index_ = end.end_sample_index;
         update_stats([&](StreamStats& s) {
           s.end_reason = end.reason;
           s.failed = end.failed;
@@ -170,6 +171,15 @@ std::size_t StreamSampleSource::read(std::span<Sample> out) {
       held_.pop_front();
       held_offset_ = 0;
     }
+  }
+  if (filled == 0 && end_index_ && *end_index_ > next_index_) {
+    // Frames lost at the very end: no later piece shows their hole, the end frame does.
+    const SampleGap gap{next_index_, *end_index_ - next_index_};
+    update_stats([&](StreamStats& s) {
+      if (s.gaps.size() < kMaxGapRecords) s.gaps.push_back(gap);
+    });
+    report_gap(gap);
+    next_index_ = *end_index_;
   }
   if (filled == 0) at_end_ = true;
   return filled;

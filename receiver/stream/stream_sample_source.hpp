@@ -121,6 +121,7 @@ class StreamSampleSource : public SampleSource {
   std::deque<StreamPiece> held_;  ///< pieces taken from the queue, the front partly consumed
   std::size_t held_offset_ = 0;   ///< bytes of held_.front() already delivered
   std::int64_t next_index_ = 0;
+  std::optional<std::int64_t> end_index_;  ///< one past the last sample, once the end says so
   bool at_end_ = false, ended_ = false, interrupted_ = false;
   mutable std::mutex stats_mutex_;
   StreamStats stats_;

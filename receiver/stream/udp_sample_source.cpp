@@ -106,14 +106,23 @@ void UdpSampleSource::handle_datagram(std::span<const std::byte> bytes) {
     return;
   }
   if (d.frame->header.end_of_stream) {
-    sequencer_.flush();
+    // The end frame's number and index say how many frames and samples the stream had:
+    // frames lost after the last one that came are lost all the same.
+    sequencer_.finish(d.frame->header.sequence);
     send_request(true);
-    queue_.finish({"end of stream", false});
+    queue_.finish({"end of stream", false, d.frame->header.first_sample_index});
     finished_ = true;
     return;
   }
-  update_stats([&](StreamStats& s) { s.bytes_received += static_cast<std::int64_t>(bytes.size()); });
   sequencer_.add(std::move(*d.frame));
+  // The sequencer classifies the frames; the summary reads StreamStats (its counts run on
+  // across restart()).
+  update_stats([&](StreamStats& s) {
+    s.bytes_received += static_cast<std::int64_t>(bytes.size());
+    s.frames_duplicated = sequencer_.duplicated();
+    s.frames_reordered = sequencer_.reordered();
+    s.frames_late = sequencer_.late();
+  });
 }
 
 void UdpSampleSource::io_loop() {

@@ -226,6 +226,24 @@ TEST(FrameSequencer, ClassifiesLostDuplicatedReorderedAndLateFrames) {
   EXPECT_EQ(seq.lost(), 1);
 }
 
+TEST(FrameSequencer, FramesLostJustBeforeTheEndAreLost) {
+  // No later frame shows the hole after 3: the end-of-stream frame, numbered 6, does.
+  std::vector<std::uint64_t> delivered;
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> lost;
+  FrameSequencer seq(
+      4, [&](Frame&& f) { delivered.push_back(f.header.sequence); },
+      [&](std::uint64_t a, std::uint64_t b) { lost.emplace_back(a, b); });
+  for (std::uint64_t s : {0, 1, 3}) {
+    Frame f;
+    f.header.sequence = s;
+    seq.add(std::move(f));
+  }
+  seq.finish(6);
+  EXPECT_EQ(delivered, (std::vector<std::uint64_t>{0, 1, 3}));
+  EXPECT_EQ(lost, (std::vector<std::pair<std::uint64_t, std::uint64_t>>{{2, 2}, {4, 5}}));
+  EXPECT_EQ(seq.lost(), 3);
+}
+
 TEST(FrameSequencer, HugeJumpIsOneLostRangeInBoundedTime) {
   // 2^62 numbers declared lost at once: reported as one range, remembered only as far as a
   // late frame can be told apart (not one step per number, which would never end).
