@@ -44,6 +44,8 @@ struct AidedReceiver::Impl : ChannelAiding {
   MismatchWatch troposphere_watch, ionosphere_watch;
   std::string start_method;
   int restarts = 0;
+  int withheld = 0;  ///< solutions not published for their covariance
+  bool withholding = false;
   double fs;
   double last_pvt_t_s = -1e9;
   int ranging = 0;
@@ -190,6 +192,23 @@ struct AidedReceiver::Impl : ChannelAiding {
     return std::nullopt;
   }
 
+  /// Whether the filter's own horizontal uncertainty lets its solution be published; says
+  /// so when that changes.
+  bool supported_by_covariance(double t_s) {
+    const Eigen::Vector3d sigma = nav->position_sigma_ned_m();
+    const double horizontal = std::hypot(sigma(0), sigma(1));
+    const bool supported = horizontal <= cfg.max_published_sigma_m;
+    if (!supported && !withholding)
+      spdlog::warn("t = {:.2f} s: the aided solution's horizontal 1-sigma is {:.1f} m, over {:.1f} m: not published "
+                   "until measurements bring it back",
+                   t_s, horizontal, cfg.max_published_sigma_m);
+    if (supported && withholding)
+      spdlog::info("t = {:.2f} s: the aided solution's horizontal 1-sigma is {:.1f} m: published again", t_s, horizontal);
+    withholding = !supported;
+    if (!supported) ++withheld;
+    return supported;
+  }
+
   void start_ins(const ReceiverEpoch& ep) {
     GnssFix fix;
     fix.t_s = ep.t_s;
@@ -308,7 +327,11 @@ struct AidedReceiver::Impl : ChannelAiding {
         spdlog::info("t = {:.2f} s: the aided filter estimates the zenith troposphere residual from now on", ep.t_s);
       }
     }
-    if (!cfg.ionosphere.enabled && cfg.ionosphere.enable_on_mismatch) {
+    // A missing troposphere reads as an ionosphere scale error too (-2.5 for the 2.3 m
+    // zenith delay: both signatures grow towards the horizon, and one fit cannot tell them
+    // apart); it is found first, by its wider margin, and explains the residuals.
+    const bool troposphere_explains = troposphere_watch.report.found_at_s.has_value();
+    if (!cfg.ionosphere.enabled && cfg.ionosphere.enable_on_mismatch && !troposphere_explains) {
       find_mismatch(ep, ionosphere_watch);
       if (ionosphere_watch.report.found_at_s && take_state(ep, ionosphere_watch, nav && nav->ionosphere_state_enabled())) {
         nav->enable_ionosphere_state(ionosphere_watch.report.fitted_error, 0.2);
@@ -381,6 +404,8 @@ struct AidedReceiver::Impl : ChannelAiding {
       out.valid = false;
       return out;
     }
+    out.valid = supported_by_covariance(ep.t_s);
+    if (!out.valid) return out;
     out.llh = wgs84::ecef_to_llh(out.r_ecef_m);
     out.v_ned_mps = ecef_to_ned_vector(out.llh, out.v_ecef_mps);
     const EulerAngles e = euler_from_quaternion(nav->ins().q_b_n);
@@ -427,6 +452,7 @@ const std::vector<ModeChange>& AidedReceiver::mode_changes() const { return impl
 const std::string& AidedReceiver::ins_start_method() const { return impl_->start_method; }
 int AidedReceiver::filter_restarts() const { return impl_->restarts; }
 int AidedReceiver::satellite_exclusions() const { return impl_->faults.exclusions(); }
+int AidedReceiver::withheld_solutions() const { return impl_->withheld; }
 const DelayMismatchReport& AidedReceiver::troposphere_mismatch() const { return impl_->troposphere_watch.report; }
 const DelayMismatchReport& AidedReceiver::ionosphere_mismatch() const { return impl_->ionosphere_watch.report; }
 

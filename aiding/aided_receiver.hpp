@@ -41,6 +41,10 @@ struct AidedReceiverConfig {
   DelayMismatchConfig troposphere_mismatch;
   DelayMismatchConfig ionosphere_mismatch{.signature = DelaySignature::ionosphere_scale, .threshold = 0.75};
   bool fault_exclusion = true;
+  /// An aided or coasting solution whose own horizontal 1-sigma exceeds this (m) is not
+  /// published: the INS alone after a long outage, or a filter that has lost its way, is
+  /// not a fix (it still runs on and is published again once measurements bring it back).
+  double max_published_sigma_m = 100.0;
   SatelliteFaultConfig faults;
 };
 
@@ -83,6 +87,8 @@ class AidedReceiver {
   int filter_restarts() const;
   /// Times a satellite was excluded by the per-satellite fault monitor.
   int satellite_exclusions() const;
+  /// Epochs whose solution was withheld for its covariance (max_published_sigma_m).
+  int withheld_solutions() const;
   /// What the watch for a troposphere (zenith error, m) and an ionosphere (scale error)
   /// model mismatch found; a state on from the start is not reported here.
   const DelayMismatchReport& troposphere_mismatch() const;

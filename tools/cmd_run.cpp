@@ -48,6 +48,7 @@ struct RunOptions {
   bool filter_troposphere = false;
   bool filter_ionosphere = false;
   bool fault_exclusion = true;
+  double max_solution_sigma_m = 100.0;
   bool detect_troposphere_mismatch = true;
   bool detect_ionosphere_mismatch = true;
   bool print_config = false;
@@ -84,6 +85,7 @@ aiding::AidedReceiverConfig aided_config(const RunOptions& o, aiding::NavMode mo
   c.troposphere.enable_on_mismatch = o.detect_troposphere_mismatch;
   c.ionosphere.enable_on_mismatch = o.detect_ionosphere_mismatch;
   c.fault_exclusion = o.fault_exclusion;
+  c.max_published_sigma_m = o.max_solution_sigma_m;
   return c;
 }
 
@@ -155,6 +157,7 @@ nlohmann::json run_summary(const RunOptions& o, const OpenedSource& opened, aidi
     for (const ImuGap& g : imu_gaps) gaps.push_back({{"from_s", g.t_before_s}, {"to_s", g.t_after_s}, {"line", g.line}});
     summary["imu_gaps"] = gaps;
     summary["satellite_exclusions"] = aided->satellite_exclusions();
+    summary["withheld_solutions"] = aided->withheld_solutions();
     const auto state_from = [](const aiding::DelayMismatchReport& m) {
       return m.state_from_s ? nlohmann::json(*m.state_from_s) : nlohmann::json(nullptr);
     };
@@ -354,6 +357,10 @@ const bool registered = register_command([](CommandParents& parents) {
                 "Tight/ultra: take the ionosphere scale state when the fixes show the signal without most of the "
                 "ionosphere model's delay (a signal without ionosphere)")
       ->default_str("true");
+  cmd->add_option("--max-solution-sigma", o->max_solution_sigma_m,
+                  "Aided modes: a solution whose horizontal 1-sigma exceeds this (m) is not published")
+      ->check(CLI::Range(0.1, 1e6))
+      ->capture_default_str();
   cmd->add_flag("--fault-exclusion,!--no-fault-exclusion", o->fault_exclusion,
                 "Tight/ultra: exclude a satellite whose pseudorange innovations disagree with the filter")
       ->default_str("true");  // flags capture no default: --print-config reads this one
