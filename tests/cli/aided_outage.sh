@@ -2,7 +2,9 @@
 # A 30 s outage of every signal in the middle of paper 003's land circle, with a
 # tactical IMU: in ultra-tight and in tight mode the INS coasts through the gap (error
 # reported and bounded), every channel is tracked again within 1 s of the signals'
-# return, and the solution is back to sub-metre level right after.
+# return, and the solution is back to sub-metre level right after. With
+# --max-solution-sigma 2 the end of the coast, whose own 1-sigma passes 2 m, is withheld
+# (summary.json withheld_solutions) and every epoch after the return is published again.
 #   usage: aided_outage.sh <deepnav binary> <source dir>
 set -uo pipefail
 deepnav=$1
@@ -10,12 +12,16 @@ src=$2
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 "$deepnav" -q sim --scenario "$src/data/scenarios/land_circle_outage_120s.yaml" --out "$work/sim" > /dev/null || { echo "FAIL sim"; exit 1; }
-for mode in ultra tight; do
+run() {  # run MODE OUT [options]
+  local mode=$1 out=$2
+  shift 2
   "$deepnav" -q run --input "$work/sim/if_ibyte.bin" --format ibyte --fs 2600000 --week 2190 \
-    --iono-from "$src/data/brdc0010.22n" --truth "$work/sim/truth.csv" --out "$work/$mode" \
-    --mode $mode --imu "$work/sim/imu.csv" --imu-grade tactical --imu-grades-file "$src/data/imu_grades.yaml" \
-    --imu-lever-arm 0.8 -0.3 0.4 > /dev/null || { echo "FAIL run $mode"; exit 1; }
-done
+    --iono-from "$src/data/brdc0010.22n" --truth "$work/sim/truth.csv" --out "$work/$out" \
+    --mode "$mode" --imu "$work/sim/imu.csv" --imu-grade tactical --imu-grades-file "$src/data/imu_grades.yaml" \
+    --imu-lever-arm 0.8 -0.3 0.4 "$@" > /dev/null || { echo "FAIL run $mode $*"; exit 1; }
+}
+for mode in ultra tight; do run $mode $mode; done
+run tight tight_withheld --max-solution-sigma 2
 python3 - "$work" <<'PY'
 import csv, json, math, sys
 work = sys.argv[1]
@@ -59,6 +65,16 @@ for mode in ("ultra", "tight"):
     print(f"{mode}: outage horizontal error max {worst_gap:.2f} m, after {worst_after:.2f} m, "
           f"re-lock {max(relock.values(), default=float('nan')):.2f} s, mode changes "
           + ", ".join(f"{c['t_s']:.0f} s {c['from']}->{c['to']}" for c in s["mode_changes"]))
+# The covariance limit: the late coast withheld, everything after the return published.
+def times(out):
+    return [float(r["t_s"]) for r in csv.DictReader(open(f"{work}/{out}/pvt.csv"))]
+withheld = json.load(open(f"{work}/tight_withheld/summary.json"))["withheld_solutions"]
+if not 0 < withheld < 30:
+    bad.append(f"--max-solution-sigma 2: {withheld} solutions withheld (expected the end of the 30 s coast)")
+late = lambda ts: [t for t in ts if t >= gap[1] + 5]
+if late(times("tight_withheld")) != late(times("tight")):
+    bad.append("--max-solution-sigma 2: epochs after the return missing")
+print(f"tight --max-solution-sigma 2: {withheld} solutions withheld")
 print("\n".join(bad) if bad else "ok")
 sys.exit(1 if bad else 0)
 PY
