@@ -41,8 +41,8 @@ double read_number(const YAML::Node& map, const std::string& key, const std::str
 }
 
 double read_non_negative(const YAML::Node& map, const std::string& key, const std::string& prefix,
-                         const FieldContext& ctx) {
-  const double value = read_number(map, key, prefix, ctx, true);
+                         const FieldContext& ctx, bool required = true) {
+  const double value = read_number(map, key, prefix, ctx, required);
   if (value < 0.0) throw std::runtime_error(ctx.where(prefix + key) + ": expected a value >= 0");
   return value;
 }
@@ -89,7 +89,7 @@ TriadErrorSpec parse_gyro(const YAML::Node& node, const FieldContext& ctx) {
   const std::string p = "gyro.";
   reject_unknown_keys(node,
                       {"bias_deg_per_h", "bias_sigma_deg_per_h", "bias_instability_deg_per_h", "correlation_time_s",
-                       "arw_deg_per_sqrt_h", "scale_factor_ppm", "misalignment_mrad", "quantization_rad"},
+                       "arw_deg_per_sqrt_h", "scale_factor_ppm", "misalignment_mrad", "quantization_rad", "range_deg_per_s"},
                       p, ctx);
   TriadErrorSpec s;
   s.bias = read_bias(node, "bias_deg_per_h", p, ctx) * kDegPerHour_to_radps;
@@ -100,6 +100,7 @@ TriadErrorSpec parse_gyro(const YAML::Node& node, const FieldContext& ctx) {
   s.scale_factor_sigma = read_non_negative(node, "scale_factor_ppm", p, ctx) * kPpm;
   s.misalignment_sigma_rad = read_non_negative(node, "misalignment_mrad", p, ctx) * 1e-3;
   s.quantization = read_non_negative(node, "quantization_rad", p, ctx);
+  s.full_scale = read_non_negative(node, "range_deg_per_s", p, ctx, false) * kDegToRad;
   return s;
 }
 
@@ -108,7 +109,7 @@ TriadErrorSpec parse_accel(const YAML::Node& node, const FieldContext& ctx) {
   const std::string p = "accel.";
   reject_unknown_keys(node,
                       {"bias_ug", "bias_sigma_ug", "bias_instability_ug", "correlation_time_s", "vrw_mps_per_sqrt_h",
-                       "scale_factor_ppm", "misalignment_mrad", "quantization_mps"},
+                       "scale_factor_ppm", "misalignment_mrad", "quantization_mps", "range_g"},
                       p, ctx);
   TriadErrorSpec s;
   s.bias = read_bias(node, "bias_ug", p, ctx) * kMicroG_to_mps2;
@@ -119,6 +120,7 @@ TriadErrorSpec parse_accel(const YAML::Node& node, const FieldContext& ctx) {
   s.scale_factor_sigma = read_non_negative(node, "scale_factor_ppm", p, ctx) * kPpm;
   s.misalignment_sigma_rad = read_non_negative(node, "misalignment_mrad", p, ctx) * 1e-3;
   s.quantization = read_non_negative(node, "quantization_mps", p, ctx);
+  s.full_scale = read_non_negative(node, "range_g", p, ctx, false) * kStandardGravity_mps2;
   return s;
 }
 

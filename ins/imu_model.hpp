@@ -22,6 +22,7 @@ struct TriadErrorSpec {
   double scale_factor_sigma = 0.0;      ///< 1 sigma per axis, dimensionless (1e-6 = 1 ppm)
   double misalignment_sigma_rad = 0.0;  ///< 1 sigma of each off-diagonal axis misalignment
   double quantization = 0.0;            ///< LSB of the increment (rad or m/s); 0 = none
+  double full_scale = 0.0;              ///< measurement range, +- rad/s or m/s^2 per axis; 0 = not given
 };
 
 /// Both triads and the output rate.

@@ -25,6 +25,7 @@
 #include "aiding/navigation_session.hpp"
 #include "ins/imu_file.hpp"
 #include "ins/imu_model.hpp"
+#include "ins/imu_range_check.hpp"
 
 namespace deepnav::cli {
 namespace {
@@ -59,6 +60,27 @@ aiding::NavMode parse_mode(const RunOptions& o) {
   if (mode != aiding::NavMode::scalar && o.imu_path.empty())
     throw UserError("--mode " + o.mode + " needs an IMU file (--imu FILE)");
   return mode;
+}
+
+/// What the run found wrong with its IMU log: gaps (the INS stops across them) and samples
+/// beyond the configured grade's measurement range (flagged).
+struct ImuIntegrity {
+  std::vector<ImuGap> gaps;
+  ImuRangeExcess beyond_range;
+};
+
+/// Reports the IMU log's gaps and out-of-range samples (with the file) and returns them.
+ImuIntegrity check_imu(const RunOptions& o, const ImuLog& imu, const ImuErrorModel& grade) {
+  for (const ImuGap& g : imu.gaps)
+    spdlog::warn("{}:{}: no IMU data from t = {:.3f} s to {:.3f} s: the INS stops across the gap", o.imu_path, g.line,
+                 g.t_before_s, g.t_after_s);
+  ImuIntegrity out{imu.gaps, samples_beyond_range(imu.samples, grade)};
+  if (out.beyond_range.samples > 0)
+    spdlog::warn("{}: {} samples beyond the {} grade's measurement range, the first at t = {:.3f} s ({}): a wrong "
+                 "--imu-grade, a unit error or a corrupt sample",
+                 o.imu_path, out.beyond_range.samples, o.imu_grade, *out.beyond_range.first_t_s,
+                 out.beyond_range.first_what);
+  return out;
 }
 
 ImuLog read_imu(const RunOptions& o) {
@@ -115,7 +137,7 @@ aiding::NavigationSessionConfig session_config(const RunOptions& o, aiding::NavM
 }
 
 nlohmann::json run_summary(const RunOptions& o, const OpenedSource& opened, aiding::NavigationSession& session,
-                           const RunStatistics& stats, bool scored, const std::vector<ImuGap>& imu_gaps) {
+                           const RunStatistics& stats, bool scored, const ImuIntegrity& imu_integrity) {
   ScalarReceiver& receiver = session.receiver();
   nlohmann::json summary = {
       {"input", opened.input},
@@ -154,8 +176,9 @@ nlohmann::json run_summary(const RunOptions& o, const OpenedSource& opened, aidi
     summary["ins_start"] = aided->ins_start_method();
     summary["filter_restarts"] = aided->filter_restarts();
     nlohmann::json gaps = nlohmann::json::array();
-    for (const ImuGap& g : imu_gaps) gaps.push_back({{"from_s", g.t_before_s}, {"to_s", g.t_after_s}, {"line", g.line}});
+    for (const ImuGap& g : imu_integrity.gaps) gaps.push_back({{"from_s", g.t_before_s}, {"to_s", g.t_after_s}, {"line", g.line}});
     summary["imu_gaps"] = gaps;
+    summary["imu_samples_beyond_range"] = imu_integrity.beyond_range.samples;
     summary["satellite_exclusions"] = aided->satellite_exclusions();
     summary["withheld_solutions"] = aided->withheld_solutions();
     const auto state_from = [](const aiding::DelayMismatchReport& m) {
@@ -246,16 +269,14 @@ void run_receiver(RunOptions o) {
   const aiding::NavMode mode = parse_mode(o);
   std::optional<ImuLog> imu;
   if (mode != aiding::NavMode::scalar) imu = read_imu(o);
-  const std::vector<ImuGap> imu_gaps = imu ? imu->gaps : std::vector<ImuGap>{};
-  for (const ImuGap& g : imu_gaps)
-    spdlog::warn("{}:{}: no IMU data from t = {:.3f} s to {:.3f} s: the INS stops across the gap", o.imu_path, g.line,
-                 g.t_before_s, g.t_after_s);
+  const aiding::NavigationSessionConfig config = session_config(o, mode);
+  const ImuIntegrity imu_integrity = imu ? check_imu(o, *imu, config.navigator.imu) : ImuIntegrity{};
   std::vector<std::unique_ptr<ProductSink>> products =
       file_products(o.out_dir, std::filesystem::path(opened.input).filename().string(), 1.0 / o.receiver.observation_rate_hz);
-  aiding::NavigationSession session(session_config(o, mode), *opened.source, std::move(imu), opened.duration_s);
+  aiding::NavigationSession session(config, *opened.source, std::move(imu), opened.duration_s);
   RunStatistics stats(truth ? &*truth : nullptr);
   SummarySink summary((std::filesystem::path(o.out_dir) / "summary.json").string(),
-                      [&] { return run_summary(o, opened, session, stats, truth.has_value(), imu_gaps); });
+                      [&] { return run_summary(o, opened, session, stats, truth.has_value(), imu_integrity); });
   std::vector<ProductSink*> sinks{&stats};
   for (const auto& p : products) sinks.push_back(p.get());
   sinks.push_back(&summary);
