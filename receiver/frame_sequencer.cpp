@@ -1,5 +1,7 @@
 #include "receiver/frame_sequencer.hpp"
 
+#include <algorithm>
+
 namespace deepnav {
 namespace {
 constexpr std::size_t kLostMemory = 4096;
@@ -35,9 +37,10 @@ void FrameSequencer::add(stream::Frame frame) {
   any_seen_ = true;
   waiting_.emplace(seq, std::move(frame));
   deliver_ready();
-  // Too far ahead of the hole: the missing frames are not coming.
+  // Missing numbers `window` or more behind the newest frame are not coming; the ones
+  // after them still have time.
   while (!waiting_.empty() && waiting_.rbegin()->first - next_ >= window_) {
-    declare_lost_until(waiting_.begin()->first);
+    declare_lost_until(std::min(waiting_.begin()->first, waiting_.rbegin()->first - window_ + 1));
     deliver_ready();
   }
 }
@@ -47,15 +50,24 @@ void FrameSequencer::flush() {
     declare_lost_until(waiting_.begin()->first);
     deliver_ready();
   }
+  report_pending_lost();
 }
 
 void FrameSequencer::finish(std::uint64_t end_sequence) {
   flush();
   declare_lost_until(end_sequence);
+  report_pending_lost();
+}
+
+void FrameSequencer::report_pending_lost() {
+  if (!pending_lost_) return;
+  on_lost_(pending_lost_->first, pending_lost_->second);
+  pending_lost_.reset();
 }
 
 void FrameSequencer::deliver_ready() {
   for (auto it = waiting_.begin(); it != waiting_.end() && it->first == next_; it = waiting_.begin()) {
+    report_pending_lost();  // a delivered frame ends the run of lost numbers before it
     stream::Frame f = std::move(it->second);
     waiting_.erase(it);
     ++next_;
@@ -65,7 +77,12 @@ void FrameSequencer::deliver_ready() {
 
 void FrameSequencer::declare_lost_until(std::uint64_t sequence) {
   if (sequence <= next_) return;
-  on_lost_(next_, sequence - 1);
+  if (pending_lost_ && pending_lost_->second + 1 == next_)
+    pending_lost_->second = sequence - 1;
+  else {
+    report_pending_lost();
+    pending_lost_ = {next_, sequence - 1};
+  }
   lost_ += static_cast<std::int64_t>(sequence - next_);
   // Only the last kLostMemory numbers can be remembered: start there, so a long run of
   // losses costs that many steps at most, not one per lost number.

@@ -1,12 +1,14 @@
 #pragma once
 // Puts the frames of a datagram stream back in order by sequence number. A frame that
-// arrives early waits (up to `window` frames) for the ones before it; when the window
-// overflows, or the stream ends, the missing sequence numbers are declared lost. So every
+// arrives early waits for the ones before it; a missing number is declared lost once a
+// frame `window` or more numbers after it has come (each missing number has its own
+// window: a frame held back just after a lost one is still in time), or the stream ends. So every
 // frame is classified exactly once: delivered (in order, possibly after reordering),
 // duplicated, late (arrived after being declared lost) or lost.
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <optional>
 #include <set>
 #include <utility>
 #include <vector>
@@ -18,7 +20,8 @@ namespace deepnav {
 class FrameSequencer {
  public:
   using Deliver = std::function<void(stream::Frame&&)>;
-  /// `on_lost` gets each run of lost sequence numbers as [first, last].
+  /// `on_lost` gets each run of lost sequence numbers as [first, last] (adjacent runs
+  /// declared at different times are reported as one, once a frame or the end closes it).
   using Lost = std::function<void(std::uint64_t first, std::uint64_t last)>;
 
   FrameSequencer(std::size_t window, Deliver deliver, Lost on_lost);
@@ -42,6 +45,7 @@ class FrameSequencer {
  private:
   void deliver_ready();
   void declare_lost_until(std::uint64_t sequence);
+  void report_pending_lost();
 
   std::size_t window_;
   Deliver deliver_;
@@ -51,6 +55,7 @@ class FrameSequencer {
   bool any_seen_ = false;
   std::map<std::uint64_t, stream::Frame> waiting_;
   std::set<std::uint64_t> recently_lost_;  ///< to tell a late frame from a duplicate (bounded)
+  std::optional<std::pair<std::uint64_t, std::uint64_t>> pending_lost_;  ///< declared, not yet reported
   std::int64_t duplicated_ = 0, reordered_ = 0, late_ = 0, lost_ = 0;
 };
 

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # UDP through an impairing relay (tests/cli/lib/udp_impair.py) on loopback: frames dropped
-# (a run, a single one and the last data frame), duplicated, and reordered at the edge of
-# the receiver's tolerance and just past it, plus seeded random ones. The receiver must
+# (a run, a single one, one just before a held-back frame, and the last data frame),
+# duplicated, and reordered at the edge of the receiver's tolerance and just past it, plus
+# seeded random ones. The receiver must
 # report exactly what the relay did: the dropped frames as lost ranges and their samples
 # as gaps, the duplicates counted, a frame held back across up to 63 frames as reordered
 # (UdpSampleSource::kReorderWindow = 64: one held across 64 was declared lost first and
@@ -27,7 +28,7 @@ server=$!
 server_port=$(port_from "$work/server_port")
 [[ -n $server_port ]] || fail "serve did not report its port"
 python3 "$relay_py" relay --server "127.0.0.1:$server_port" --port-file "$work/relay_port" --report "$work/relay.json" \
-  --seed 20 --drop 5,6,7,100,2997 --duplicate 40,41,200 --reorder 300:1,400:5,500:63,700:64 \
+  --seed 20 --drop 5,6,7,100,1000,2997 --duplicate 40,41,200 --reorder 300:1,400:5,500:63,700:64,1001:63 \
   --drop-fraction 0.003 --duplicate-fraction 0.003 --reorder-fraction 0.003 --reorder-depth 8 --idle-timeout 15 &
 relay=$!
 relay_port=$(port_from "$work/relay_port")

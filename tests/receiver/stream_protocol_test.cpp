@@ -244,6 +244,26 @@ TEST(FrameSequencer, FramesLostJustBeforeTheEndAreLost) {
   EXPECT_EQ(seq.lost(), 3);
 }
 
+TEST(FrameSequencer, AFrameHeldBackJustAfterALostOneIsStillInTime) {
+  // 1 is lost; 2 comes after 3, 4 and 5 (three later frames, inside a window of 4): it is
+  // used, and only 1 is lost. Then 7 and 8 are lost and reported as one run.
+  std::vector<std::uint64_t> delivered;
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> lost;
+  FrameSequencer seq(
+      4, [&](Frame&& f) { delivered.push_back(f.header.sequence); },
+      [&](std::uint64_t a, std::uint64_t b) { lost.emplace_back(a, b); });
+  for (std::uint64_t s : {0, 3, 4, 5, 2, 6, 9, 10, 11, 12}) {
+    Frame f;
+    f.header.sequence = s;
+    seq.add(std::move(f));
+  }
+  seq.flush();
+  EXPECT_EQ(delivered, (std::vector<std::uint64_t>{0, 2, 3, 4, 5, 6, 9, 10, 11, 12}));
+  EXPECT_EQ(lost, (std::vector<std::pair<std::uint64_t, std::uint64_t>>{{1, 1}, {7, 8}}));
+  EXPECT_EQ(seq.late(), 0);
+  EXPECT_EQ(seq.reordered(), 1);
+}
+
 TEST(FrameSequencer, HugeJumpIsOneLostRangeInBoundedTime) {
   // 2^62 numbers declared lost at once: reported as one range, remembered only as far as a
   // late frame can be told apart (not one step per number, which would never end).
