@@ -389,7 +389,7 @@ struct AidedReceiver::Impl : ChannelAiding {
     }
     AidedEpoch out;
     out.receiver = ep;
-    out.mode = modes.mode();
+    out.coupling = out.mode = modes.mode();
     if (!nav || out.mode == NavMode::scalar) return out;
     out.r_ecef_m = nav->antenna_ecef_at(ep.t_s);
     out.v_ecef_mps = nav->antenna_velocity_ecef_mps();
@@ -421,6 +421,7 @@ struct AidedReceiver::Impl : ChannelAiding {
       case NavMode::loose: out.filter_satellites = ep.pvt.valid ? static_cast<int>(ep.pvt.used_prns.size()) : 0; break;
       default: out.filter_satellites = 0;
     }
+    if (out.mode != NavMode::coast && out.filter_satellites < kMinSatellitesForAidedLabel) out.mode = NavMode::coast;
     return out;
   }
 };

@@ -51,6 +51,12 @@ struct AidedReceiverConfig {
 /// The aided solution at one observation epoch, next to the receiver's own.
 struct AidedEpoch {
   ReceiverEpoch receiver;                ///< observables and the receiver's standalone PVT
+  /// The coupling the filter runs at this epoch (the mode manager's choice).
+  NavMode coupling = NavMode::scalar;
+  /// What the solution is published as: the coupling, except that a solution whose update
+  /// at this epoch took fewer than kMinSatellitesForAidedLabel satellites (loose: no PVT;
+  /// tight: ranges; ultra-tight: measuring channels) is labelled coast: the INS, not the
+  /// satellites, carries it in the directions they leave open.
   NavMode mode = NavMode::scalar;
   bool valid = false;                    ///< an aided (or coasting) INS solution exists
   Eigen::Vector3d r_ecef_m = Eigen::Vector3d::Zero();   ///< antenna
@@ -66,6 +72,10 @@ struct AidedEpoch {
   /// (PVT satellites in loose mode, range rows in tight, discriminators in ultra; 0 coasting).
   int filter_satellites = 0;
 };
+
+/// Satellites an aided update must take for its solution to carry that mode's
+/// label: with fewer, position and clock are not observable from the satellites alone.
+inline constexpr int kMinSatellitesForAidedLabel = 4;
 
 class AidedReceiver {
  public:

@@ -24,7 +24,7 @@ PvtSolution aided_solution(const AidedEpoch& a) {
 }
 
 int gnss_measurements(const AidedEpoch& a) {
-  switch (a.mode) {
+  switch (a.coupling) {
     case NavMode::ultra: return a.measuring_channels;
     case NavMode::tight: return static_cast<int>(a.receiver.observations.size());
     case NavMode::coast: return 0;

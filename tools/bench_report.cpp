@@ -3,9 +3,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <stdexcept>
+
+#include <unistd.h>
 
 #include "tools/command_registry.hpp"
 
@@ -25,6 +28,11 @@ void BenchReport::add_row(std::vector<Cell> row) {
     throw std::invalid_argument(fmt::format("BenchReport '{}': row has {} cells, table has {} columns", title_,
                                             row.size(), columns_.size()));
   rows_.push_back(std::move(row));
+}
+
+std::string bench_scratch_dir(const std::string& given, const std::string& name) {
+  if (!given.empty()) return given;
+  return (std::filesystem::temp_directory_path() / fmt::format("deepnav_{}_{}", name, getpid())).string();
 }
 
 std::string source_relative(const std::string& path) {

@@ -12,6 +12,11 @@ namespace deepnav::cli {
 /// (so that recorded figures do not carry one checkout's location), else unchanged.
 std::string source_relative(const std::string& path);
 
+/// Where a benchmark writes its scratch files (synthesized IF): `given` when set, else a
+/// folder of this process's own under the temporary directory (deepnav_<name>_<pid>), so
+/// that two benchmarks run at once never write into each other's files.
+std::string bench_scratch_dir(const std::string& given, const std::string& name);
+
 class BenchReport {
  public:
   using Cell = std::variant<std::string, double, long long>;

@@ -295,7 +295,8 @@ void run_coupling(CouplingOptions o) {
   }
   for (const auto& t : o.trajectories) (void)seed_index(t);
   if (o.score_at_s >= o.duration_s) throw UserError("--score-at must fall inside --duration");
-  if (o.work_dir.empty()) o.work_dir = (fs::temp_directory_path() / "deepnav_bench_coupling").string();
+  const bool own_work_dir = o.work_dir.empty();
+  o.work_dir = bench_scratch_dir(o.work_dir, "bench_coupling");
   // Without --out the points live in a folder of their own that is removed afterwards.
   const bool keep_points = !o.out_dir.empty();
   if (!keep_points) o.out_dir = (fs::path(o.work_dir) / fmt::format("points_{}", getpid())).string();
@@ -319,6 +320,8 @@ void run_coupling(CouplingOptions o) {
   for (const auto& t : o.trajectories)
     for (int r = o.first_run; r < o.first_run + o.runs; ++r) points.push_back(load_point(o, t, r));
   if (!keep_points) fs::remove_all(o.out_dir);
+  std::error_code ignored;  // a folder of our own, empty by now (each point removes its IF)
+  if (own_work_dir) fs::remove(o.work_dir, ignored);
 
   BenchReport report(fmt::format("GNSS/INS coupling: position error against truth (paper 003), errors: {}", o.errors),
                      {"trajectory", "mode", "n_at_m", "e_at_m", "d_at_m", "paper_n_m", "paper_e_m", "paper_d_m",

@@ -57,7 +57,7 @@ void TrackingCsvSink::on_correlation(const CorrelatorEpoch& e, const ChannelSnap
 
 void NmeaSink::on_epoch(const NavigationEpoch& e) {
   if (!e.solution.valid) return;
-  file_.write(nmea_sentences(e.solution, cn0_by_prn(e.receiver), e.leap_seconds));
+  file_.write(nmea_sentences(e.solution, cn0_by_prn(e.receiver), e.leap_seconds, e.mode == "coast"));
 }
 
 TrackSink::TrackSink(const std::string& kml_path, const std::string& gpx_path, const std::string& name)

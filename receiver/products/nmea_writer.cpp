@@ -34,20 +34,22 @@ std::string nmea_checksum(const std::string& body) {
   return fmt::format("*{:02X}", sum);
 }
 
-std::string nmea_sentences(const PvtSolution& fix, const std::map<int, double>& cn0_dbhz, int leap_seconds) {
+std::string nmea_sentences(const PvtSolution& fix, const std::map<int, double>& cn0_dbhz, int leap_seconds,
+                           bool dead_reckoning) {
   const CalendarTime utc = calendar_from_gps_time(fix.t.plus_seconds(-leap_seconds));
   const std::string hms = fmt::format("{:02d}{:02d}{:05.2f}", utc.hour, utc.minute, std::floor(utc.second * 100.0) / 100.0);
   const double lat = fix.llh.lat_rad * kRadToDeg, lon = fix.llh.lon_rad * kRadToDeg;
   const std::string pos = angle(lat, 2, 'N', 'S') + "," + angle(lon, 3, 'E', 'W');
   std::string out;
-  out += sentence(fmt::format("GPGGA,{},{},1,{:02d},{:.1f},{:.2f},M,0.0,M,,", hms, pos, fix.used_prns.size(),
-                              fix.dops.hdop, fix.llh.height_m));
+  // GGA quality 1: GNSS fix, 6: estimated (dead reckoning); RMC mode indicator A / E.
+  out += sentence(fmt::format("GPGGA,{},{},{},{:02d},{:.1f},{:.2f},M,0.0,M,,", hms, pos, dead_reckoning ? 6 : 1,
+                              fix.used_prns.size(), fix.dops.hdop, fix.llh.height_m));
   const Eigen::Vector3d v = C_e_n(fix.llh.lat_rad, fix.llh.lon_rad) * fix.v_ecef_mps;
   const double speed_knots = v.head<2>().norm() * 3600.0 / 1852.0;
   double course = std::atan2(v.y(), v.x()) * kRadToDeg;
   if (course < 0) course += 360.0;
-  out += sentence(fmt::format("GPRMC,{},A,{},{:.2f},{:.1f},{:02d}{:02d}{:02d},,,A", hms, pos, speed_knots, course,
-                              utc.day, utc.month, utc.year % 100));
+  out += sentence(fmt::format("GPRMC,{},A,{},{:.2f},{:.1f},{:02d}{:02d}{:02d},,,{}", hms, pos, speed_knots, course,
+                              utc.day, utc.month, utc.year % 100, dead_reckoning ? 'E' : 'A'));
   std::string prns;
   for (int i = 0; i < 12; ++i)
     prns += (i < static_cast<int>(fix.used_prns.size()) ? fmt::format("{:02d}", fix.used_prns[static_cast<std::size_t>(i)]) : "") + ",";

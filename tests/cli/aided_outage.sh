@@ -5,6 +5,7 @@
 # return, and the solution is back to sub-metre level right after. With
 # --max-solution-sigma 2 the end of the coast, whose own 1-sigma passes 2 m, is withheld
 # (summary.json withheld_solutions) and every epoch after the return is published again.
+# Through the outage the solutions are labelled coast (GGA quality 6), not ultra or tight.
 #   usage: aided_outage.sh <deepnav binary> <source dir>
 set -uo pipefail
 deepnav=$1
@@ -61,6 +62,17 @@ for mode in ("ultra", "tight"):
     late = {p: relock.get(p) for p in synth if relock.get(p) is None or relock[p] > 1.0}
     if late:
         bad.append(f"{mode}: not tracked again within 1 s: {late}")
+    # Honest labels: through the outage the solution is the INS's (coast; NMEA GGA quality
+    # 6), and it is the requested mode's again once the satellites are measured.
+    labels_gap = {r["mode"] for r in rows if gap[0] + 1 < float(r["t_s"]) <= gap[1]}
+    labels_after = {r["mode"] for r in rows if float(r["t_s"]) >= gap[1] + 5}
+    if labels_gap != {"coast"}:
+        bad.append(f"{mode}: solutions in the outage labelled {sorted(labels_gap)}, expected coast")
+    if labels_after != {mode}:
+        bad.append(f"{mode}: solutions after the outage labelled {sorted(labels_after)}, expected {mode}")
+    quality = [l.split(",")[6] for l in open(f"{work}/{mode}/fixes.nmea") if l.startswith("$GPGGA")]
+    if quality.count("6") < 28 or quality.count("1") < 30:
+        bad.append(f"{mode}: GGA quality 6 (dead reckoning) {quality.count('6')} times, 1 {quality.count('1')} times")
     s = json.load(open(f"{work}/{mode}/summary.json"))
     print(f"{mode}: outage horizontal error max {worst_gap:.2f} m, after {worst_after:.2f} m, "
           f"re-lock {max(relock.values(), default=float('nan')):.2f} s, mode changes "

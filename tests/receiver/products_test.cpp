@@ -45,6 +45,14 @@ TEST(Nmea, ChecksumAndFields) {
   EXPECT_EQ(sentences, 5);
 }
 
+TEST(Nmea, AnInsCarriedSolutionIsWrittenAsDeadReckoning) {
+  const std::string gnss = nmea_sentences(sample_fix(), {{10, 45.2}}, 18);
+  const std::string coast = nmea_sentences(sample_fix(), {{10, 45.2}}, 18, true);
+  EXPECT_NE(coast.find("$GPGGA,020000.00,3733.99000,N,12658.68000,E,6,05,"), std::string::npos) << coast;
+  EXPECT_NE(coast.find(",010122,,,E*"), std::string::npos) << coast;
+  EXPECT_NE(gnss.find(",010122,,,A*"), std::string::npos) << gnss;
+}
+
 TEST(Tracks, KmlAndGpxCarryEveryFix) {
   const std::vector<PvtSolution> fixes{sample_fix(), sample_fix()};
   const std::string kml = kml_track(fixes, "run");
