@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <spdlog/spdlog.h>
 
 #include "signals/atmosphere.hpp"
 
@@ -48,6 +49,9 @@ void DelayMismatchDetector::add(const std::vector<RangeResidual>& epoch, const R
   const double rhs = m.dot(w.cwiseProduct(r)) - b.dot(solver.solve(c));
   if (!(information > 1e-9) || !std::isfinite(information) || !std::isfinite(rhs)) return;
   window_.push_back({information, rhs});
+  spdlog::debug("{} model error fitted to one fix: {:.3f} (1-sigma {:.3f}, {} satellites)",
+                cfg_.signature == DelaySignature::troposphere_zenith ? "troposphere zenith" : "ionosphere scale",
+                rhs / information, 1.0 / std::sqrt(information), n);
   while (static_cast<int>(window_.size()) > cfg_.window_fixes) window_.pop_front();
 }
 
@@ -61,6 +65,20 @@ double DelayMismatchDetector::fitted_error() const {
   return sum / information;
 }
 
-bool DelayMismatchDetector::mismatch() const { return fitted_error() < -cfg_.threshold; }
+double DelayMismatchDetector::consistency() const {
+  const auto n = static_cast<double>(window_.size());
+  if (static_cast<int>(window_.size()) < cfg_.min_fixes) return 0.0;
+  double mean = 0.0;
+  for (const FixTerm& t : window_) mean += t.weighted_sum / t.information / n;
+  double scatter2 = 0.0;
+  for (const FixTerm& t : window_) scatter2 += std::pow(t.weighted_sum / t.information - mean, 2) / (n - 1.0);
+  const double fitted = fitted_error();
+  if (scatter2 <= 0.0) return fitted == 0.0 ? 0.0 : std::copysign(INFINITY, fitted);
+  return fitted / std::sqrt(scatter2 / n);
+}
+
+bool DelayMismatchDetector::mismatch() const {
+  return fitted_error() < -cfg_.threshold && consistency() < -cfg_.min_consistency;
+}
 
 }  // namespace deepnav::aiding

@@ -11,6 +11,9 @@
 // measurements' against the filter in ultra-tight mode (whose steered channels' own
 // pseudoranges only echo the filter's prediction).
 //
+// A verdict needs the fixes to agree (DelayMismatchConfig::min_consistency): a model error
+// is the same at every fix, while the part of multipath errors that looks like one is not.
+//
 // Troposphere: a standard atmosphere is wrong by centimetres to a decimetre or two at the zenith; a
 // model delay 1.5 m larger than the signal's means the signal has none (IF from a
 // generator without troposphere: the fit reads -1.9 to -2.3 m). The test is one-sided:
@@ -45,6 +48,15 @@ struct DelayMismatchConfig {
   double threshold = 1.5;
   int window_fixes = 30;            ///< fixes combined
   int min_fixes = 20;               ///< before any verdict
+  /// The fixes must agree on the error: the window's mean over the standard error of its
+  /// per-fix fits (their own scatter, as if independent) beyond this. A missing delay reads
+  /// the same at every fix (measured on the land and aircraft circles: 8.8 to 34); the
+  /// common part of multipath and non-line-of-sight errors in a suburban street swings from
+  /// fix to fix, and a 30-fix window of it reaches the threshold now and then at about 3
+  /// (the worst window of a 90 s suburban land circle; the ionosphere detector fired on the
+  /// first suburban runs tried before this test). Multipath is correlated over seconds, so
+  /// the figure is optimistic: hence 6.
+  double min_consistency = 6.0;
 };
 
 /// One satellite's pseudorange residual (measured minus predicted) at an epoch.
@@ -76,6 +88,10 @@ class DelayMismatchDetector {
   /// The combined estimate of the model's error over the window (troposphere: zenith
   /// metres; ionosphere: scale; 0 before min_fixes).
   double fitted_error() const;
+  /// The window's mean fit over the standard error of its per-fix fits (0 before
+  /// min_fixes; infinite when every fix reads exactly the same).
+  double consistency() const;
+  /// fitted_error() below -threshold, with a consistency beyond min_consistency.
   bool mismatch() const;
 
  private:

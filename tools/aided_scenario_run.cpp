@@ -99,6 +99,8 @@ AidedRunResult run_aided_scenario(const Scenario& sc, const SynthesisSummary& s,
     result.mode_changes = aided->mode_changes();
     result.satellite_exclusions = aided->satellite_exclusions();
     result.filter_restarts = aided->filter_restarts();
+    result.troposphere_mismatch_s = aided->troposphere_mismatch().found_at_s;
+    result.ionosphere_mismatch_s = aided->ionosphere_mismatch().found_at_s;
   }
   result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -3,6 +3,7 @@
 // synthesizer's truth: what the aiding benchmarks (coupling, weak-signal threshold) repeat
 // over trajectories, modes, C/N0 levels and seeds.
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,9 @@ struct AidedRunResult {
   double wall_s = 0.0;
   int satellite_exclusions = 0;         ///< satellites the aided filter's fault monitor excluded
   int filter_restarts = 0;
+  /// When the aided filter found the troposphere or the ionosphere model not to match the
+  /// signal (and took that state); nullopt: not found.
+  std::optional<double> troposphere_mismatch_s, ionosphere_mismatch_s;
 };
 
 /// How to read the IF file the synthesizer wrote for `scenario`.

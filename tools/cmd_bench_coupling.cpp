@@ -137,6 +137,10 @@ nlohmann::json run_point(const CouplingOptions& o, const std::string& trajectory
       epochs.push_back({e.t_s, aiding::to_string(e.mode), e.valid, e.error_ned_m(0), e.error_ned_m(1), e.error_ned_m(2),
                         e.velocity_error_mps});
     point["modes"][m] = {{"epochs", epochs}, {"wall_s", r.wall_s}, {"satellite_exclusions", r.satellite_exclusions}};
+    // Whether (and when) a model mismatch was found: what changed the filter's states.
+    const auto when = [](const std::optional<double>& t) { return t ? nlohmann::json(*t) : nlohmann::json(nullptr); };
+    point["modes"][m]["troposphere_mismatch_s"] = when(r.troposphere_mismatch_s);
+    point["modes"][m]["ionosphere_mismatch_s"] = when(r.ionosphere_mismatch_s);
   }
   fs::remove_all(dir);
   return point;
@@ -259,6 +263,26 @@ std::vector<std::string> point_command(const CouplingOptions& o, const std::stri
   if (o.filter_troposphere) cmd.push_back("--filter-troposphere");
   if (o.filter_ionosphere) cmd.push_back("--filter-ionosphere");
   return cmd;
+}
+
+/// Per mode, in how many points the aided filter found the troposphere or the ionosphere
+/// model not to match the signal ("-": points written before that was recorded).
+nlohmann::json mismatch_counts(const std::vector<nlohmann::json>& points, const std::vector<std::string>& modes) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& mode : modes) {
+    int recorded = 0, troposphere = 0, ionosphere = 0;
+    for (const auto& p : points) {
+      const auto& m = p["modes"][mode];
+      if (!m.contains("troposphere_mismatch_s")) continue;
+      ++recorded;
+      troposphere += m["troposphere_mismatch_s"].is_null() ? 0 : 1;
+      ionosphere += m["ionosphere_mismatch_s"].is_null() ? 0 : 1;
+    }
+    out[mode] = recorded == 0 ? nlohmann::json("-")
+                              : nlohmann::json(fmt::format("troposphere {} / ionosphere {} of {} runs", troposphere,
+                                                           ionosphere, recorded));
+  }
+  return out;
 }
 
 void run_missing_points(const CouplingOptions& o, const std::vector<std::pair<std::string, int>>& todo) {
@@ -388,6 +412,7 @@ void run_coupling(CouplingOptions o) {
   report.add_note("ordering_ultra_le_tight_le_loose_horizontal", fmt::format("{} of {} trajectories", holds_h, checked));
   report.add_note("ordering_ultra_le_tight_le_loose_3d", fmt::format("{} of {} trajectories", holds_3d, checked));
   report.add_note("paired_3d", ordering);
+  report.add_note("mismatch_found", mismatch_counts(points, o.modes));
   if (keep_points) report.add_note("out", source_relative(o.out_dir));
   report.emit(o.json_path);
   if (!o.csv_path.empty()) write_csv(o.csv_path, points);

@@ -57,6 +57,31 @@ TEST(DelayMismatchDetector, ExtraDelayIsNoMismatch) {
   EXPECT_FALSE(d.mismatch());
 }
 
+TEST(DelayMismatchDetector, AMissingDelayIsFoundThroughFixToFixNoise) {
+  // Each fix reads -2.3 m with 0.4 m of its own noise (as the circles without troposphere
+  // do): consistent, so a mismatch.
+  DelayMismatchDetector d;
+  const RangeErrorModel weights;
+  std::mt19937 rng(11);
+  std::normal_distribution<double> fix_noise(0.0, 0.4);
+  for (int k = 0; k < 30; ++k) d.add(sky(Eigen::Vector3d::Zero(), 0.0, -2.3 + fix_noise(rng)), weights);
+  EXPECT_NEAR(d.fitted_error(), -2.3, 0.2);
+  EXPECT_LT(d.consistency(), -20.0);
+  EXPECT_TRUE(d.mismatch());
+}
+
+TEST(DelayMismatchDetector, FixesThatDisagreeAreNoMismatchWhateverTheirMean) {
+  // Errors that swing from fix to fix (multipath in a street): the window's mean is past
+  // the threshold, but the fixes do not agree on it, so no verdict.
+  DelayMismatchDetector d;
+  const RangeErrorModel weights;
+  const double swings[] = {-4.5, 1.5, -3.9, 0.5, -5.2, 2.4};
+  for (int k = 0; k < 30; ++k) d.add(sky(Eigen::Vector3d::Zero(), 0.0, swings[k % 6]), weights);
+  EXPECT_LT(d.fitted_error(), -1.5);
+  EXPECT_GT(d.consistency(), -6.0);
+  EXPECT_FALSE(d.mismatch());
+}
+
 TEST(DelayMismatchDetector, NeedsItsFixesAndSixSatellites) {
   DelayMismatchDetector d;
   const RangeErrorModel weights;
