@@ -8,6 +8,7 @@
 
 #include "signals/sample_packing.hpp"
 #include "signals/sim/gaussian_noise.hpp"
+#include "signals/sim/parallel_ranges.hpp"
 
 namespace deepnav {
 namespace {
@@ -28,6 +29,28 @@ const FrontEndConfig& validated(const FrontEndConfig& c) {
   return c;
 }
 
+std::int64_t floor_div(std::int64_t a, std::int64_t b) { return a / b - ((a % b != 0) && ((a < 0) != (b < 0))); }
+
+/// For each worker (wanting draws from first_draws[w] on) a generator of its own: first
+/// those that left off exactly there, then any left.
+std::vector<std::size_t> pick_generators(const std::vector<IndexedNoise>& generators,
+                                         const std::vector<std::int64_t>& first_draws) {
+  const std::size_t none = generators.size();
+  std::vector<std::size_t> pick(first_draws.size(), none);
+  std::vector<bool> taken(generators.size(), false);
+  const auto take = [&](std::size_t w, auto&& suits) {
+    for (std::size_t g = 0; pick[w] == none && g < generators.size(); ++g)
+      if (!taken[g] && suits(g)) {
+        pick[w] = g;
+        taken[g] = true;
+      }
+  };
+  for (std::size_t w = 0; w < first_draws.size(); ++w)
+    take(w, [&](std::size_t g) { return generators[g].next_draw() == first_draws[w]; });
+  for (std::size_t w = 0; w < first_draws.size(); ++w) take(w, [](std::size_t) { return true; });
+  return pick;
+}
+
 double sum_squares(const float* x, std::size_t n) {
   // Eight independent partial sums break the add dependency chain (and vectorise) without
   // relying on -ffast-math; one AGC window is short, so float sums are exact enough.
@@ -43,10 +66,11 @@ double sum_squares(const float* x, std::size_t n) {
 
 }  // namespace
 
-FrontEnd::FrontEnd(FrontEndConfig config, std::uint64_t seed)
+FrontEnd::FrontEnd(FrontEndConfig config, std::uint64_t seed, unsigned threads)
     : config_(validated(config)),
       noise_sigma_(static_cast<float>(thermal_noise_sigma(config_.sample_rate_hz))),
-      noise_(splitmix64(seed)),
+      threads_(std::max(1u, threads)),
+      noise_(threads_, IndexedNoise(splitmix64(seed))),
       agc_(config_.adc, config_.sample_rate_hz) {
   for (std::size_t j = 0; j < config_.jammers.size(); ++j)
     jammers_.emplace_back(config_.jammers[j], config_.sample_rate_hz, config_.if_hz, config_.cn0_ref_dbhz,
@@ -61,16 +85,42 @@ void FrontEnd::process(std::span<std::complex<float>> block, std::int64_t first_
                            std::to_string(spw) + " samples");
   out_bytes.resize(block.size() / spw * bytes_per_word(config_.format));
   for (Jammer& jammer : jammers_) jammer.add_to(block, first_sample);
-  if (is_complex(config_.format)) {
-    if (config_.thermal_noise) noise_.add_complex(block, first_sample, noise_sigma_);
+  if (!is_complex(config_.format)) real_.resize(block.size());
+  add_thermal_noise(block, first_sample);
+  if (is_complex(config_.format))
     digitize(reinterpret_cast<const float*>(block.data()), block.size(), 2, first_sample, out_bytes.data());
-    return;
-  }
-  real_.resize(block.size());
+  else
+    digitize(real_.data(), block.size(), 1, first_sample, out_bytes.data());
+}
+
+void FrontEnd::add_thermal_noise(std::span<std::complex<float>> block, std::int64_t first_sample) {
+  const bool complex = is_complex(config_.format);
+  // Samples per noise chunk: complex samples take two draws each.
+  const std::int64_t piece = complex ? IndexedNoise::kChunkDraws / 2 : IndexedNoise::kChunkDraws;
+  const auto size = static_cast<std::int64_t>(block.size());
+  if (size == 0) return;
+  const std::int64_t first_piece = floor_div(first_sample, piece);
+  const std::int64_t pieces = floor_div(first_sample + size - 1, piece) - first_piece + 1;
   const float root2 = std::sqrt(2.0f);
-  for (std::size_t k = 0; k < block.size(); ++k) real_[k] = root2 * block[k].real();
-  if (config_.thermal_noise) noise_.add_real(real_, first_sample, noise_sigma_);
-  digitize(real_.data(), block.size(), 1, first_sample, out_bytes.data());
+  // The ranges run_in_ranges gives the workers, and for each the generator to use.
+  const auto workers = static_cast<int>(std::min<std::int64_t>(threads_, pieces));
+  const auto range_start = [&](int w) { return std::max(first_sample, (first_piece + pieces * w / workers) * piece); };
+  const std::int64_t draws_per_sample = complex ? 2 : 1;
+  std::vector<std::int64_t> first_draws;
+  for (int w = 0; w < workers; ++w) first_draws.push_back(range_start(w) * draws_per_sample);
+  const std::vector<std::size_t> generator = pick_generators(noise_, first_draws);
+  run_in_ranges(threads_, static_cast<int>(pieces), [&](int worker, int a, int b) {
+    const std::int64_t s0 = std::max(first_sample, (first_piece + a) * piece);
+    const std::int64_t s1 = std::min(first_sample + size, (first_piece + b) * piece);
+    const auto offset = static_cast<std::size_t>(s0 - first_sample), count = static_cast<std::size_t>(s1 - s0);
+    IndexedNoise& noise = noise_[generator[static_cast<std::size_t>(worker)]];
+    if (complex) {
+      if (config_.thermal_noise) noise.add_complex(block.subspan(offset, count), s0, noise_sigma_);
+      return;
+    }
+    for (std::size_t k = offset; k < offset + count; ++k) real_[k] = root2 * block[k].real();
+    if (config_.thermal_noise) noise.add_real(std::span<float>(real_.data() + offset, count), s0, noise_sigma_);
+  });
 }
 
 // Segments end at AGC window boundaries (absolute multiples of Agc::kWindow samples) so

@@ -38,7 +38,9 @@ class FrontEnd {
   /// Validates everything (throws std::invalid_argument naming the field, e.g.
   /// "jammers[1]: jammer js_db = ..."). The seed drives the thermal noise and, through
   /// derived seeds, each jammer's noise.
-  FrontEnd(FrontEndConfig config, std::uint64_t seed);
+  /// `threads`: workers for the thermal noise (its values depend only on the sample index,
+  /// so the samples are the same for any count).
+  FrontEnd(FrontEndConfig config, std::uint64_t seed, unsigned threads = 1);
 
   /// block: signals at IF for samples [first_sample, first_sample + block.size()); the
   /// block is modified in place (jammers added). out_bytes is resized to the block's bytes
@@ -54,9 +56,16 @@ class FrontEnd {
   void digitize(const float* x, std::size_t n_samples, int values_per_sample, std::int64_t first_sample,
                 std::byte* out);
 
+  /// Thermal noise on the block, split across the workers at the noise generator's chunk
+  /// boundaries (where a generator starts without skipping draws).
+  void add_thermal_noise(std::span<std::complex<float>> block, std::int64_t first_sample);
+
   FrontEndConfig config_;
   float noise_sigma_;
-  IndexedNoise noise_;
+  unsigned threads_;
+  /// One generator per worker; a worker takes the one that left off where its range starts
+  /// (a generator sent elsewhere in its chunk would skip draws to get there).
+  std::vector<IndexedNoise> noise_;
   std::vector<Jammer> jammers_;
   Agc agc_;
   std::vector<float> real_;  ///< real-output scratch

@@ -24,6 +24,7 @@
 #include "signals/sim/error_world.hpp"
 #include "signals/if_metadata.hpp"
 #include "signals/sim/front_end.hpp"
+#include "signals/sim/parallel_ranges.hpp"
 #include "signals/sim/if_file_writer.hpp"
 #include "signals/gps_constants.hpp"
 #include "signals/sim/line_of_sight.hpp"
@@ -377,7 +378,7 @@ struct IfChunkGenerator::State {
 
   State(const IfSynthesizer::Impl& impl, unsigned thread_count)
       : m(impl),
-        front_end(make_front_end_config(impl.sc), impl.sc.seed),
+        front_end(make_front_end_config(impl.sc), impl.sc.seed, thread_count == 0 ? std::max(1u, std::thread::hardware_concurrency()) : thread_count),
         clock(impl.sc.clock.bias_s, impl.sc.clock.drift_sps, impl.sc.clock.h0, impl.sc.clock.h_minus2,
               impl.sc.seed ^ 0x9E3779B97F4A7C15ULL),
         bias0(impl.sc.clock.bias_s),
@@ -401,59 +402,24 @@ struct IfChunkGenerator::State {
     for (int j = 1; j <= count; ++j) clocks[j] = clock.step(1e-3);
     current = clocks[count];
 
-    std::fill(i_buf.begin(), i_buf.begin() + count * n, 0.0f);
-    std::fill(q_buf.begin(), q_buf.begin() + count * n, 0.0f);
     // Boundaries then epochs, each split into contiguous ranges across the workers.
-    auto parallel_for = [&](int total, auto&& body) {
-      const int workers = static_cast<int>(std::min<unsigned>(threads, static_cast<unsigned>(total)));
-      if (workers <= 1) {
-        body(0, total);
-        return;
-      }
-      // A worker's exception, or a thread that cannot be started, ends the chunk with an
-      // error once every started worker has been joined (never std::terminate).
-      std::vector<std::exception_ptr> errors(static_cast<std::size_t>(workers));
-      std::vector<std::thread> pool;
-      std::exception_ptr start_error;
-      for (int w = 1; w < workers; ++w) {
-        try {
-          pool.emplace_back([&, w] {
-            try {
-              body(total * w / workers, total * (w + 1) / workers);
-            } catch (...) {
-              errors[static_cast<std::size_t>(w)] = std::current_exception();
-            }
-          });
-        } catch (const std::system_error& e) {
-          start_error = std::make_exception_ptr(std::runtime_error(
-              fmt::format("cannot start synthesis thread {} of {}: {}", w + 1, workers, e.what())));
-          break;
-        }
-      }
-      if (!start_error) {
-        try {
-          body(0, total / workers);
-        } catch (...) {
-          errors[0] = std::current_exception();
-        }
-      }
-      for (auto& t : pool) t.join();
-      if (start_error) std::rethrow_exception(start_error);
-      for (const auto& e : errors)
-        if (e) std::rethrow_exception(e);
-    };
-    parallel_for(count + 1, [&](int a, int b) {
+    run_in_ranges(threads, count + 1, [&](int, int a, int b) {
       for (int j = a; j < b; ++j) boundaries[j] = m.boundary(k0 + j, clocks[j], bias0);
     });
     for (int j = 0; j < count; ++j) m.check_signal_rates(k0 + j, boundaries[j], boundaries[j + 1]);
-    parallel_for(count, [&](int a, int b) {
+    run_in_ranges(threads, count, [&](int, int a, int b) {
       std::vector<float> scratch(static_cast<std::size_t>(n));
+      const auto epoch = static_cast<std::size_t>(n);
       for (int j = a; j < b; ++j) {
-        m.synthesize_epoch(k0 + j, boundaries[j], boundaries[j + 1], i_buf.data() + j * n, q_buf.data() + j * n,
-                           scratch.data());
+        float* i = i_buf.data() + j * n;
+        float* q = q_buf.data() + j * n;
+        std::fill(i, i + n, 0.0f);
+        std::fill(q, q + n, 0.0f);
+        m.synthesize_epoch(k0 + j, boundaries[j], boundaries[j + 1], i, q, scratch.data());
+        std::complex<float>* out = iq.data() + static_cast<std::size_t>(j) * epoch;
+        for (std::size_t s = 0; s < epoch; ++s) out[s] = {i[s], q[s]};
       }
     });
-    for (std::size_t s = 0; s < static_cast<std::size_t>(count * n); ++s) iq[s] = {i_buf[s], q_buf[s]};
     front_end.process(std::span<std::complex<float>>(iq.data(), static_cast<std::size_t>(count * n)), k0 * n, bytes);
     k0 += count;
     return count;

@@ -28,6 +28,8 @@ class IndexedNoise {
   /// out[k] += sigma * (N(0,1) + j N(0,1)) for complex samples (draws 2n and 2n+1).
   /// Use one IndexedNoise for either real or complex samples, not both.
   void add_complex(std::span<std::complex<float>> out, std::int64_t first_sample, float sigma_per_component);
+  /// The draw this generator produces next without reseeding or skipping.
+  std::int64_t next_draw() const { return position_; }
 
  private:
   template <bool kAdd>

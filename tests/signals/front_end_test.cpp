@@ -218,6 +218,25 @@ TEST(FrontEnd, OutputDoesNotDependOnBlockBoundaries) {
   EXPECT_EQ(whole, pieces);
 }
 
+TEST(FrontEnd, OutputDoesNotDependOnTheNoiseThreads) {
+  // The thermal noise is split across workers at its generator's chunks (32768 complex or
+  // 65536 real samples); blocks that start and end inside chunks, real and complex.
+  for (const SampleFormat format : {SampleFormat::ibyte, SampleFormat::byte}) {
+    const FrontEndConfig c = config(format, 2);
+    FrontEnd one(c, 9, 1), three(c, 9, 3);
+    std::int64_t first = 30000;
+    for (const std::size_t n : {std::size_t{100000}, std::size_t{7}, std::size_t{150001}, std::size_t{70000}}) {
+      const Block x = tone(300.0, 50e3, n);
+      std::vector<std::byte> a, b;
+      Block copy_a = x, copy_b = x;
+      one.process(copy_a, first, a);
+      three.process(copy_b, first, b);
+      EXPECT_EQ(a, b) << to_string(format) << " block of " << n << " samples at " << first;
+      first += static_cast<std::int64_t>(n);
+    }
+  }
+}
+
 TEST(FrontEnd, EveryFormatRoundTripsThroughItsBytes) {
   const Block x = {{1.25f, -3.5f}, {0.0f, 7.75f}, {-100.0f, 2.0f}};
   for (SampleFormat format :
