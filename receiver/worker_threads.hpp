@@ -3,6 +3,7 @@
 // its threads inside a constructor it cannot unwind from, a thread that cannot be created
 // (a process or memory limit) is an error naming how many were asked for and how many
 // started: the threads already started are stopped and joined first, so nothing hangs.
+#include <atomic>
 #include <condition_variable>
 #include <cstddef>
 #include <deque>
@@ -31,6 +32,7 @@ class WorkerThreads {
   void work();
   void stop_and_join();
 
+  std::atomic<std::size_t> queued_{0};  ///< tasks_.size(), readable without the lock
   std::mutex mutex_;
   std::condition_variable wake_;
   std::deque<std::function<void()>> tasks_;
