@@ -179,8 +179,7 @@ void run_rx_bench(const RxBenchOptions& o) {
   sc.duration_s = o.duration_s;
   if (!sc.imu.enabled) throw UserError("scenario '" + o.scenario + "' needs an imu section (ultra-tight case)");
   validate_scenario(sc);
-  const std::string work =
-      bench_scratch_dir(o.work_dir, "bench_rx");
+  const std::string work = bench_scratch_dir(o.work_dir, "bench_rx");
   SynthesisOptions so;
   so.threads = 0;
   const SynthesisSummary s = IfSynthesizer(sc, read_rinex_nav(sc.nav_file)).run(work, so);

@@ -34,8 +34,7 @@ void run_bench(const BenchSimOptions& o) {
   sc.adc.bits = o.adc_bits;
   validate_scenario(sc);
   const NavData nav = read_rinex_nav(sc.nav_file);
-  const std::string work =
-      bench_scratch_dir(o.work_dir, "bench_sim");
+  const std::string work = bench_scratch_dir(o.work_dir, "bench_sim");
 
   BenchReport report("IF synthesis speed", {"threads", "satellites", "signal_s", "wall_s", "x_real_time",
                                             "ns_per_sample", "peak_rss_mib"});

@@ -55,8 +55,7 @@ Scenario with_ramp(Scenario sc, const ThresholdOptions& o) {
 void run_mode_thresholds(const ThresholdOptions& o) {
   const Scenario sc = with_ramp(load_scenario(o.aided_scenario, DEEPNAV_SOURCE_DIR), o);
   if (!sc.imu.enabled) throw UserError("scenario '" + o.aided_scenario + "' has no imu section (the aided modes need one)");
-  const std::string work =
-      bench_scratch_dir(o.work_dir, "bench_threshold_modes");
+  const std::string work = bench_scratch_dir(o.work_dir, "bench_threshold_modes");
   SynthesisOptions so;
   so.threads = 0;
   const SynthesisSummary s = IfSynthesizer(sc, read_rinex_nav(sc.nav_file)).run(work, so);
@@ -132,8 +131,7 @@ double first_cycle_slip_s(const std::vector<std::pair<double, double>>& nco,
 void run_threshold(const ThresholdOptions& o) {
   if (!o.modes.empty()) return run_mode_thresholds(o);
   const Scenario sc = with_ramp(load_scenario(o.scenario, DEEPNAV_SOURCE_DIR), o);
-  const std::string work =
-      bench_scratch_dir(o.work_dir, "bench_threshold");
+  const std::string work = bench_scratch_dir(o.work_dir, "bench_threshold");
   SynthesisOptions so;
   so.threads = 0;
   so.if_only = false;

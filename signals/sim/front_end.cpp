@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "signals/sample_packing.hpp"
+#include "signals/sim/floor_div.hpp"
 #include "signals/sim/gaussian_noise.hpp"
 #include "signals/sim/parallel_ranges.hpp"
 
@@ -28,8 +29,6 @@ const FrontEndConfig& validated(const FrontEndConfig& c) {
   }
   return c;
 }
-
-std::int64_t floor_div(std::int64_t a, std::int64_t b) { return a / b - ((a % b != 0) && ((a < 0) != (b < 0))); }
 
 /// For each worker (wanting draws from first_draws[w] on) a generator of its own: first
 /// those that left off exactly there, then any left.
@@ -103,8 +102,10 @@ void FrontEnd::add_thermal_noise(std::span<std::complex<float>> block, std::int6
   const std::int64_t pieces = floor_div(first_sample + size - 1, piece) - first_piece + 1;
   const float root2 = std::sqrt(2.0f);
   // The ranges run_in_ranges gives the workers, and for each the generator to use.
-  const auto workers = static_cast<int>(std::min<std::int64_t>(threads_, pieces));
-  const auto range_start = [&](int w) { return std::max(first_sample, (first_piece + pieces * w / workers) * piece); };
+  const int workers = range_workers(threads_, static_cast<int>(pieces));
+  const auto range_start = [&](int w) {
+    return std::max(first_sample, (first_piece + range_begin(static_cast<int>(pieces), workers, w)) * piece);
+  };
   const std::int64_t draws_per_sample = complex ? 2 : 1;
   std::vector<std::int64_t> first_draws;
   for (int w = 0; w < workers; ++w) first_draws.push_back(range_start(w) * draws_per_sample);

@@ -13,7 +13,6 @@
 #include <stdexcept>
 #include <system_error>
 #include <future>
-#include <thread>
 
 #include "ins/frames.hpp"
 #include "ins/imu_model.hpp"
@@ -379,11 +378,11 @@ struct IfChunkGenerator::State {
 
   State(const IfSynthesizer::Impl& impl, unsigned thread_count)
       : m(impl),
-        front_end(make_front_end_config(impl.sc), impl.sc.seed, thread_count == 0 ? std::max(1u, std::thread::hardware_concurrency()) : thread_count),
+        front_end(make_front_end_config(impl.sc), impl.sc.seed, resolved_threads(thread_count)),
         clock(impl.sc.clock.bias_s, impl.sc.clock.drift_sps, impl.sc.clock.h0, impl.sc.clock.h_minus2,
               impl.sc.seed ^ 0x9E3779B97F4A7C15ULL),
         bias0(impl.sc.clock.bias_s),
-        threads(thread_count == 0 ? std::max(1u, std::thread::hardware_concurrency()) : thread_count),
+        threads(resolved_threads(thread_count)),
         n(impl.samples_per_epoch),
         i_buf(static_cast<std::size_t>(kEpochsPerChunk * n)),
         q_buf(i_buf.size()),

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <vector>
 
+#include "signals/sim/floor_div.hpp"
+
 namespace deepnav {
 namespace {
-
-std::int64_t floor_div(std::int64_t a, std::int64_t b) { return a / b - ((a % b != 0) && ((a < 0) != (b < 0))); }
 
 std::uint64_t chunk_seed(std::uint64_t seed, std::int64_t chunk) {
   return splitmix64(splitmix64(seed) ^ static_cast<std::uint64_t>(chunk));

@@ -11,9 +11,17 @@
 
 namespace deepnav {
 
+unsigned resolved_threads(unsigned threads) {
+  return threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : threads;
+}
+
+int range_workers(unsigned threads, int total) {
+  return static_cast<int>(std::min<unsigned>(std::max(1u, threads), static_cast<unsigned>(std::max(1, total))));
+}
+
 void run_in_ranges(unsigned threads, int total, const std::function<void(int, int, int)>& body) {
   if (total <= 0) return;
-  const int workers = static_cast<int>(std::min<unsigned>(std::max(1u, threads), static_cast<unsigned>(total)));
+  const int workers = range_workers(threads, total);
   if (workers == 1) {
     body(0, 0, total);
     return;
@@ -27,7 +35,7 @@ void run_in_ranges(unsigned threads, int total, const std::function<void(int, in
     try {
       pool.emplace_back([&, w] {
         try {
-          body(w, total * w / workers, total * (w + 1) / workers);
+          body(w, range_begin(total, workers, w), range_begin(total, workers, w + 1));
         } catch (...) {
           errors[static_cast<std::size_t>(w)] = std::current_exception();
         }
@@ -40,7 +48,7 @@ void run_in_ranges(unsigned threads, int total, const std::function<void(int, in
   }
   if (!start_error) {
     try {
-      body(0, 0, total / workers);
+      body(0, 0, range_begin(total, workers, 1));
     } catch (...) {
       errors[0] = std::current_exception();
     }

@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "signals/sim/floor_div.hpp"
+
 namespace deepnav {
 namespace {
 
 constexpr double kTwoPi = 2.0 * M_PI;
 constexpr double kTwoPowMinus64 = 1.0 / 18446744073709551616.0;
-
-std::int64_t floor_div(std::int64_t a, std::int64_t b) { return a / b - ((a % b != 0) && ((a < 0) != (b < 0))); }
 
 /// Fraction of a cycle per sample as a 64-bit fixed-point number (negative frequencies wrap).
 std::uint64_t fixed_point_step(double frequency_hz, double sample_rate_hz) {
