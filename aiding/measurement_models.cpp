@@ -85,25 +85,27 @@ double scalar_rate_sigma_mps(double cn0_dbhz, double pll_bandwidth_hz, double co
 }
 
 double discriminator_pseudorange_sigma_m(const RangeErrorModel& errors, double elevation_rad, double cn0_dbhz,
-                                         double integration_s, double spacing_chips) {
+                                         double integration_s, double spacing_chips, double piece_s) {
   // The model terms are shared by every integration of the same second (range_weight.hpp).
-  const double code_sigma = code_sigma_chips(cn0_dbhz, integration_s, spacing_chips) * kChip_m;
+  const double code_sigma = code_sigma_chips(cn0_dbhz, integration_s, spacing_chips, piece_s) * kChip_m;
   return std::sqrt(code_sigma * code_sigma + errors.model_variance_per_row_m2(elevation_rad, integration_s));
 }
 
-double discriminator_rate_sigma_mps(double cn0_dbhz, double integration_s, double rate_window_s) {
+double discriminator_rate_sigma_mps(double cn0_dbhz, double integration_s, double rate_window_s, int pairs) {
   // One integration's phase noise at both ends of the window or of the discriminator's
   // span (adjoining windows share an end, so their errors are negatively correlated:
   // taking them as independent understates what a run of windows says).
   const bool phase_window = rate_window_s > 0.0;
   const double sigma_hz =
-      mean_frequency_sigma_hz(phase_variance_rad2(cn0_dbhz, integration_s), phase_window ? rate_window_s : integration_s);
+      mean_frequency_sigma_hz(phase_variance_rad2(cn0_dbhz, integration_s), phase_window ? rate_window_s : integration_s) /
+      std::sqrt(static_cast<double>(std::max(pairs, 1)));
   return std::hypot(sigma_hz * gps::kL1Wavelength_m, phase_window ? kPhaseRateFloor_mps : kDiscriminatorRateFloor_mps);
 }
 
-double code_sigma_chips(double cn0_dbhz, double t_s, double spacing_chips) {
-  const double snr = std::pow(10.0, cn0_dbhz / 10.0) * t_s;
-  return std::sqrt(spacing_chips / (4.0 * snr) * (1.0 + 2.0 / ((2.0 - spacing_chips) * snr)));
+double code_sigma_chips(double cn0_dbhz, double t_s, double spacing_chips, double piece_s) {
+  const double cn0_hz = std::pow(10.0, cn0_dbhz / 10.0);
+  const double piece_snr = cn0_hz * (piece_s > 0.0 ? piece_s : t_s);
+  return std::sqrt(spacing_chips / (4.0 * cn0_hz * t_s) * (1.0 + 2.0 / ((2.0 - spacing_chips) * piece_snr)));
 }
 
 double phase_variance_rad2(double cn0_dbhz, double t_s) {

@@ -68,16 +68,20 @@ double scalar_rate_sigma_mps(double cn0_dbhz, double pll_bandwidth_hz, double co
 
 /// One integration of a steered channel (ultra-tight): its normalised early-minus-late
 /// discriminator's noise at the E-L spacing, plus the range weight model's terms per row.
+/// `piece_s`: for an integration of pieces combined in power (non-coherently), each piece's
+/// coherent length; 0: one coherent integration over integration_s.
 double discriminator_pseudorange_sigma_m(const RangeErrorModel& errors, double elevation_rad, double cn0_dbhz,
-                                         double integration_s, double spacing_chips);
+                                         double integration_s, double spacing_chips, double piece_s = 0.0);
 /// The rate of one steered integration (m/s): with rate_window_s > 0 a mean frequency
 /// from the carrier phase at both ends of that window, otherwise the frequency
-/// discriminator across one integration; each with its floor.
-double discriminator_rate_sigma_mps(double cn0_dbhz, double integration_s, double rate_window_s);
+/// discriminator across one integration (`pairs` of them averaged); each with its floor.
+double discriminator_rate_sigma_mps(double cn0_dbhz, double integration_s, double rate_window_s, int pairs = 1);
 
 /// 1-sigma of the normalised early-minus-late envelope discriminator (chips) for E-L
-/// spacing d and coherent time T (Kaplan & Hegarty, noncoherent E-L power with normalisation).
-double code_sigma_chips(double cn0_dbhz, double t_s, double spacing_chips);
+/// spacing d over t_s, from pieces of coherent length piece_s (Kaplan & Hegarty, noncoherent
+/// E-L power with normalisation: the 1/(C/N0 t) term is the averaging, the squaring loss
+/// 2/((2-d) C/N0 T_piece) that of each coherent piece). piece_s <= 0: one coherent piece.
+double code_sigma_chips(double cn0_dbhz, double t_s, double spacing_chips, double piece_s = 0.0);
 /// Variance (rad^2) of the Costas phase discriminator over one integration of T.
 double phase_variance_rad2(double cn0_dbhz, double t_s);
 /// 1-sigma (Hz) of a mean frequency from two phases span_s apart, each with variance

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "aiding/measurement_models.hpp"
 #include "receiver/nav_decoder.hpp"
 #include "receiver/tracking_channel.hpp"
 #include "receiver/tracking_loops.hpp"
@@ -13,6 +14,33 @@ namespace {
 
 constexpr double kRateWindow_s = 0.1;                // phase-locked rate: adjoining windows of the mean frequency
 constexpr double kMaxWindowPhaseError_cycles = 0.1;  // a window's ends: Costas error within +-36 deg
+constexpr double kWipedPhaseLock = 1.5;              // mean I / mean |Q| of wiped integrations: phase locked
+constexpr double kReferenceIntegration_s = 0.01;     // the length min_cn0_dbhz is stated for
+constexpr double kDetectionSigmas = 3.0;             // a long integration's signal: 3 sigmas above noise alone
+
+IntegrationPower power_of(const CorrelatorEpoch& e, double fs) {
+  IntegrationPower p;
+  p.end_s = static_cast<double>(e.first_sample + e.samples) / fs;
+  p.prompt_power = std::norm(e.prompt);
+  p.sum_t_s = e.integration_s;
+  p.sum_t2_s2 = e.integration_s * e.integration_s;
+  p.noise_power = std::norm(e.noise);
+  p.noise_s = e.noise_samples / fs;
+  return p;
+}
+
+IntegrationPower power_of(const SteeredIntegration& s, double fs) {
+  IntegrationPower p = power_of(s.sums, fs);
+  if (s.data_wiped) {
+    p.data_wiped = true;
+    p.wiped_prompt = s.sums.prompt;
+  } else {
+    p.prompt_power = s.prompt_power;
+    p.sum_t_s = s.pieces * s.piece_s;
+    p.sum_t2_s2 = s.pieces * s.piece_s * s.piece_s;
+  }
+  return p;
+}
 
 }  // namespace
 
@@ -22,7 +50,7 @@ bool can_steer(bool bit_synced, ChannelState state, bool decoder_synchronised, b
 
 SteeredChannelController::SteeredChannelController(const UltraTightConfig& config, double sample_rate_hz,
                                                    const Engagement& engagement)
-    : cfg_(config), fs_(sample_rate_hz), engagement_(engagement) {}
+    : cfg_(config), fs_(sample_rate_hz), engagement_(engagement), long_(config.long_integration) {}
 
 ChannelDecision SteeredChannelController::on_epoch(const CorrelatorEpoch& e, const ChannelView& view) {
   ChannelDecision out;
@@ -54,6 +82,7 @@ ChannelDecision SteeredChannelController::on_epoch(const CorrelatorEpoch& e, con
       out.loss_detection = true;
     }
     rate_window_start_.reset();  // a window must lie inside one steered stretch
+    leave_long_integration();
     return out;
   }
   out.owns_epoch = true;
@@ -62,10 +91,84 @@ ChannelDecision SteeredChannelController::on_epoch(const CorrelatorEpoch& e, con
     out.loss_detection = false;
     spdlog::debug("PRN {:2d}: steered by the navigation filter", e.prn);
   }
+  wipeoff_.learn(view.decoder);
+  if (!long_mode_) {
+    cn0_.add(power_of(e, fs_));
+    choose_integration(e);
+    if (!long_mode_) {
+      short_sample(e, view, doppler);
+      return out;
+    }
+  }
+  std::vector<SteeredIntegration> done;
+  const int polarity = view.decoder.polarity();
+  const Ephemeris& eph = *view.ephemeris;
+  const LongIntegrator::BitSigner signer = [&](std::int64_t bit_start, const std::complex<double>& bit_prompt) {
+    const std::optional<std::int64_t> bit = DataWipeoff::bit_index(view.decoder, eph, bit_start);
+    if (!bit) return 0;
+    const int sign = wipeoff_.wipe_sign(*bit, polarity);  // before the bit teaches the monitor anything
+    const NavBitMonitor::Check c =
+        wipeoff_.observe(*bit, bit_prompt, long_.phase_reference(), polarity, cn0_.cn0_dbhz());
+    if (c.alarm) spdlog::debug("PRN {:2d}: prediction of bit {} failed (segment {})", e.prn, *bit, c.segment);
+    // Unpredicted bits: the Costas loop on each bit holds the phase (half-cycle ambiguous;
+    // the four-quadrant loop of the next wiped integration settles that).
+    if (sign == 0 && cfg_.carrier_phase_tracking)
+      phase_correction_cycles_ = cfg_.carrier_phase_gain * costas_phase_error_cycles(bit_prompt);
+    return sign;
+  };
+  long_.add(e, *ch.bit_edge_period(), signer, done);
+  for (const SteeredIntegration& s : done) {
+    cn0_.add(power_of(s, fs_));
+    long_sample(s, view);
+  }
+  choose_integration(e);
+  return out;
+}
+
+void SteeredChannelController::leave_long_integration() {
+  long_mode_ = false;
+  long_.reset();
+  last_long_.reset();
+}
+
+void SteeredChannelController::choose_integration(const CorrelatorEpoch& e) {
+  if (!cn0_.ready()) return;
+  const double cn0 = cn0_.cn0_dbhz();
+  const LongIntegrationConfig& lc = cfg_.long_integration;
+  if (!long_mode_ && cn0 < lc.enter_below_dbhz) {
+    long_mode_ = true;
+    rate_window_start_.reset();
+    spdlog::debug("PRN {:2d}: C/N0 {:.1f} dB-Hz: long integrations (coherent {} ms with data wipe-off)", e.prn, cn0,
+                  lc.coherent_ms);
+  } else if (long_mode_ && cn0 > lc.leave_above_dbhz) {
+    leave_long_integration();
+    rate_window_start_.reset();
+    spdlog::debug("PRN {:2d}: C/N0 {:.1f} dB-Hz: back to {} ms integrations", e.prn, cn0,
+                  static_cast<int>(std::lround(e.integration_s * 1e3)));
+  }
+}
+
+void SteeredChannelController::phase_window_rate(DiscriminatorSample& d, std::int64_t end, double phase_cycles,
+                                                 int samples) {
+  const auto window = static_cast<std::int64_t>(std::llround(kRateWindow_s * fs_));
+  if (rate_window_start_ && end - *rate_window_start_ >= window - samples / 2) {
+    d.rate_window_s = static_cast<double>(end - *rate_window_start_) / fs_;
+    d.doppler_hz = (phase_cycles - rate_window_start_cycles_) / d.rate_window_s;
+    d.doppler_sample = (*rate_window_start_ + end) / 2;
+  }
+  if (!rate_window_start_ || d.doppler_hz) {
+    rate_window_start_ = end;
+    rate_window_start_cycles_ = phase_cycles;
+  }
+}
+
+void SteeredChannelController::short_sample(const CorrelatorEpoch& e, const ChannelView& view,
+                                            const std::optional<double>& doppler) {
+  const TrackingChannel& ch = view.channel;
   if (cfg_.carrier_phase_tracking) phase_correction_cycles_ = cfg_.carrier_phase_gain * costas_phase_error_cycles(e.prompt);
   const std::int64_t mid = e.first_sample + e.samples / 2;
   const std::optional<double> tt = transmit_time_sow(view.decoder, ch, mid);
-  if (!tt) return out;
+  if (!tt) return;
   DiscriminatorSample d;
   d.prn = e.prn;
   d.mid_sample = mid;
@@ -85,17 +188,7 @@ ChannelDecision SteeredChannelController::on_epoch(const CorrelatorEpoch& e, con
     // the next window. The frequency discriminator across NCO updates is biased that way
     // (up to 0.6 m of position error on the aircraft circle). Without the phase loop the
     // accumulated phase would only repeat the filter's own commands.
-    const double phase_cycles = e.carrier_phase_cycles + costas_cycles;
-    const auto window = static_cast<std::int64_t>(std::llround(kRateWindow_s * fs_));
-    if (rate_window_start_ && end - *rate_window_start_ >= window - e.samples / 2) {
-      d.rate_window_s = static_cast<double>(end - *rate_window_start_) / fs_;
-      d.doppler_hz = (phase_cycles - rate_window_start_cycles_) / d.rate_window_s;
-      d.doppler_sample = (*rate_window_start_ + end) / 2;
-    }
-    if (!rate_window_start_ || d.doppler_hz) {
-      rate_window_start_ = end;
-      rate_window_start_cycles_ = phase_cycles;
-    }
+    phase_window_rate(d, e.first_sample + e.samples, e.carrier_phase_cycles + costas_cycles, e.samples);
   } else {
     // Frequency tracking only (weak signals): the cross/dot discriminator between the two
     // adjoining integrations, referred to their common edge.
@@ -105,9 +198,75 @@ ChannelDecision SteeredChannelController::on_epoch(const CorrelatorEpoch& e, con
   }
   d.cn0_dbhz = e.cn0_dbhz;
   d.integration_s = e.integration_s;
+  d.measurement = e.cn0_dbhz >= cfg_.min_cn0_dbhz;
   d.ephemeris = *view.ephemeris;
   outbox_.push_back(d);
-  return out;
+}
+
+void SteeredChannelController::long_sample(const SteeredIntegration& s, const ChannelView& view) {
+  const CorrelatorEpoch& e = s.sums;
+  const std::int64_t end = e.first_sample + e.samples;
+  const double cn0 = cn0_.cn0_dbhz();
+  // The replica's transmit time at the integration's end, from the NCO state it ended with
+  // (the filter's code corrections inside it make extrapolating back from the channel's
+  // present state wrong); the code error is the mean over the integration, which the
+  // filter's small corrections hardly move from the end.
+  const std::optional<double> tt = view.decoder.transmit_time_sow(e.code_period, e.code_phase_chips);
+  std::optional<SteeredIntegration> previous = std::move(last_long_);
+  last_long_.reset();
+  if (!tt) return;
+  DiscriminatorSample d;
+  d.prn = e.prn;
+  d.mid_sample = end;
+  d.replica_transmit_sow = *tt;
+  d.spacing_chips = e.spacing_chips;
+  d.cn0_dbhz = cn0;
+  d.integration_s = e.integration_s;
+  d.data_wiped = s.data_wiped;
+  if (s.data_wiped) {
+    d.code_error_chips = dll_code_error_chips(e.early, e.late, e.spacing_chips);
+    // No data left: the four-quadrant phase, free of the Costas half-cycle ambiguity.
+    const double phase_error_cycles = std::arg(e.prompt) / (2.0 * M_PI);
+    if (cfg_.carrier_phase_tracking) phase_correction_cycles_ = cfg_.long_phase_gain * phase_error_cycles;
+    const bool locked = cn0_.wiped_phase_lock_indicator() > kWipedPhaseLock;
+    if (cfg_.carrier_phase_tracking && locked && std::abs(phase_error_cycles) < kMaxWindowPhaseError_cycles) {
+      phase_window_rate(d, end, e.carrier_phase_cycles + phase_error_cycles, e.samples);
+    } else {
+      rate_window_start_.reset();
+      if (previous && previous->sums.first_sample + previous->sums.samples == e.first_sample) {
+        // The previous wiped integration adjoins: the NCO's mean frequency between the two
+        // ends plus the prompts' phase advance between their centres.
+        const CorrelatorEpoch& p = previous->sums;
+        const double span_s = e.integration_s;
+        const double centres_s = 0.5 * (p.integration_s + e.integration_s);
+        d.doppler_hz = (e.carrier_phase_cycles - p.carrier_phase_cycles) / span_s +
+                       std::arg(std::conj(p.prompt) * e.prompt) / (2.0 * M_PI * centres_s);
+        d.doppler_sample = e.first_sample;
+      }
+    }
+    last_long_ = s;
+  } else {
+    // Summed in power: early and late envelopes from their powers; no carrier phase.
+    rate_window_start_.reset();
+    const double el = std::sqrt(s.early_power), ll = std::sqrt(s.late_power);
+    d.code_error_chips = el + ll > 0.0 ? (1.0 - 0.5 * e.spacing_chips) * (el - ll) / (el + ll) : 0.0;
+    d.piece_s = s.piece_s;
+    if (s.frequency_pairs > 0) {
+      // The carrier: the NCO's mean frequency over the integration (the filter's Doppler and
+      // the bits' Costas corrections) plus the averaged cross/dot discriminator of its bits.
+      d.doppler_hz = (e.carrier_phase_cycles - s.start_carrier_phase_cycles) / e.integration_s +
+                     std::arg(s.frequency_product) / (2.0 * M_PI * s.piece_s);
+      d.doppler_sample = e.first_sample + e.samples / 2;
+      d.frequency_pairs = s.frequency_pairs;
+    }
+  }
+  d.measurement = cn0_.signal_detected(kDetectionSigmas) &&
+                  code_sigma_chips(cn0, e.integration_s, e.spacing_chips, d.piece_s) <=
+                      code_sigma_chips(cfg_.min_cn0_dbhz, kReferenceIntegration_s, e.spacing_chips);
+  d.ephemeris = *view.ephemeris;
+  spdlog::trace("PRN {:2d}: {} ms {} C/N0 {:.1f} code {:+.3f} chips{}", e.prn, std::lround(e.integration_s * 1e3),
+                s.data_wiped ? "wiped" : "non-coherent", cn0, d.code_error_chips, d.measurement ? "" : " (not a measurement)");
+  outbox_.push_back(d);
 }
 
 ChannelDecision SteeredChannelController::between_blocks(const ChannelView&) {
@@ -144,6 +303,7 @@ void SteeredChannelController::release() {
   if (steered_) inbox_release_ = true;
   steered_ = false;
   outbox_.clear();
+  leave_long_integration();
 }
 
 }  // namespace deepnav::aiding

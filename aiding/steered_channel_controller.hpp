@@ -13,6 +13,9 @@
 #include <optional>
 #include <vector>
 
+#include "aiding/data_wipeoff.hpp"
+#include "aiding/integration_cn0_estimator.hpp"
+#include "aiding/long_integrator.hpp"
 #include "receiver/channel_controller.hpp"
 #include "signals/ephemeris.hpp"
 
@@ -26,12 +29,22 @@ enum class Engagement {
 };
 
 struct UltraTightConfig {
-  double min_cn0_dbhz = 18.0;               ///< weaker integrations steer but are not measurements
+  /// The aided lock criterion: an integration is a measurement when its code discriminator's
+  /// predicted noise (code_sigma_chips at its C/N0, length and coherent pieces) is no larger
+  /// than that of a 10 ms integration at this C/N0. Weaker ones still steer (the phase loop)
+  /// but are not measurements. For 10 ms integrations this is the C/N0 itself; a 200 ms
+  /// data-wiped integration passes down to about 5 dB-Hz (where the C/N0 estimate, not the
+  /// discriminator, becomes the limit), ten 20 ms bits summed in power down to about 9.
+  double min_cn0_dbhz = 18.0;
   double max_code_correction_chips = 5.0;   ///< a larger jump means the channel is not where the filter thinks
   bool carrier_phase_tracking = true;
   double carrier_phase_gain = 0.25;         ///< fraction of the Costas error removed per integration
   double faded_below_dbhz = 26.0;           ///< faded_only: take a channel over below this C/N0
   double recovered_above_dbhz = 32.0;       ///< faded_only: give it back above this
+  /// Long integration of weak steered channels (data wipe-off); coherent_ms = 20 turns the
+  /// wipe-off off (bit-edge-limited integrations, summed in power up to noncoherent_ms).
+  LongIntegrationConfig long_integration;
+  double long_phase_gain = 0.5;             ///< fraction of a long integration's phase error removed
 };
 
 /// One channel's discriminator outputs from one integration.
@@ -44,11 +57,15 @@ struct DiscriminatorSample {
   /// Phase-locked: the mean carrier frequency over the window that just closed (adjoining
   /// windows of about 100 ms); otherwise NCO Doppler plus the frequency discriminator, when
   /// the previous integration adjoins.
-  std::optional<double> doppler_hz;
+  std::optional<double> doppler_hz;     ///< none from a non-coherent integration (no carrier phase)
   std::int64_t doppler_sample = 0;     ///< where that Doppler refers to (mid-window, or the two integrations' common edge)
   double rate_window_s = 0.0;          ///< > 0: doppler_hz is a phase-based mean over this window
+  int frequency_pairs = 1;             ///< frequency discriminator pairs averaged into doppler_hz
   double cn0_dbhz = 0.0;
   double integration_s = 0.0;
+  double piece_s = 0.0;                ///< > 0: pieces of this coherent length summed in power
+  bool data_wiped = false;             ///< coherent across data bits, their signs removed
+  bool measurement = false;            ///< passes the aided lock criterion (UltraTightConfig::min_cn0_dbhz)
   Ephemeris ephemeris;
 };
 
@@ -74,8 +91,21 @@ class SteeredChannelController final : public ChannelController {
   void publish_release();
   /// Drops queued samples and any published command; gives the channel back.
   void release();
+  /// Whether the channel is integrating long (weak signal) and how its data wipe-off stands.
+  bool long_integration() const { return long_mode_; }
+  const DataWipeoff& wipeoff() const { return wipeoff_; }
 
  private:
+  /// The channel's own integration (10 ms): the discriminators as they always were.
+  void short_sample(const CorrelatorEpoch& e, const ChannelView& view, const std::optional<double>& doppler);
+  /// A long integration (weak signal): discriminators on the summed or wiped bits.
+  void long_sample(const SteeredIntegration& s, const ChannelView& view);
+  /// Enters or leaves long integration on the C/N0 of the integrations so far.
+  void choose_integration(const CorrelatorEpoch& e);
+  void leave_long_integration();
+  /// Phase-window (delta range) Doppler: updates the window and returns it when one closed.
+  void phase_window_rate(DiscriminatorSample& d, std::int64_t end, double phase_cycles, int samples);
+
   const UltraTightConfig& cfg_;
   double fs_;
   const Engagement& engagement_;
@@ -88,6 +118,12 @@ class SteeredChannelController final : public ChannelController {
   double applied_correction_cycles_ = 0.0;  ///< correction applied since the last integration ended
   std::optional<std::int64_t> rate_window_start_;  ///< integration end where the current phase window began
   double rate_window_start_cycles_ = 0.0;          ///< carrier phase there (NCO plus Costas error)
+  // Long integration.
+  bool long_mode_ = false;
+  DataWipeoff wipeoff_;
+  LongIntegrator long_;
+  IntegrationCn0Estimator cn0_;
+  std::optional<SteeredIntegration> last_long_;  ///< the previous data-wiped integration
   std::vector<DiscriminatorSample> outbox_;
   std::optional<NcoCommand> inbox_command_;
   bool inbox_release_ = false;

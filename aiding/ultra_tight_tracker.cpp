@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <tuple>
 
@@ -66,7 +67,7 @@ std::optional<RangeMeasurement> UltraTightTracker::to_measurement(const Discrimi
   m.pseudorange_m = gps::kSpeedOfLight_mps * seconds_of_week_difference(p->t_rx.sow, t_tx);
   // Discriminator noise plus what the range models leave, by elevation (the PVT's weights).
   m.pseudorange_sigma_m = discriminator_pseudorange_sigma_m(range_errors_, p->range.elevation_rad, d.cn0_dbhz,
-                                                            d.integration_s, d.spacing_chips);
+                                                            d.integration_s, d.spacing_chips, d.piece_s);
   if (d.doppler_hz) {
     // Predicted where the Doppler refers to (doppler_sample), not at mid_sample.
     const std::optional<SamplePrediction> at_rate = predict_at(d.ephemeris, d.doppler_sample, nav, block);
@@ -75,7 +76,9 @@ std::optional<RangeMeasurement> UltraTightTracker::to_measurement(const Discrimi
     m.rate_geometry = at_rate->range;
     m.rate_time_offset_s = at_rate->offset_s;
     m.rate_mps = -gps::kL1Wavelength_m * *d.doppler_hz;
-    m.rate_sigma_mps = discriminator_rate_sigma_mps(d.cn0_dbhz, d.integration_s, d.rate_window_s);
+    // A non-coherent integration's discriminator spans one of its pieces, averaged over its pairs.
+    m.rate_sigma_mps = discriminator_rate_sigma_mps(d.cn0_dbhz, d.piece_s > 0.0 ? d.piece_s : d.integration_s,
+                                                    d.rate_window_s, d.frequency_pairs);
   }
   return m;
 }
@@ -97,9 +100,10 @@ KalmanUpdate UltraTightTracker::update_and_steer(AidedNavigator& nav, const Bloc
   // thread tracked which channel.
   for (const int prn : block.tracked_prns) {
     for (const DiscriminatorSample& d : controller_for(prn)->take_samples()) {
-      if (!measure || d.cn0_dbhz < cfg_.min_cn0_dbhz) continue;
+      if (!measure || !d.measurement) continue;
       const std::optional<RangeMeasurement> m = to_measurement(d, nav, block);
       if (!m) continue;
+      last_measured_sample_[d.prn] = d.mid_sample;
       (faults_ && faults_->excluded(d.prn) ? watched : ms).push_back(*m);
       if (m->pseudorange_m) {
         const RangePrediction& g = m->geometry;
@@ -112,7 +116,19 @@ KalmanUpdate UltraTightTracker::update_and_steer(AidedNavigator& nav, const Bloc
       }
     }
   }
-  measuring_ = static_cast<int>(ms.size());
+  // Satellites measured within the longest integration (plus a block): with long
+  // integrations a channel's measurement arrives every few blocks, not in each.
+  const double span_s = 1e-3 * std::max(cfg_.long_integration.coherent_ms, cfg_.long_integration.noncoherent_ms) + 0.02;
+  const auto span = static_cast<std::int64_t>(span_s * fs_);
+  measuring_ = 0;
+  for (auto it = last_measured_sample_.begin(); it != last_measured_sample_.end();) {
+    if (block.end_sample - it->second > span) {
+      it = last_measured_sample_.erase(it);
+    } else {
+      ++measuring_;
+      ++it;
+    }
+  }
   KalmanUpdate result;
   if (!ms.empty()) result = nav.update_ranges(ms, innovations, watched);
   for (const ChannelStatus& ch : block.channels) {

@@ -64,7 +64,7 @@ class UltraTightTracker {
   int steered_channels() const;
   /// Channels an ultra-tight filter could take over after a block (ephemeris, transmit time, bit sync).
   static int count_steerable(const BlockSnapshot& block);
-  /// Channels whose last integration was strong enough to be a measurement.
+  /// Satellites measured within the last integration span (the longest configured length).
   int measuring_channels() const { return measuring_; }
   /// Per satellite, the mean of its discriminator pseudoranges against the filter's
   /// prediction (measured minus predicted) since the last clear (one integration's code
@@ -100,6 +100,7 @@ class UltraTightTracker {
     int count = 0;
   };
   std::map<int, ResidualSum> residual_sums_;
+  std::map<int, std::int64_t> last_measured_sample_;  ///< per PRN, where its latest measurement refers to
   int measuring_ = 0;
 };
 

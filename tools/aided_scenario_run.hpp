@@ -53,6 +53,8 @@ struct AidedRunSettings {
   bool filter_troposphere = false;
   /// Tight and ultra-tight: the ionosphere model's scale state (a 19th state).
   bool filter_ionosphere = false;
+  /// Ultra-tight: long integration of weak channels (data wipe-off).
+  aiding::LongIntegrationConfig long_integration;
 };
 
 /// The session for a synthesized scenario in `mode`: its week, its navigation file's

@@ -20,6 +20,7 @@
 #include "tools/aided_scenario_run.hpp"
 #include "tools/bench_report.hpp"
 #include "tools/command_registry.hpp"
+#include "tools/long_integration_options.hpp"
 
 namespace deepnav::cli {
 namespace {
@@ -34,6 +35,9 @@ struct ThresholdOptions {
   std::string work_dir;
   std::vector<std::string> modes;  ///< non-empty: the per-mode threshold on the aided scenario
   std::string aided_scenario = std::string(DEEPNAV_SOURCE_DIR) + "/data/scenarios/land_circle_aided_90s.yaml";
+  std::string imu_grade;  ///< non-empty: instead of the scenario's
+  std::string oscillator;  ///< non-empty: instead of the scenario's
+  aiding::LongIntegrationConfig long_integration;
 };
 
 /// The scenario with a C/N0 ramp and the length the ramp needs.
@@ -53,7 +57,10 @@ Scenario with_ramp(Scenario sc, const ThresholdOptions& o) {
 /// holding a solution within 10 m horizontal in its own mode with at least four
 /// satellites' measurements (coasting on the INS alone does not count as holding).
 void run_mode_thresholds(const ThresholdOptions& o) {
-  const Scenario sc = with_ramp(load_scenario(o.aided_scenario, DEEPNAV_SOURCE_DIR), o);
+  Scenario base = load_scenario(o.aided_scenario, DEEPNAV_SOURCE_DIR);
+  if (!o.imu_grade.empty()) base.imu.grade = o.imu_grade;
+  if (!o.oscillator.empty()) set_oscillator_preset(base.clock, o.oscillator);
+  const Scenario sc = with_ramp(base, o);
   if (!sc.imu.enabled) throw UserError("scenario '" + o.aided_scenario + "' has no imu section (the aided modes need one)");
   const std::string work = bench_scratch_dir(o.work_dir, "bench_threshold_modes");
   SynthesisOptions so;
@@ -68,7 +75,9 @@ void run_mode_thresholds(const ThresholdOptions& o) {
   for (const char* col : {"holds_until_s", "threshold_dbhz", "max_h_error_before_m", "wall_s"}) report.set_precision(col, 1);
   for (const auto& name : o.modes) {
     const aiding::NavMode mode = aiding::parse_nav_mode(name);
-    const AidedRunResult r = run_aided_scenario(sc, s, mode);
+    AidedRunSettings settings;
+    settings.long_integration = o.long_integration;
+    const AidedRunResult r = run_aided_scenario(sc, s, mode, settings);
     double holds_until = o.ramp_start_s, max_h = 0.0;
     std::string failure = "held to the end of the ramp";
     for (const auto& e : r.epochs) {
@@ -93,6 +102,9 @@ void run_mode_thresholds(const ThresholdOptions& o) {
                                       o.rate_dbps, o.end_dbhz));
   report.add_note("scenario", source_relative(o.aided_scenario));
   report.add_note("imu_grade", sc.imu.grade);
+  report.add_note("oscillator", sc.clock.oscillator);
+  report.add_note("ultra_integration", describe(o.long_integration));
+  report.add_note("coherent_ms", static_cast<long long>(o.long_integration.coherent_ms));
   report.emit(o.json_path);
 }
 
@@ -221,6 +233,10 @@ const bool registered = register_command([](CommandParents& parents) {
                   "which it stops holding a 10 m solution from satellite measurements")
       ->delimiter(',');
   cmd->add_option("--aided-scenario", o->aided_scenario, "Scenario for --modes (needs an imu section)")->capture_default_str();
+  cmd->add_option("--imu-grade", o->imu_grade, "With --modes: this IMU grade instead of the scenario's (e.g. consumer)");
+  cmd->add_option("--oscillator", o->oscillator, "With --modes: this receiver oscillator instead of the scenario's (ideal, tcxo, ocxo)")
+      ->check(CLI::IsMember({"ideal", "tcxo", "ocxo"}));
+  add_long_integration_options(*cmd, o->long_integration);
   cmd->add_option("--work-dir", o->work_dir, "Where the (deleted) IF file is written");
   cmd->add_option("--json", o->json_path, "Write the figures as JSON to this file");
   cmd->callback([o] { run_threshold(*o); });

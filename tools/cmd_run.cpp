@@ -15,6 +15,7 @@
 #include "signals/rinex_nav.hpp"
 #include "signals/text_output_file.hpp"
 #include "tools/atmosphere_options.hpp"
+#include "tools/long_integration_options.hpp"
 #include "tools/cli_checks.hpp"
 #include "tools/command_registry.hpp"
 #include "tools/process_usage.hpp"
@@ -52,6 +53,7 @@ struct RunOptions {
   double max_solution_sigma_m = 100.0;
   bool detect_troposphere_mismatch = true;
   bool detect_ionosphere_mismatch = true;
+  aiding::LongIntegrationConfig long_integration;
   bool print_config = false;
 };
 
@@ -108,6 +110,7 @@ aiding::AidedReceiverConfig aided_config(const RunOptions& o, aiding::NavMode mo
   c.ionosphere.enable_on_mismatch = o.detect_ionosphere_mismatch;
   c.fault_exclusion = o.fault_exclusion;
   c.max_published_sigma_m = o.max_solution_sigma_m;
+  c.ultra.long_integration = o.long_integration;
   return c;
 }
 
@@ -378,6 +381,7 @@ const bool registered = register_command([](CommandParents& parents) {
                 "Tight/ultra: take the ionosphere scale state when the fixes show the signal without most of the "
                 "ionosphere model's delay (a signal without ionosphere)")
       ->default_str("true");
+  add_long_integration_options(*cmd, o->long_integration);
   cmd->add_option("--max-solution-sigma", o->max_solution_sigma_m,
                   "Aided modes: a solution whose horizontal 1-sigma exceeds this (m) is not published")
       ->check(CLI::Range(0.1, 1e6))

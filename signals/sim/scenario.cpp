@@ -227,23 +227,10 @@ ReceiverClockSpec parse_clock(const Field& f) {
   if (f.has("drift_sps")) spec.drift_sps = f["drift_sps"].number_in(-1e-4, 1e-4);
   if (f.has("drift_ppm")) spec.drift_sps = f["drift_ppm"].number_in(-100, 100) * 1e-6;
   if (f.has("oscillator")) spec.oscillator = f["oscillator"].text();
-  // Allan variance coefficients. h_-2 (random-walk FM) from Brown & Hwang, Introduction to
-  // Random Signals, table 9.1. Their h0 lumps flicker into white FM for Kalman-filter clock
-  // models at second scales; used as white FM millisecond by millisecond it gives ~30 deg
-  // RMS of L1 phase jitter in a 10 Hz PLL, far more than real oscillators. Here h0 is the
-  // white-FM floor (TCXO: sigma_y(1 s) ~ 3e-11, OCXO ~ 2e-11), a few degrees of jitter.
-  if (spec.oscillator == "ideal") {
-    spec.h0 = spec.h_minus2 = 0.0;
-  } else if (spec.oscillator == "tcxo") {
-    spec.h0 = 2e-21;
-    spec.h_minus2 = 2e-20;
-  } else if (spec.oscillator == "ocxo") {
-    spec.h0 = 8e-22;
-    spec.h_minus2 = 4e-23;
-  } else if (spec.oscillator == "custom") {
+  if (spec.oscillator == "custom") {
     spec.h0 = f["h0"].number_in(0, 1e-15);
     spec.h_minus2 = f["h_minus2"].number_in(0, 1e-15);
-  } else {
+  } else if (!set_oscillator_preset(spec, spec.oscillator)) {
     f["oscillator"].fail("expected ideal, tcxo, ocxo or custom, got '" + spec.oscillator + "'");
   }
   return spec;
@@ -450,6 +437,28 @@ ErrorSpec parse_errors(const Field& f) {
 }
 
 }  // namespace
+
+bool set_oscillator_preset(ReceiverClockSpec& spec, const std::string& name) {
+  // Allan variance coefficients. h_-2 (random-walk FM) from Brown & Hwang, Introduction to
+  // Random Signals, table 9.1. Their h0 lumps flicker into white FM for Kalman-filter clock
+  // models at second scales; used as white FM millisecond by millisecond it gives ~30 deg
+  // RMS of L1 phase jitter in a 10 Hz PLL, far more than real oscillators. Here h0 is the
+  // white-FM floor (TCXO: sigma_y(1 s) ~ 3e-11, OCXO ~ 2e-11), a few degrees of jitter.
+  if (name == "ideal") {
+    spec.h0 = spec.h_minus2 = 0.0;
+  } else if (name == "tcxo") {
+    spec.h0 = 2e-21;
+    spec.h_minus2 = 2e-20;
+  } else if (name == "ocxo") {
+    spec.h0 = 8e-22;
+    spec.h_minus2 = 4e-23;
+  } else {
+    return false;
+  }
+  spec.oscillator = name;
+  return true;
+}
+
 
 Scenario parse_scenario(const std::string& yaml_text, const std::string& origin, const std::string& base_dir,
                         const std::string& search_root) {

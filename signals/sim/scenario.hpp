@@ -48,6 +48,10 @@ struct ReceiverClockSpec {
   double h_minus2 = 0.0;
 };
 
+/// Sets the Allan coefficients of a named oscillator (ideal, tcxo, ocxo) and the name;
+/// false (spec unchanged) for any other name.
+bool set_oscillator_preset(ReceiverClockSpec& spec, const std::string& name);
+
 /// A time window in which the listed satellites (all when empty) transmit nothing.
 struct OutageSpec {
   double start_s = 0.0;
