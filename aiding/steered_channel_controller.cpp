@@ -17,6 +17,7 @@ constexpr double kMaxWindowPhaseError_cycles = 0.1;  // a window's ends: Costas 
 constexpr double kWipedPhaseLock = 1.5;              // mean I / mean |Q| of wiped integrations: phase locked
 constexpr double kReferenceIntegration_s = 0.01;     // the length min_cn0_dbhz is stated for
 constexpr double kDetectionSigmas = 3.0;             // a long integration's signal: 3 sigmas above noise alone
+constexpr double kLockHold_s = 1.0;                  // locked: a measurement within this (the scalar loss time)
 
 IntegrationPower power_of(const CorrelatorEpoch& e, double fs) {
   IntegrationPower p;
@@ -97,6 +98,7 @@ ChannelDecision SteeredChannelController::on_epoch(const CorrelatorEpoch& e, con
     choose_integration(e);
     if (!long_mode_) {
       short_sample(e, view, doppler);
+      out.lock = lock_report(end, e.cn0_dbhz);
       return out;
     }
   }
@@ -122,7 +124,15 @@ ChannelDecision SteeredChannelController::on_epoch(const CorrelatorEpoch& e, con
     long_sample(s, view);
   }
   choose_integration(e);
+  out.lock = lock_report(end, cn0_.cn0_dbhz());
   return out;
+}
+
+SignalLockReport SteeredChannelController::lock_report(std::int64_t end_sample, double cn0_dbhz) const {
+  SignalLockReport r;
+  r.cn0_dbhz = cn0_dbhz;
+  r.locked = last_measurement_end_ && static_cast<double>(end_sample - *last_measurement_end_) <= kLockHold_s * fs_;
+  return r;
 }
 
 void SteeredChannelController::leave_long_integration() {
@@ -199,6 +209,7 @@ void SteeredChannelController::short_sample(const CorrelatorEpoch& e, const Chan
   d.cn0_dbhz = e.cn0_dbhz;
   d.integration_s = e.integration_s;
   d.measurement = e.cn0_dbhz >= cfg_.min_cn0_dbhz;
+  if (d.measurement) last_measurement_end_ = e.first_sample + e.samples;
   d.ephemeris = *view.ephemeris;
   outbox_.push_back(d);
 }
@@ -264,6 +275,7 @@ void SteeredChannelController::long_sample(const SteeredIntegration& s, const Ch
                   code_sigma_chips(cn0, e.integration_s, e.spacing_chips, d.piece_s) <=
                       code_sigma_chips(cfg_.min_cn0_dbhz, kReferenceIntegration_s, e.spacing_chips);
   d.ephemeris = *view.ephemeris;
+  if (d.measurement) last_measurement_end_ = end;
   spdlog::trace("PRN {:2d}: {} ms {} C/N0 {:.1f} code {:+.3f} chips{}", e.prn, std::lround(e.integration_s * 1e3),
                 s.data_wiped ? "wiped" : "non-coherent", cn0, d.code_error_chips, d.measurement ? "" : " (not a measurement)");
   outbox_.push_back(d);

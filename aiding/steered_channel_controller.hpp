@@ -103,6 +103,8 @@ class SteeredChannelController final : public ChannelController {
   /// Enters or leaves long integration on the C/N0 of the integrations so far.
   void choose_integration(const CorrelatorEpoch& e);
   void leave_long_integration();
+  /// Locked: an integration passed the aided lock criterion within the last second.
+  SignalLockReport lock_report(std::int64_t end_sample, double cn0_dbhz) const;
   /// Phase-window (delta range) Doppler: updates the window and returns it when one closed.
   void phase_window_rate(DiscriminatorSample& d, std::int64_t end, double phase_cycles, int samples);
 
@@ -124,6 +126,7 @@ class SteeredChannelController final : public ChannelController {
   LongIntegrator long_;
   IntegrationCn0Estimator cn0_;
   std::optional<SteeredIntegration> last_long_;  ///< the previous data-wiped integration
+  std::optional<std::int64_t> last_measurement_end_;  ///< end of the latest integration that was a measurement
   std::vector<DiscriminatorSample> outbox_;
   std::optional<NcoCommand> inbox_command_;
   bool inbox_release_ = false;

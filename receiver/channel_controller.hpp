@@ -36,11 +36,19 @@ struct ChannelView {
   bool receiver_clock_set = false;       ///< the receiver clock is set (four transmit times seen)
 };
 
+/// A controller's own judgement of its channel's signal, where its integrations differ from
+/// the channel's (long, data-wiped ones): what products and benchmarks report for it.
+struct SignalLockReport {
+  double cn0_dbhz = 0.0;  ///< the controller's estimate
+  bool locked = false;    ///< its lock criterion holds (for the aided modes: a measurement within the last second)
+};
+
 /// What a controller asks of its channel.
 struct ChannelDecision {
   bool owns_epoch = false;             ///< on_epoch: this controller took the epoch; the scalar loops follow it
   std::optional<NcoCommand> command;   ///< NCO rates (and phase jumps) from the next sample on
   std::optional<bool> loss_detection;  ///< turn the channel's weak-signal loss detection on or off
+  std::optional<SignalLockReport> lock;  ///< on_epoch: the controller's view of the signal (none: the channel's own)
 };
 
 class ChannelController {

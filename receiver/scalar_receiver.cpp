@@ -264,8 +264,12 @@ struct ScalarReceiver::Impl {
       // completed by this epoch goes to the decoder at once.
       bool fresh = false;
       for (const PromptBit& bit : ch.trk->take_bits()) fresh = ch.nav->add_bit(bit) || fresh;
-      out.push_back({e, ChannelSnapshot{ch.trk->prn(), ch.trk->state(), ch.trk->cn0_dbhz(), ch.nav->ephemeris().has_value()},
-                     fresh});
+      ChannelSnapshot snap{ch.trk->prn(), ch.trk->state(), ch.trk->cn0_dbhz(), ch.nav->ephemeris().has_value(), {}};
+      if (outside.owns_epoch && outside.lock) {
+        snap.cn0_dbhz = outside.lock->cn0_dbhz;
+        snap.aided_lock = outside.lock->locked;
+      }
+      out.push_back({e, snap, fresh});
     });
   }
 

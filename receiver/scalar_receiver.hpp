@@ -98,8 +98,11 @@ inline std::map<int, double> cn0_by_prn(const ReceiverEpoch& epoch) {
 struct ChannelSnapshot {
   int prn;
   ChannelState state;
-  double cn0_dbhz;
+  double cn0_dbhz;  ///< the channel's estimate, or the steering controller's when it reports one
   bool has_ephemeris;
+  /// Steered by an outside filter that judges the signal itself: its lock criterion
+  /// (none: the channel's own loss rule applies).
+  std::optional<bool> aided_lock;
 };
 
 /// What a channel's navigation data decoding achieved (for products and diagnostics).

@@ -96,6 +96,7 @@ struct TrackingRow {
   int prn;
   ChannelState state;
   double integration_s, doppler_hz, cn0_dbhz;
+  std::optional<bool> aided_lock;  ///< steered channel: the aided lock criterion
 };
 
 /// One solution of the run (its pvt.csv row).
@@ -117,7 +118,7 @@ class JamRecorder : public ProductSink {
   }
   void on_correlation(const CorrelatorEpoch& e, const ChannelSnapshot& ch) override {
     tracking.push_back({static_cast<double>(e.first_sample) / fs_hz_, e.prn, ch.state, e.integration_s,
-                        e.carrier_doppler_hz, ch.cn0_dbhz});
+                        e.carrier_doppler_hz, ch.cn0_dbhz, ch.aided_lock});
   }
   std::vector<TrackingRow> tracking;
   std::vector<SolutionRow> solutions;
@@ -130,9 +131,13 @@ class JamRecorder : public ProductSink {
 /// synthesizer's sat_truth.csv (true Doppler, 10 Hz). An integration counts as tracked when
 /// the channel is in the tracking state, its carrier is within 10 Hz of the true Doppler,
 /// and its C/N0 estimate has not stayed below the receiver's loss threshold (22 dB-Hz) for
-/// the receiver's loss time (1 s): the rule by which scalar tracking drops a channel,
-/// applied to every mode, since the aided modes hold channels open without signal (their
-/// NCOs then follow the INS, so the carrier stays near the true Doppler regardless).
+/// the receiver's loss time (1 s): the rule by which scalar tracking drops a channel. A
+/// channel the ultra-tight filter steers is judged by the aided lock criterion instead (a
+/// measurement within the last second: an integration whose signal is detected and whose
+/// code discriminator noise is no worse than at 18 dB-Hz over 10 ms), since its long
+/// integrations measure below 22 dB-Hz; the aided modes hold channels open without signal
+/// (their NCOs then follow the INS, so the carrier stays near the true Doppler regardless),
+/// which neither rule counts.
 struct ChannelTimeline {
   struct Span {
     double t_s, integration_s, cn0_dbhz;
@@ -182,7 +187,9 @@ ChannelTimeline channel_timeline(const std::vector<TrackingRow>& tracking, const
       below_since.erase(prn);
     else
       below_since.try_emplace(prn, t);
-    const bool faded = below_since.count(prn) && t - below_since[prn] >= loss.lost_after_s;
+    // A channel its filter steers and judges (ultra-tight) is held to that filter's lock
+    // criterion instead: a measurement within the last second.
+    const bool faded = r.aided_lock ? !*r.aided_lock : below_since.count(prn) && t - below_since[prn] >= loss.lost_after_s;
     auto& recent = last_second[prn];
     double& recent_sum = last_second_sum[prn];
     recent.emplace_back(t, cn0);
