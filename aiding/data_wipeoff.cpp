@@ -1,5 +1,7 @@
 #include "aiding/data_wipeoff.hpp"
 
+#include <stdexcept>
+
 #include "ins/gps_time.hpp"
 #include "receiver/nav_decoder.hpp"
 
@@ -19,6 +21,16 @@ void DataWipeoff::learn(const NavDecoder& decoder) {
   if (decoder.subframes_decoded() == subframes_learned_) return;
   subframes_learned_ = decoder.subframes_decoded();
   if (decoder.last_decoded()) predictor_.learn(*decoder.last_decoded());
+}
+
+void DataWipeoff::assist(const Ephemeris& eph) {
+  if (assisted_iode_ == eph.iode) return;
+  assisted_iode_ = eph.iode;
+  try {
+    predictor_.assist(eph);
+  } catch (const std::invalid_argument&) {
+    // A value LNAV cannot carry: the file's data cannot be what was broadcast; learn instead.
+  }
 }
 
 std::optional<std::int64_t> DataWipeoff::bit_index(const NavDecoder& decoder, const Ephemeris& eph,

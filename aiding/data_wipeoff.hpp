@@ -28,6 +28,11 @@ class DataWipeoff {
  public:
   /// Learns the subframes `decoder` decoded since the last call.
   void learn(const NavDecoder& decoder);
+  /// Assisted bits: subframes 1-3 encoded from a navigation file's ephemeris where the
+  /// broadcast ones are not known, once per data set (IODE): a prediction the monitor finds
+  /// failed is then learned from the signal, not assisted again. Only as good as the file's
+  /// reproduction of the broadcast (NavBitPredictor::assist).
+  void assist(const Ephemeris& eph);
   /// Absolute data bit (nav_bit_index) of the bit that starts at the channel's code period
   /// `bit_start_period`; nullopt before the decoder's first subframe.
   static std::optional<std::int64_t> bit_index(const NavDecoder& decoder, const Ephemeris& eph,
@@ -52,6 +57,7 @@ class DataWipeoff {
   NavBitPredictor predictor_;
   NavBitMonitor monitor_;
   int subframes_learned_ = 0;
+  std::optional<int> assisted_iode_;
 };
 
 }  // namespace deepnav::aiding

@@ -26,7 +26,10 @@ namespace deepnav::aiding {
 
 struct LongIntegrationConfig {
   int coherent_ms = 200;     ///< data-wiped coherent length: a multiple of 20 ms; 20: no wipe-off
-  int noncoherent_ms = 200;  ///< power sum of 20 ms bits where the data are not predicted (multiple of 20)
+  int noncoherent_ms = 1000;  ///< power sum of 20 ms bits where the data are not predicted (multiple of 20)
+  /// Predict subframes 1-3 from the receiver's ephemeris where they have not been decoded
+  /// (an assisted ephemeris from a navigation file): assisted data bits.
+  bool assist_data_bits = false;
   double enter_below_dbhz = 30.0;  ///< a steered channel integrates long below this C/N0 ...
   double leave_above_dbhz = 34.0;  ///< ... and goes back to its 10 ms integrations above this
 };

@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "aiding/measurement_models.hpp"
@@ -17,7 +18,7 @@ constexpr double kMaxWindowPhaseError_cycles = 0.1;  // a window's ends: Costas 
 constexpr double kWipedPhaseLock = 1.5;              // mean I / mean |Q| of wiped integrations: phase locked
 constexpr double kReferenceIntegration_s = 0.01;     // the length min_cn0_dbhz is stated for
 constexpr double kDetectionSigmas = 3.0;             // a long integration's signal: 3 sigmas above noise alone
-constexpr double kLockHold_s = 1.0;                  // locked: a measurement within this (the scalar loss time)
+constexpr double kLockHold_s = 1.0;                  // locked: a measurement within this (the scalar loss time) ...
 
 IntegrationPower power_of(const CorrelatorEpoch& e, double fs) {
   IntegrationPower p;
@@ -93,12 +94,13 @@ ChannelDecision SteeredChannelController::on_epoch(const CorrelatorEpoch& e, con
     spdlog::debug("PRN {:2d}: steered by the navigation filter", e.prn);
   }
   wipeoff_.learn(view.decoder);
+  if (cfg_.long_integration.assist_data_bits) wipeoff_.assist(*view.ephemeris);
   if (!long_mode_) {
     cn0_.add(power_of(e, fs_));
     choose_integration(e);
     if (!long_mode_) {
       short_sample(e, view, doppler);
-      out.lock = lock_report(end, e.cn0_dbhz);
+      if (engagement_ == Engagement::all) out.lock = lock_report(end, e.cn0_dbhz);
       return out;
     }
   }
@@ -124,14 +126,19 @@ ChannelDecision SteeredChannelController::on_epoch(const CorrelatorEpoch& e, con
     long_sample(s, view);
   }
   choose_integration(e);
-  out.lock = lock_report(end, cn0_.cn0_dbhz());
+  // Only ultra-tight measures with these integrations; channels steered through fades in
+  // the other modes stay under the scalar loss rule.
+  if (engagement_ == Engagement::all) out.lock = lock_report(end, cn0_.cn0_dbhz());
   return out;
 }
 
 SignalLockReport SteeredChannelController::lock_report(std::int64_t end_sample, double cn0_dbhz) const {
   SignalLockReport r;
   r.cn0_dbhz = cn0_dbhz;
-  r.locked = last_measurement_end_ && static_cast<double>(end_sample - *last_measurement_end_) <= kLockHold_s * fs_;
+  // Within the scalar loss time, or the longest integration (and a block) when that is longer.
+  const LongIntegrationConfig& lc = cfg_.long_integration;
+  const double hold_s = std::max(kLockHold_s, 1e-3 * std::max(lc.coherent_ms, lc.noncoherent_ms) + 0.02);
+  r.locked = last_measurement_end_ && static_cast<double>(end_sample - *last_measurement_end_) <= hold_s * fs_;
   return r;
 }
 

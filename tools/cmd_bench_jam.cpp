@@ -17,6 +17,7 @@
 #include "signals/sim/scenario.hpp"
 #include "tools/child_process.hpp"
 #include "tools/command_registry.hpp"
+#include "tools/long_integration_options.hpp"
 #include "tools/jam_point.hpp"
 #include "tools/jam_report.hpp"
 #include "tools/python_plot.hpp"
@@ -40,6 +41,7 @@ struct SweepOptions {
   bool list_commands = false;
   bool no_plots = false;
   std::string json_path;
+  aiding::LongIntegrationConfig long_integration;
 };
 
 std::vector<std::string> split_list(const std::string& text, const std::string& option) {
@@ -111,15 +113,18 @@ std::vector<JamPoint> sweep_points(const SweepOptions& o) {
         for (int r = 0; r < o.runs; ++r)
           for (double js : parse_js_range(o.js))
             points.push_back({o.scenario, jammer, js, mode, mitigation, base.seed + static_cast<std::uint64_t>(r),
-                              o.onset_s});
+                              o.onset_s, o.long_integration});
   return points;
 }
 
 std::vector<std::string> point_command(const std::string& exe, const JamPoint& p, const std::string& out_dir) {
-  return {exe,          "-q",       "bench",          "jam-point",        "--scenario",    p.scenario,
+  std::vector<std::string> cmd = {exe,          "-q",       "bench",          "jam-point",        "--scenario",    p.scenario,
           "--jammer",   p.jammer,   "--js",           fmt::format("{}", p.js_db), "--mode", p.mode,
           "--mitigation", p.mitigation, "--seed",     std::to_string(p.seed), "--onset", fmt::format("{}", p.onset_s),
-          "--out",      out_dir};
+          "--coherent-ms", std::to_string(p.long_integration.coherent_ms),
+          "--noncoherent-ms", std::to_string(p.long_integration.noncoherent_ms), "--out", out_dir};
+  if (p.long_integration.assist_data_bits) cmd.insert(cmd.end() - 2, "--assist-data-bits");
+  return cmd;
 }
 
 /// Runs the commands with at most `jobs` at a time; returns how many failed.
@@ -195,6 +200,7 @@ const bool registered = register_command([](CommandParents& parents) {
   cmd->add_option("--onset", o->onset_s, "Jammer onset (s); the figures cover onset to end")->capture_default_str();
   cmd->add_option("--out", o->out_dir, "Sweep folder (points/, runs.csv, thresholds.md, PNGs)")->required();
   cmd->add_option("--jobs", o->jobs, "Points run at the same time")->capture_default_str();
+  add_long_integration_options(*cmd, o->long_integration);
   cmd->add_flag("--list-commands", o->list_commands, "Print the unfinished points' commands, one a line, and stop");
   cmd->add_flag("--no-plots", o->no_plots, "Skip the PNG plots");
   cmd->add_option("--json", o->json_path, "Write the threshold table as JSON to this file");
@@ -212,6 +218,7 @@ const bool registered = register_command([](CommandParents& parents) {
       ->capture_default_str();
   point->add_option("--seed", p->seed, "Seed of noise and jammer")->capture_default_str();
   point->add_option("--onset", p->onset_s, "Jammer onset (s)")->capture_default_str();
+  add_long_integration_options(*point, p->long_integration);
   point->add_option("--out", *out, "Sweep folder")->required();
   point->callback([p, out] {
     const auto fig = run_jam_point(*p, fs::absolute(*out).string());

@@ -340,8 +340,14 @@ JammerConfig benchmark_jammer(const std::string& type, double js_db, double onse
 }
 
 std::string point_id(const JamPoint& p) {
-  return fmt::format("{}_{}_js{:05.1f}_{}_{}_s{}", fs::path(p.scenario).stem().string(), p.jammer, p.js_db, p.mode,
-                     p.mitigation, p.seed);
+  const aiding::LongIntegrationConfig defaults;
+  const bool own_integration = p.long_integration.coherent_ms != defaults.coherent_ms ||
+                               p.long_integration.noncoherent_ms != defaults.noncoherent_ms;
+  return fmt::format("{}_{}_js{:05.1f}_{}{}_{}_s{}{}", fs::path(p.scenario).stem().string(), p.jammer, p.js_db, p.mode,
+                     p.long_integration.assist_data_bits ? "-assisted-bits" : "", p.mitigation, p.seed,
+                     own_integration ? fmt::format("_c{}n{}", p.long_integration.coherent_ms,
+                                                   p.long_integration.noncoherent_ms)
+                                     : "");
 }
 
 std::string point_dir(const std::string& out_dir, const JamPoint& p) {
@@ -385,7 +391,10 @@ nlohmann::json run_jam_point(const JamPoint& p, const std::string& out_dir) {
                                    "--fs", fmt::format("{}", sc.sample_rate_hz), "--if", fmt::format("{}", sc.if_hz),
                                    "--week", std::to_string(sc.start_time.week), "--iono-from", sc.nav_file,
                                    "--ephemeris-from", sc.nav_file, "--truth", s.truth_path, "--mitigation",
-                                   p.mitigation, "--out", (work / "run").string()};
+                                   p.mitigation, "--coherent-ms", std::to_string(p.long_integration.coherent_ms),
+                                   "--noncoherent-ms", std::to_string(p.long_integration.noncoherent_ms),
+                                   "--out", (work / "run").string()};
+  if (p.long_integration.assist_data_bits) argv.push_back("--assist-data-bits");
   const RunImu imu{s.imu_path, sc.imu.grade, sc.imu.grades_file, sc.imu.lever_arm_m};
   for (const auto& a : receiver_mode_run_arguments(mode, imu, p.scenario)) argv.push_back(a);
   JamRecorder recorder(sc.sample_rate_hz);
@@ -395,6 +404,7 @@ nlohmann::json run_jam_point(const JamPoint& p, const std::string& out_dir) {
     const aiding::NavMode nav_mode = aiding::parse_nav_mode(p.mode);
     aiding::NavigationSessionConfig cfg = scenario_session_config(sc, nav_mode);
     cfg.mitigation.mode = parse_mitigation_mode(p.mitigation);
+    cfg.navigator.ultra.long_integration = p.long_integration;
     aiding::NavigationSession session(cfg, source, scenario_imu_log(s, nav_mode), sc.duration_s);
     session.run({&recorder});
     if (const aiding::AidedReceiver* aided = session.aided()) {
@@ -413,6 +423,9 @@ nlohmann::json run_jam_point(const JamPoint& p, const std::string& out_dir) {
                         {"onset_s", p.onset_s},
                         {"duration_s", sc.duration_s},
                         {"adc_bits", sc.adc.bits},
+                        {"coherent_ms", p.long_integration.coherent_ms},
+                        {"noncoherent_ms", p.long_integration.noncoherent_ms},
+                        {"assisted_data_bits", p.long_integration.assist_data_bits},
                         {"command", shell_command_line(argv)}};
   const ChannelTimeline timeline = channel_timeline(recorder.tracking, s.sat_truth_path, p.onset_s, sc.duration_s);
   fig["channels"] = channel_figures(timeline, p.onset_s, sc.duration_s);

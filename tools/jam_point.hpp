@@ -6,6 +6,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "aiding/long_integrator.hpp"
+
 #include "signals/sim/jammer.hpp"
 
 namespace deepnav::cli {
@@ -18,6 +20,8 @@ struct JamPoint {
   std::string mitigation = "none";
   std::uint64_t seed = 1;
   double onset_s = 16.0;      ///< jammer on from here to the end of the scenario
+  /// Ultra-tight long integration; a coherent length other than the default shows in the id.
+  aiding::LongIntegrationConfig long_integration;
 };
 
 /// The benchmark's jammer of each type at this J/S (see README, "Jamming benchmark"):

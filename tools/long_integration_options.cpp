@@ -34,13 +34,17 @@ void add_long_integration_options(CLI::App& cmd, aiding::LongIntegrationConfig& 
                  "Ultra-tight, weak signals: 20 ms bits whose data are not predicted are summed in power over this (ms)")
       ->check(multiple_of_bits())
       ->capture_default_str();
+  cmd.add_flag("--assist-data-bits", config.assist_data_bits,
+               "Ultra-tight: predict subframes 1-3 from the assisted ephemeris (--ephemeris-from) before they are "
+               "decoded (checked against the signal bit by bit)");
 }
 
 std::string describe(const aiding::LongIntegrationConfig& c) {
   if (c.coherent_ms <= 20) return fmt::format("no data wipe-off: 20 ms bits, {} ms non-coherent", c.noncoherent_ms);
-  return fmt::format("{} ms coherent with data wipe-off, {} ms non-coherent where the bits are not predicted "
+  return fmt::format("{} ms coherent with data wipe-off{}, {} ms non-coherent where the bits are not predicted "
                      "(below {} dB-Hz)",
-                     c.coherent_ms, c.noncoherent_ms, c.enter_below_dbhz);
+                     c.coherent_ms, c.assist_data_bits ? " (subframes 1-3 assisted from the navigation file)" : "",
+                     c.noncoherent_ms, c.enter_below_dbhz);
 }
 
 }  // namespace deepnav::cli
