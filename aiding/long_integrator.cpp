@@ -88,9 +88,11 @@ void LongIntegrator::add(const CorrelatorEpoch& e, std::int64_t bit_edge_period,
     bit_ = e;
     bit_ms_ = ms;
     bit_start_period_ = start;
+    bit_noise_power_ = std::norm(e.noise);
   } else if (bit_) {
     add_scaled(*bit_, e, 1.0);
     bit_ms_ += ms;
+    bit_noise_power_ += std::norm(e.noise);
   }
   if (!bit_ || bit_phase(e.code_period) != 0) return;
   if (bit_ms_ == kBitMs) finish_bit(signer, out);
@@ -125,6 +127,8 @@ void LongIntegrator::finish_bit(const BitSigner& signer, std::vector<SteeredInte
     last.noise_samples += run_->sums.noise_samples;
     run_->sums = last;
   }
+  run_->noise_power += bit_noise_power_;
+  run_->noise_samples += bit_->noise_samples;
   if (!wiped) {
     ++run_->pieces;
     run_->early_power += std::norm(bit_->early);

@@ -46,6 +46,10 @@ struct SteeredIntegration {
   int pieces = 1;               ///< coherent pieces combined in power (1: one coherent integration)
   double piece_s = 0.0;         ///< length of each coherent piece
   double early_power = 0.0, prompt_power = 0.0, late_power = 0.0;  ///< sum of |.|^2 over the pieces
+  /// The noise correlator's |N|^2 summed over the channel's integrations (each an independent
+  /// sample of the noise density; |sum N|^2 would be a single one) and the samples it covered.
+  double noise_power = 0.0;
+  int noise_samples = 0;
   /// Non-coherent: the sum over consecutive pieces of conj(P_k-1) P_k, each turned by the sign
   /// of its real part (a data-bit change between the two flips the pair): its angle over
   /// 2 pi piece_s is the mean residual frequency, as a cross/dot discriminator averaged.
@@ -68,6 +72,7 @@ class LongIntegrator {
            std::vector<SteeredIntegration>& out);
   /// Drops what is being summed (a gap, a change of owner, leaving long integration).
   void reset();
+
   /// For the bit being completed (inside a BitSigner call): the carrier phase its prompt
   /// should be judged against - the wiped prompt summed so far in this integration, or the
   /// previous data-wiped integration's when it ended where this run began. nullopt after a
@@ -81,6 +86,7 @@ class LongIntegrator {
   LongIntegrationConfig cfg_;
   std::optional<CorrelatorEpoch> bit_;  ///< the bit being summed
   int bit_ms_ = 0;
+  double bit_noise_power_ = 0.0;  ///< sum of the bit's integrations' |N|^2
   std::int64_t bit_start_period_ = 0;
   double bit_start_phase_cycles_ = 0.0;
   std::optional<SteeredIntegration> run_;  ///< the integration being summed

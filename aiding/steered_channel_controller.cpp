@@ -33,6 +33,8 @@ IntegrationPower power_of(const CorrelatorEpoch& e, double fs) {
 
 IntegrationPower power_of(const SteeredIntegration& s, double fs) {
   IntegrationPower p = power_of(s.sums, fs);
+  p.noise_power = s.noise_power;
+  p.noise_s = s.noise_samples / fs;
   if (s.data_wiped) {
     p.data_wiped = true;
     p.wiped_prompt = s.sums.prompt;
@@ -283,7 +285,7 @@ void SteeredChannelController::long_sample(const SteeredIntegration& s, const Ch
                       code_sigma_chips(cfg_.min_cn0_dbhz, kReferenceIntegration_s, e.spacing_chips);
   d.ephemeris = *view.ephemeris;
   if (d.measurement) last_measurement_end_ = end;
-  spdlog::trace("PRN {:2d}: {} ms {} C/N0 {:.1f} code {:+.3f} chips{}", e.prn, std::lround(e.integration_s * 1e3),
+  spdlog::trace("t {:.2f} PRN {:2d}: {} ms {} C/N0 {:.1f} code {:+.3f} chips{}", end / fs_, e.prn, std::lround(e.integration_s * 1e3),
                 s.data_wiped ? "wiped" : "non-coherent", cn0, d.code_error_chips, d.measurement ? "" : " (not a measurement)");
   outbox_.push_back(d);
 }
