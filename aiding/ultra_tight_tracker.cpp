@@ -150,11 +150,14 @@ void UltraTightTracker::steer(const ChannelStatus& ch, SteeredChannelController&
   if (std::abs(correction_chips) > cfg_.max_code_correction_chips) {
     // The replica and the filter disagree by more than a plausible tracking error: the
     // channel or the filter is wrong. Give the channel back to its own loops.
-    spdlog::warn("PRN {:2d}: filter and replica differ by {:.1f} chips; channel back to scalar tracking", ch.prn,
-                 correction_chips);
+    // Once per episode: the controller takes the channel again at its next integration.
+    if (disagreeing_.insert(ch.prn).second)
+      spdlog::warn("PRN {:2d}: filter and replica differ by {:.1f} chips; channel back to scalar tracking", ch.prn,
+                   correction_chips);
     controller.publish_release();
     return;
   }
+  disagreeing_.erase(ch.prn);
   NcoCommand cmd;
   cmd.carrier_doppler_hz = -(p.pseudorange_rate_mps(predicted->antenna_velocity_ecef_mps, nav.clock_drift_mps()) +
                              nav.residual_delay_rate_mps(p)) /

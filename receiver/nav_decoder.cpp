@@ -9,6 +9,8 @@ namespace {
 
 constexpr int kSubframeBits = lnav::kBitsPerSubframe;
 constexpr std::uint8_t kPreamble[8] = {1, 0, 0, 0, 1, 0, 1, 1};
+constexpr std::int64_t kPeriodsPerSubframe = 6000;  // 6 s of 1 ms code periods
+constexpr std::int64_t kTowCountsPerWeek = 100800;
 
 }  // namespace
 
@@ -64,7 +66,16 @@ void NavDecoder::try_decode() {
         for (int b = 0; b < 30; ++b) word = (word << 1) | bits_[static_cast<std::size_t>(w * 30 + b)];
         sf[static_cast<std::size_t>(w)] = word;
       }
-      if (const auto decoded = lnav::decode_subframe(sf)) {
+      const auto decoded = lnav::decode_subframe(sf);
+      if (decoded && !consistent_with_anchor(Anchor{bit_start_period_.front(), decoded->tlm_how.tow_count})) {
+        // Every word passed parity, but the TOW count is not the one the channel's own code
+        // period count says is due: a subframe read wrong (weak signal: several errors in a
+        // word pass parity once in 64), or the anchor itself was. Neither is taken until a
+        // second subframe agrees with it.
+        ++inconsistent_;
+        pending_anchor_ = Anchor{bit_start_period_.front(), decoded->tlm_how.tow_count};
+      } else if (decoded) {
+        pending_anchor_.reset();
         anchor_ = Anchor{bit_start_period_.front(), decoded->tlm_how.tow_count};
         if (decoded->tlm_how.subframe_id == 1)
           // A TOW count of 0 (the next subframe starts the week): this one began 6 s before.
@@ -77,12 +88,26 @@ void NavDecoder::try_decode() {
         bits_.erase(bits_.begin(), bits_.begin() + kSubframeBits);
         bit_start_period_.erase(bit_start_period_.begin(), bit_start_period_.begin() + kSubframeBits);
         continue;
+      } else {
+        ++failures_;
       }
-      ++failures_;
     }
     bits_.pop_front();
     bit_start_period_.pop_front();
   }
+}
+
+bool NavDecoder::consistent_with_anchor(const Anchor& a) const {
+  // TOW counts of subframes k periods apart differ by k / 6000 (modulo a week of counts).
+  const auto agrees = [&](const Anchor& ref) {
+    const std::int64_t periods = a.period - ref.period;
+    if (periods % kPeriodsPerSubframe != 0) return false;
+    const std::int64_t due = (ref.tow_count + periods / kPeriodsPerSubframe) % kTowCountsPerWeek;
+    return (due + kTowCountsPerWeek) % kTowCountsPerWeek == a.tow_count;
+  };
+  if (!anchor_) return true;
+  if (agrees(*anchor_)) return true;
+  return pending_anchor_ && agrees(*pending_anchor_);  // two that agree outvote the anchor
 }
 
 std::optional<std::pair<double, std::int64_t>> NavDecoder::last_subframe_start() const {

@@ -55,9 +55,16 @@ class NavDecoder {
   /// Bit polarity found by the preamble: +1 upright, -1 inverted (Costas ambiguity); 0 unknown.
   int polarity() const { return polarity_; }
   int parity_failures() const { return failures_; }
+  /// Subframes that passed parity but whose TOW count disagreed with the time the channel
+  /// had (not taken; see try_decode).
+  int inconsistent_subframes() const { return inconsistent_; }
 
  private:
   void try_decode();
+  struct Anchor;
+  /// Whether a subframe starting at `a` agrees with the anchor (or, failing that, with the
+  /// inconsistent one before it, which two agreeing subframes then replace the anchor by).
+  bool consistent_with_anchor(const Anchor& a) const;
 
   struct Anchor {
     std::int64_t period;  ///< code period at which the subframe's first bit starts
@@ -71,10 +78,12 @@ class NavDecoder {
   std::deque<std::uint8_t> bits_;
   std::deque<std::int64_t> bit_start_period_;
   std::optional<Anchor> anchor_;
+  std::optional<Anchor> pending_anchor_;  ///< the last inconsistent subframe's
   std::optional<lnav::DecodedSubframe> last_decoded_;
   std::optional<WeekNumber> week_number_;
   int subframes_ = 0;
   int failures_ = 0;
+  int inconsistent_ = 0;
   int polarity_ = 0;
 };
 

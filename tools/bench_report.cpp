@@ -31,8 +31,10 @@ void BenchReport::add_row(std::vector<Cell> row) {
 }
 
 std::string bench_scratch_dir(const std::string& given, const std::string& name) {
-  if (!given.empty()) return given;
-  return (std::filesystem::temp_directory_path() / fmt::format("deepnav_{}_{}", name, getpid())).string();
+  // A folder of this process's own inside the given one: benchmarks delete their scratch
+  // folder when done, and must not delete what the user pointed them at.
+  const std::filesystem::path parent = given.empty() ? std::filesystem::temp_directory_path() : std::filesystem::path(given);
+  return (parent / fmt::format("deepnav_{}_{}", name, getpid())).string();
 }
 
 std::string source_relative(const std::string& path) {

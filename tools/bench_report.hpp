@@ -12,9 +12,10 @@ namespace deepnav::cli {
 /// (so that recorded figures do not carry one checkout's location), else unchanged.
 std::string source_relative(const std::string& path);
 
-/// Where a benchmark writes its scratch files (synthesized IF): `given` when set, else a
-/// folder of this process's own under the temporary directory (deepnav_<name>_<pid>), so
-/// that two benchmarks run at once never write into each other's files.
+/// Where a benchmark writes its scratch files (synthesized IF), deleted when it is done: a
+/// folder of this process's own (deepnav_<name>_<pid>) inside `given` when set, else inside
+/// the temporary directory, so that two benchmarks run at once never write into each
+/// other's files and the folder given is never deleted.
 std::string bench_scratch_dir(const std::string& given, const std::string& name);
 
 class BenchReport {
