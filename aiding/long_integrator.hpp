@@ -20,6 +20,7 @@
 #include <optional>
 #include <vector>
 
+#include "aiding/integration_cn0_estimator.hpp"
 #include "receiver/tracking_types.hpp"
 
 namespace deepnav::aiding {
@@ -57,6 +58,10 @@ struct SteeredIntegration {
   int frequency_pairs = 0;
   double start_carrier_phase_cycles = 0.0;  ///< NCO carrier phase where the integration began
 };
+
+/// What the C/N0 estimator takes from one of the channel's own integrations, and from a long one.
+IntegrationPower power_of(const CorrelatorEpoch& epoch, double sample_rate_hz);
+IntegrationPower power_of(const SteeredIntegration& integration, double sample_rate_hz);
 
 class LongIntegrator {
  public:

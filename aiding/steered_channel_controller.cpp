@@ -20,32 +20,6 @@ constexpr double kReferenceIntegration_s = 0.01;     // the length min_cn0_dbhz 
 constexpr double kDetectionSigmas = 3.0;             // a long integration's signal: 3 sigmas above noise alone
 constexpr double kLockHold_s = 1.0;                  // locked: a measurement within this (the scalar loss time) ...
 
-IntegrationPower power_of(const CorrelatorEpoch& e, double fs) {
-  IntegrationPower p;
-  p.end_s = static_cast<double>(e.first_sample + e.samples) / fs;
-  p.prompt_power = std::norm(e.prompt);
-  p.sum_t_s = e.integration_s;
-  p.sum_t2_s2 = e.integration_s * e.integration_s;
-  p.noise_power = std::norm(e.noise);
-  p.noise_s = e.noise_samples / fs;
-  return p;
-}
-
-IntegrationPower power_of(const SteeredIntegration& s, double fs) {
-  IntegrationPower p = power_of(s.sums, fs);
-  p.noise_power = s.noise_power;
-  p.noise_s = s.noise_samples / fs;
-  if (s.data_wiped) {
-    p.data_wiped = true;
-    p.wiped_prompt = s.sums.prompt;
-  } else {
-    p.prompt_power = s.prompt_power;
-    p.sum_t_s = s.pieces * s.piece_s;
-    p.sum_t2_s2 = s.pieces * s.piece_s * s.piece_s;
-  }
-  return p;
-}
-
 }  // namespace
 
 bool can_steer(bool bit_synced, ChannelState state, bool decoder_synchronised, bool has_ephemeris) {

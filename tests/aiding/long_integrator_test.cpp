@@ -130,25 +130,6 @@ TEST(LongIntegration, UnpredictedBitsAreSummedInPowerAndEndACoherentRun) {
   EXPECT_TRUE(out[4].data_wiped);
 }
 
-IntegrationPower power(const SteeredIntegration& s, double fs) {
-  IntegrationPower p;
-  p.end_s = static_cast<double>(s.sums.first_sample + s.sums.samples) / fs;
-  p.noise_power = s.noise_power;
-  p.noise_s = s.noise_samples / fs;
-  if (s.data_wiped) {
-    p.prompt_power = std::norm(s.sums.prompt);
-    p.sum_t_s = s.sums.integration_s;
-    p.sum_t2_s2 = p.sum_t_s * p.sum_t_s;
-    p.data_wiped = true;
-    p.wiped_prompt = s.sums.prompt;
-  } else {
-    p.prompt_power = s.prompt_power;
-    p.sum_t_s = s.pieces * s.piece_s;
-    p.sum_t2_s2 = s.pieces * s.piece_s * s.piece_s;
-  }
-  return p;
-}
-
 TEST(IntegrationCn0Estimator, ReadsTheC_N0FromWipedAndNonCoherentIntegrations) {
   for (const double cn0 : {12.0, 20.0}) {
     const std::vector<CorrelatorEpoch> epochs = steered_epochs(cn0, 12.0, 7);
@@ -157,7 +138,7 @@ TEST(IntegrationCn0Estimator, ReadsTheC_N0FromWipedAndNonCoherentIntegrations) {
       cfg.coherent_ms = coherent_ms;  // 20: every bit unpredicted, summed in power
       cfg.noncoherent_ms = 1000;
       IntegrationCn0Estimator est(12.0, 5);  // the whole run: the estimate's scatter is small
-      for (const auto& s : integrate(epochs, cfg, data_bit)) est.add(power(s, 1.2e6));
+      for (const auto& s : integrate(epochs, cfg, data_bit)) est.add(power_of(s, 1.2e6));
       ASSERT_TRUE(est.ready());
       // 12 s: +-0.2 dB of scatter for the wiped ones, +-0.7 dB for 20 ms bits at 12 dB-Hz.
       EXPECT_NEAR(est.cn0_dbhz(), cn0, coherent_ms == 200 ? 0.7 : 1.5) << coherent_ms << " ms at " << cn0 << " dB-Hz";
@@ -175,7 +156,7 @@ TEST(IntegrationCn0Estimator, NoiseAloneIsRarelyTakenForASignal) {
   IntegrationCn0Estimator est;  // 2 s windows
   int windows = 0, detected = 0;
   for (const auto& s : integrate(epochs, cfg, data_bit)) {
-    est.add(power(s, 1.2e6));
+    est.add(power_of(s, 1.2e6));
     if (!est.ready()) continue;
     ++windows;
     detected += est.signal_detected(3.0) ? 1 : 0;
