@@ -138,10 +138,13 @@ expect_error w8_toml_bom 10 "config_utf8_bom.toml:1: expected a map of \`run\` o
 printf 'input: %s\nfs: 4092000\nfs: 2046000\nout: %s\n' "$work/noise.bin" "$work/o11" > "$work/dup.yaml"
 expect_error w9_duplicate_key 10 "dup.yaml:3: key 'fs' appears twice in one mapping (lines 2 and 3)" -- --config "$work/dup.yaml" run
 printf '\xef\xbb\xbfinput: %s\nfs: 4092000\nout: %s\n' "$work/noise.bin" "$work/o11" > "$work/bom.yaml"
-if "$deepnav" --config "$work/bom.yaml" run --print-config | grep -q "^input: $work/noise.bin"; then
+# The output is taken whole before it is searched: `grep -q` closing the pipe at its first
+# match would end a slower (sanitizer) build's write with SIGPIPE, which pipefail reports.
+bom_config=$("$deepnav" --config "$work/bom.yaml" run --print-config 2>&1)
+if grep -q "^input: $work/noise.bin" <<< "$bom_config"; then
   echo "ok   w8_utf8_bom: a byte-order mark does not hide the first key"
 else
-  echo "FAIL w8_utf8_bom: $("$deepnav" --config "$work/bom.yaml" run --print-config 2>&1 | grep -m1 input)"; fail=1
+  echo "FAIL w8_utf8_bom: $(grep -m1 input <<< "$bom_config")"; fail=1
 fi
 expect_error y1_jammer_type 10 "scenario_jammer_without_type.yaml:4: field 'jammers[0].type': missing required field" -- \
   sim --scenario "$repro/scenario_jammer_without_type.yaml" --out "$work/o12"
