@@ -20,6 +20,18 @@ constexpr double kReferenceIntegration_s = 0.01;     // the length min_cn0_dbhz 
 constexpr double kDetectionSigmas = 3.0;             // a long integration's signal: 3 sigmas above noise alone
 constexpr double kLockHold_s = 1.0;                  // locked: a measurement within this (the scalar loss time) ...
 
+/// A discriminator sample of integration `e`, referred to `at_sample`, where the replica's
+/// transmit time is `replica_transmit_sow`.
+DiscriminatorSample sample_at(const CorrelatorEpoch& e, std::int64_t at_sample, double replica_transmit_sow) {
+  DiscriminatorSample d;
+  d.prn = e.prn;
+  d.mid_sample = at_sample;
+  d.replica_transmit_sow = replica_transmit_sow;
+  d.spacing_chips = e.spacing_chips;
+  d.integration_s = e.integration_s;
+  return d;
+}
+
 }  // namespace
 
 bool can_steer(bool bit_synced, ChannelState state, bool decoder_synchronised, bool has_ephemeris) {
@@ -162,11 +174,7 @@ void SteeredChannelController::short_sample(const CorrelatorEpoch& e, const Chan
   const std::int64_t mid = e.first_sample + e.samples / 2;
   const std::optional<double> tt = transmit_time_sow(view.decoder, ch, mid);
   if (!tt) return;
-  DiscriminatorSample d;
-  d.prn = e.prn;
-  d.mid_sample = mid;
-  d.replica_transmit_sow = *tt;
-  d.spacing_chips = e.spacing_chips;
+  DiscriminatorSample d = sample_at(e, mid, *tt);
   d.code_error_chips = dll_code_error_chips(e.early, e.late, e.spacing_chips);
   // The phase is only as good as the Costas error is small: near its +-0.25 cycle range a
   // noise sample wraps it by half a cycle (5 Hz over a window). A large error means the
@@ -190,11 +198,8 @@ void SteeredChannelController::short_sample(const CorrelatorEpoch& e, const Chan
     d.doppler_sample = e.first_sample;
   }
   d.cn0_dbhz = e.cn0_dbhz;
-  d.integration_s = e.integration_s;
   d.measurement = e.cn0_dbhz >= cfg_.min_cn0_dbhz;
-  if (d.measurement) last_measurement_end_ = e.first_sample + e.samples;
-  d.ephemeris = *view.ephemeris;
-  outbox_.push_back(d);
+  queue(d, e.first_sample + e.samples, view);
 }
 
 void SteeredChannelController::long_sample(const SteeredIntegration& s, const ChannelView& view) {
@@ -209,13 +214,8 @@ void SteeredChannelController::long_sample(const SteeredIntegration& s, const Ch
   std::optional<SteeredIntegration> previous = std::move(last_long_);
   last_long_.reset();
   if (!tt) return;
-  DiscriminatorSample d;
-  d.prn = e.prn;
-  d.mid_sample = end;
-  d.replica_transmit_sow = *tt;
-  d.spacing_chips = e.spacing_chips;
+  DiscriminatorSample d = sample_at(e, end, *tt);
   d.cn0_dbhz = cn0;
-  d.integration_s = e.integration_s;
   d.data_wiped = s.data_wiped;
   if (s.data_wiped) {
     d.code_error_chips = dll_code_error_chips(e.early, e.late, e.spacing_chips);
@@ -242,8 +242,7 @@ void SteeredChannelController::long_sample(const SteeredIntegration& s, const Ch
   } else {
     // Summed in power: early and late envelopes from their powers; no carrier phase.
     rate_window_start_.reset();
-    const double el = std::sqrt(s.early_power), ll = std::sqrt(s.late_power);
-    d.code_error_chips = el + ll > 0.0 ? (1.0 - 0.5 * e.spacing_chips) * (el - ll) / (el + ll) : 0.0;
+    d.code_error_chips = dll_code_error_chips(std::sqrt(s.early_power), std::sqrt(s.late_power), e.spacing_chips);
     d.piece_s = s.piece_s;
     if (s.frequency_pairs > 0) {
       // The carrier: the NCO's mean frequency over the integration (the filter's Doppler and
@@ -257,11 +256,16 @@ void SteeredChannelController::long_sample(const SteeredIntegration& s, const Ch
   d.measurement = cn0_.signal_detected(kDetectionSigmas) &&
                   code_sigma_chips(cn0, e.integration_s, e.spacing_chips, d.piece_s) <=
                       code_sigma_chips(cfg_.min_cn0_dbhz, kReferenceIntegration_s, e.spacing_chips);
+  spdlog::trace("t {:.2f} PRN {:2d}: {} ms {} C/N0 {:.1f} code {:+.3f} chips{}", end / fs_, e.prn,
+                std::lround(e.integration_s * 1e3), s.data_wiped ? "wiped" : "non-coherent", cn0, d.code_error_chips,
+                d.measurement ? "" : " (not a measurement)");
+  queue(d, end, view);
+}
+
+void SteeredChannelController::queue(DiscriminatorSample d, std::int64_t end_sample, const ChannelView& view) {
+  if (d.measurement) last_measurement_end_ = end_sample;
   d.ephemeris = *view.ephemeris;
-  if (d.measurement) last_measurement_end_ = end;
-  spdlog::trace("t {:.2f} PRN {:2d}: {} ms {} C/N0 {:.1f} code {:+.3f} chips{}", end / fs_, e.prn, std::lround(e.integration_s * 1e3),
-                s.data_wiped ? "wiped" : "non-coherent", cn0, d.code_error_chips, d.measurement ? "" : " (not a measurement)");
-  outbox_.push_back(d);
+  outbox_.push_back(std::move(d));
 }
 
 ChannelDecision SteeredChannelController::between_blocks(const ChannelView&) {

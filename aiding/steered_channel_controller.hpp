@@ -100,6 +100,9 @@ class SteeredChannelController final : public ChannelController {
   void short_sample(const CorrelatorEpoch& e, const ChannelView& view, const std::optional<double>& doppler);
   /// A long integration (weak signal): discriminators on the summed or wiped bits.
   void long_sample(const SteeredIntegration& s, const ChannelView& view);
+  /// Queues a finished sample for the filter (its ephemeris attached; a measurement marks
+  /// the channel locked until `end_sample` plus the hold time).
+  void queue(DiscriminatorSample d, std::int64_t end_sample, const ChannelView& view);
   /// Enters or leaves long integration on the C/N0 of the integrations so far.
   void choose_integration(const CorrelatorEpoch& e);
   void leave_long_integration();

@@ -98,7 +98,7 @@ inline std::map<int, double> cn0_by_prn(const ReceiverEpoch& epoch) {
 struct ChannelSnapshot {
   int prn;
   ChannelState state;
-  double cn0_dbhz;  ///< the channel's estimate, or the steering controller's when it reports one
+  double cn0_dbhz;  ///< the channel's estimate, or the outside filter's (SignalLockReport) for a channel it steers
   bool has_ephemeris;
   /// Steered by an outside filter that judges the signal itself: its lock criterion
   /// (none: the channel's own loss rule applies).
