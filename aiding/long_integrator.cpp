@@ -105,7 +105,7 @@ void LongIntegrator::add(const CorrelatorEpoch& e, std::int64_t bit_edge_period,
   if (end_sample_ >= 0 && e.first_sample != end_sample_) reset();  // samples were skipped
   end_sample_ = e.first_sample + e.samples;
   const int ms = static_cast<int>(std::lround(e.integration_s * 1000.0));
-  const auto bit_phase = [&](std::int64_t p) { return ((p - bit_edge_period) % kBitMs + kBitMs) % kBitMs; };
+  const auto bit_phase = [&](std::int64_t p) { return code_periods_into_bit(p, bit_edge_period); };
   const std::int64_t start = e.code_period - ms;
   if (bit_phase(start) == 0) {
     // The NCO phase where the bit began (a phase correction inside its first integration

@@ -20,7 +20,7 @@ bool NavDecoder::add(const CorrelatorEpoch& e, std::int64_t bit_edge_period) {
   const int ms = static_cast<int>(std::lround(e.integration_s * 1000.0));
   const std::int64_t start = e.code_period - ms;
   // Only integrations that lie inside one bit count; the bit is complete at its last ms.
-  const auto phase = [&](std::int64_t p) { return ((p - bit_edge_period) % 20 + 20) % 20; };
+  const auto phase = [&](std::int64_t p) { return code_periods_into_bit(p, bit_edge_period); };
   if (phase(start) + ms > 20) {  // straddles a bit edge (before alignment): drop it
     bit_sum_ = 0.0;
     bit_ms_ = 0;

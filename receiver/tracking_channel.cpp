@@ -183,7 +183,7 @@ void TrackingChannel::collect_bit(const CorrelatorEpoch& e) {
   // 20 code periods from its edge have been summed (the first, partial one is skipped).
   const int ms = static_cast<int>(std::lround(e.integration_s * 1000.0));
   const std::int64_t start = e.code_period - ms;
-  const auto phase = [&](std::int64_t p) { return ((p - *bit_edge_) % 20 + 20) % 20; };
+  const auto phase = [&](std::int64_t p) { return code_periods_into_bit(p, *bit_edge_); };
   if (phase(start) == 0) {
     bit_sum_ = 0.0;
     bit_ms_ = 0;

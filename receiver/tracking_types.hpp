@@ -25,6 +25,13 @@ struct NcoCommand {
 /// One integration of one channel: correlator sums and the NCO state at its end.
 /// Correlator sums are in sample units (a noise-free aligned signal of amplitude A over
 /// n samples gives |prompt| = A n); the lock flags and C/N0 include this integration.
+/// Code periods from the start of the data bit that code period `period` falls in, given the
+/// code period at which some bit starts (0..19; for periods before that edge too).
+inline int code_periods_into_bit(std::int64_t period, std::int64_t bit_edge_period) {
+  constexpr std::int64_t kBit = 20;  // code periods per LNAV data bit
+  return static_cast<int>(((period - bit_edge_period) % kBit + kBit) % kBit);
+}
+
 struct CorrelatorEpoch {
   int prn = 0;
   int channel = 0;                      ///< the owner's channel number (ChannelStart::channel)
