@@ -103,6 +103,24 @@ Eigen::Vector3d AidedNavigator::position_sigma_ned_m() const {
   return kf_.P().diagonal().segment<3>(kPos).cwiseSqrt();
 }
 
+StateRow AidedNavigator::pseudorange_row_of(const RangePrediction& g) const {
+  return pseudorange_row(ecef_to_ned_vector(ins_.state().llh, g.los_ecef), lever_arm_ned_m(),
+                         {.troposphere = cfg_.troposphere.enabled ? std::optional(g.troposphere_mapping) : std::nullopt,
+                          .ionosphere = cfg_.ionosphere.enabled ? std::optional(g.ionosphere_m) : std::nullopt});
+}
+
+StateRow AidedNavigator::pseudorange_rate_row_of(const RangePrediction& g) const {
+  return pseudorange_rate_row(
+      ecef_to_ned_vector(ins_.state().llh, g.los_ecef),
+      {.troposphere = cfg_.troposphere.enabled ? std::optional(g.troposphere_mapping_rate_per_s) : std::nullopt,
+       .ionosphere = cfg_.ionosphere.enabled ? std::optional(-g.ionosphere_rate_mps) : std::nullopt});
+}
+
+AidedNavigator::PredictionSigma AidedNavigator::prediction_sigma(const RangePrediction& g) const {
+  const StateRow range = pseudorange_row_of(g), rate = pseudorange_rate_row_of(g);
+  return {std::sqrt((range * kf_.P() * range.transpose())(0, 0)), std::sqrt((rate * kf_.P() * rate.transpose())(0, 0))};
+}
+
 Eigen::Vector3d AidedNavigator::lever_arm_ned_m() const {
   return ins_.state().q_b_n * cfg_.lever_arm_imu_to_antenna_b_m;
 }
@@ -147,16 +165,9 @@ struct RangeRows {
 KalmanUpdate AidedNavigator::update_ranges(const std::vector<RangeMeasurement>& measurements,
                                            std::vector<SatelliteInnovation>* innovations,
                                            const std::vector<RangeMeasurement>& test_only) {
-  const wgs84::Llh& at = ins_.state().llh;
-  const bool troposphere = cfg_.troposphere.enabled;
-  const bool ionosphere = cfg_.ionosphere.enabled;
   const auto append = [&](const RangeMeasurement& m, RangeRows& rows) {
-    const Eigen::Vector3d u_ned = ecef_to_ned_vector(at, m.geometry.los_ecef);
     if (m.pseudorange_m) {
-      rows.h.push_back(pseudorange_row(
-          u_ned, lever_arm_ned_m(),
-          {.troposphere = troposphere ? std::optional(m.geometry.troposphere_mapping) : std::nullopt,
-           .ionosphere = ionosphere ? std::optional(m.geometry.ionosphere_m) : std::nullopt}));
+      rows.h.push_back(pseudorange_row_of(m.geometry));
       rows.z.push_back(m.geometry.pseudorange_m(clock_bias_m() + clock_drift_mps() * m.time_offset_s) +
                        residual_delay_m(m.geometry) - *m.pseudorange_m);
       rows.r.push_back(m.pseudorange_sigma_m * m.pseudorange_sigma_m);
@@ -165,10 +176,7 @@ KalmanUpdate AidedNavigator::update_ranges(const std::vector<RangeMeasurement>& 
     if (m.rate_mps) {
       const RangePrediction& g = m.rate_at_own_time ? m.rate_geometry : m.geometry;
       const double offset = m.rate_at_own_time ? m.rate_time_offset_s : m.time_offset_s;
-      rows.h.push_back(pseudorange_rate_row(
-          ecef_to_ned_vector(at, g.los_ecef),
-          {.troposphere = troposphere ? std::optional(g.troposphere_mapping_rate_per_s) : std::nullopt,
-           .ionosphere = ionosphere ? std::optional(-g.ionosphere_rate_mps) : std::nullopt}));
+      rows.h.push_back(pseudorange_rate_row_of(g));
       rows.z.push_back(g.pseudorange_rate_mps(antenna_velocity_ecef_at(time_s() + offset), clock_drift_mps()) +
                        residual_delay_rate_mps(g) - *m.rate_mps);
       rows.r.push_back(m.rate_sigma_mps * m.rate_sigma_mps);

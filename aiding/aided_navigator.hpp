@@ -153,6 +153,13 @@ class AidedNavigator {
   const StateMatrix& covariance() const { return kf_.P(); }
   /// 1-sigma position uncertainty, north/east/down (m).
   Eigen::Vector3d position_sigma_ned_m() const;
+  /// 1-sigma of the filter's predicted pseudorange and pseudorange rate along a look
+  /// (its rows of H through the covariance): what a search for that signal must cover.
+  struct PredictionSigma {
+    double range_m = 0.0;
+    double rate_mps = 0.0;
+  };
+  PredictionSigma prediction_sigma(const RangePrediction& g) const;
   const Eigen::Vector3d& accel_bias_mps2() const { return ins_.accel_bias_compensation_mps2(); }
   const Eigen::Vector3d& gyro_bias_radps() const { return ins_.gyro_bias_compensation_radps(); }
   bool healthy() const { return kf_.healthy(); }
@@ -168,6 +175,9 @@ class AidedNavigator {
  private:
   /// The lever arm (IMU -> antenna) in NED at the current attitude.
   Eigen::Vector3d lever_arm_ned_m() const;
+  /// The rows of H of a pseudorange and of its rate along a look (delay states included when on).
+  StateRow pseudorange_row_of(const RangePrediction& g) const;
+  StateRow pseudorange_rate_row_of(const RangePrediction& g) const;
   void feed_back();
   StrapdownNed ins_;
   KalmanFilter<kStates> kf_;  ///< error states; the covariance must stay positive definite

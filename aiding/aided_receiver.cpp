@@ -99,6 +99,18 @@ struct AidedReceiver::Impl : ChannelAiding {
     evaluate_modes(t, block);
   }
 
+  std::vector<SignalPrediction> predict_untracked(const BlockSnapshot& block,
+                                                  const std::vector<UntrackedSatellite>& satellites) override {
+    // Only a filter that closes the loops itself predicts well enough, and only it can take
+    // a weak channel over at once.
+    std::vector<SignalPrediction> out;
+    if (!nav || modes.mode() != NavMode::ultra || !nav->healthy()) return out;
+    for (const UntrackedSatellite& s : satellites)
+      if (const auto p = ultra.predict_signal(s.prn, s.ephemeris, *nav, block, cfg.receiver.pvt.elevation_mask_rad))
+        out.push_back(*p);
+    return out;
+  }
+
   void propagate_to(double t) {
     // A gap in the IMU data: nothing to propagate the INS with, so it stops (and restarts
     // from the fixes after the gap) instead of driving channels and publishing solutions

@@ -80,6 +80,8 @@ class SteeredChannelController final : public ChannelController {
 
   ChannelDecision on_epoch(const CorrelatorEpoch& epoch, const ChannelView& view) override;
   ChannelDecision between_blocks(const ChannelView& view) override;
+  /// The channel is gone: not steered any more, nothing queued or published for it.
+  void channel_ended() override { release(); inbox_release_ = false; }
 
   // The filter's side, between blocks only.
   bool steered() const { return steered_; }

@@ -12,6 +12,11 @@
 #include "signals/gps_constants.hpp"
 
 namespace deepnav::aiding {
+namespace {
+
+constexpr double kBroadcastRangeSigma_m = 3.0;  // broadcast orbit and clock error along a look (1 sigma)
+
+}  // namespace
 
 UltraTightTracker::UltraTightTracker(UltraTightConfig config, double sample_rate_hz, const RangeErrorModel& range_errors,
                                      const SatelliteFaultMonitor* faults, const AtmosphereModels& atmosphere)
@@ -138,14 +143,47 @@ KalmanUpdate UltraTightTracker::update_and_steer(AidedNavigator& nav, const Bloc
   return result;
 }
 
+double UltraTightTracker::transmit_sow(const SamplePrediction& p, const AidedNavigator& nav) {
+  const RangePrediction& g = p.range;
+  return p.t_rx.sow - (g.pseudorange_m(p.clock_bias_m) + nav.residual_delay_m(g)) / gps::kSpeedOfLight_mps;
+}
+
+double UltraTightTracker::doppler_hz(const SamplePrediction& p, const AidedNavigator& nav) {
+  const RangePrediction& g = p.range;
+  return -(g.pseudorange_rate_mps(p.antenna_velocity_ecef_mps, nav.clock_drift_mps()) + nav.residual_delay_rate_mps(g)) /
+         gps::kL1Wavelength_m;
+}
+
+std::optional<SignalPrediction> UltraTightTracker::predict_signal(int prn, const Ephemeris& eph, const AidedNavigator& nav,
+                                                                  const BlockSnapshot& block,
+                                                                  double elevation_mask_rad) const {
+  const std::optional<SamplePrediction> now = predict_at(eph, block.end_sample, nav, block);
+  if (!now || now->range.elevation_rad < elevation_mask_rad) return std::nullopt;
+  // The Doppler's rate over the next second (the satellite's motion; the vehicle's
+  // acceleration of the last IMU interval).
+  const std::optional<SamplePrediction> later = predict_at(eph, block.end_sample + std::llround(fs_), nav, block);
+  if (!later) return std::nullopt;
+  SignalPrediction s;
+  s.prn = prn;
+  s.sample = block.end_sample;
+  s.transmit_sow = transmit_sow(*now, nav);
+  s.doppler_hz = doppler_hz(*now, nav);
+  s.doppler_rate_hzps = doppler_hz(*later, nav) - s.doppler_hz;
+  const AidedNavigator::PredictionSigma sigma = nav.prediction_sigma(now->range);
+  // The broadcast orbit and clock add a few metres the filter does not hold.
+  const double range_sigma_m = std::hypot(sigma.range_m, kBroadcastRangeSigma_m);
+  s.code_sigma_chips = range_sigma_m / gps::kSpeedOfLight_mps * gps::kCodeRate_cps;
+  s.doppler_sigma_hz = sigma.rate_mps / gps::kL1Wavelength_m;
+  s.elevation_deg = now->range.elevation_rad * 180.0 / M_PI;
+  return s;
+}
+
 void UltraTightTracker::steer(const ChannelStatus& ch, SteeredChannelController& controller, const AidedNavigator& nav,
                               const BlockSnapshot& block) {
   if (!ch.replica_transmit_sow || !ch.ephemeris) return;
   const std::optional<SamplePrediction> predicted = predict_at(*ch.ephemeris, block.end_sample, nav, block);
   if (!predicted) return;
-  const RangePrediction& p = predicted->range;
-  const double tt_predicted =
-      predicted->t_rx.sow - (p.pseudorange_m(predicted->clock_bias_m) + nav.residual_delay_m(p)) / gps::kSpeedOfLight_mps;
+  const double tt_predicted = transmit_sow(*predicted, nav);
   const double correction_chips = seconds_of_week_difference(tt_predicted, *ch.replica_transmit_sow) * gps::kCodeRate_cps;
   if (std::abs(correction_chips) > cfg_.max_code_correction_chips) {
     // The replica and the filter disagree by more than a plausible tracking error: the
@@ -159,9 +197,7 @@ void UltraTightTracker::steer(const ChannelStatus& ch, SteeredChannelController&
   }
   disagreeing_.erase(ch.prn);
   NcoCommand cmd;
-  cmd.carrier_doppler_hz = -(p.pseudorange_rate_mps(predicted->antenna_velocity_ecef_mps, nav.clock_drift_mps()) +
-                             nav.residual_delay_rate_mps(p)) /
-                           gps::kL1Wavelength_m;
+  cmd.carrier_doppler_hz = doppler_hz(*predicted, nav);
   cmd.code_rate_cps = gps::kCodeRate_cps * (1.0 + cmd.carrier_doppler_hz / gps::kL1_Hz);
   cmd.code_phase_correction_chips = correction_chips;
   controller.publish(cmd);

@@ -59,6 +59,11 @@ class UltraTightTracker {
   /// With `innovations`, the pseudorange rows' normalised innovations (for the fault monitor).
   KalmanUpdate update_and_steer(AidedNavigator& nav, const BlockSnapshot& block, bool measure,
                                 std::vector<SatelliteInnovation>* innovations = nullptr);
+  /// Where the filter predicts a satellite's signal at the block's end, for a guided search
+  /// (transmit time, Doppler and its rate, their 1-sigma from the covariance); none below
+  /// the elevation mask or without the receiver clock.
+  std::optional<SignalPrediction> predict_signal(int prn, const Ephemeris& eph, const AidedNavigator& nav,
+                                                 const BlockSnapshot& block, double elevation_mask_rad) const;
   /// Gives every channel back to its scalar loop.
   void release_all();
 
@@ -84,6 +89,9 @@ class UltraTightTracker {
   };
   std::optional<SamplePrediction> predict_at(const Ephemeris& eph, std::int64_t sample, const AidedNavigator& nav,
                                              const BlockSnapshot& block) const;
+  /// The replica transmit time (seconds of week) and carrier Doppler the filter predicts there.
+  static double transmit_sow(const SamplePrediction& p, const AidedNavigator& nav);
+  static double doppler_hz(const SamplePrediction& p, const AidedNavigator& nav);
   std::optional<RangeMeasurement> to_measurement(const DiscriminatorSample& d, const AidedNavigator& nav,
                                                  const BlockSnapshot& block) const;
   void steer(const ChannelStatus& channel, SteeredChannelController& controller, const AidedNavigator& nav,

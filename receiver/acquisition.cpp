@@ -1,5 +1,6 @@
 #include "receiver/acquisition.hpp"
 
+#include <boost/math/special_functions/gamma.hpp>
 #include <fftw3.h>
 #include <fmt/format.h>
 
@@ -82,24 +83,14 @@ std::vector<float> code_replica(int prn, int n, double fs) {
 
 double gamma_upper_tail(int k, double x) {
   if (x <= 0.0) return 1.0;
-  // e^-x sum_{i<k} x^i / i!, summed in logs to stay finite for large x.
-  double term = 1.0, sum = 1.0;
-  for (int i = 1; i < k; ++i) {
-    term *= x / i;
-    sum += term;
-  }
-  return std::exp(-x + std::log(sum));
+  return boost::math::gamma_q(static_cast<double>(k), x);
 }
 
 double acquisition_threshold(int k, double cells, double pfa) {
   if (!(pfa > 0.0 && pfa < 1.0)) throw std::invalid_argument("acquisition: pfa must be in (0, 1)");
+  if (k < 1 || !(cells >= 1.0)) throw std::invalid_argument("acquisition: at least one block and one cell");
   const double per_cell = -std::expm1(std::log1p(-pfa) / cells);  // 1 - (1 - pfa)^(1/cells)
-  double lo = 0.0, hi = 10.0 * k + 100.0;
-  for (int i = 0; i < 200; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (gamma_upper_tail(k, mid) > per_cell ? lo : hi) = mid;
-  }
-  return hi;
+  return boost::math::gamma_q_inv(static_cast<double>(k), per_cell);
 }
 
 struct Acquisition::Impl {

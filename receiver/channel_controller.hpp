@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "ins/gps_time.hpp"
+#include "receiver/guided_search.hpp"
 #include "receiver/tracking_channel.hpp"
 #include "receiver/tracking_loops.hpp"
 #include "receiver/tracking_types.hpp"
@@ -59,6 +60,9 @@ class ChannelController {
   /// Between blocks (after the aiding side's after_block(), and before the next block is
   /// tracked): what has been published for this channel since the last call.
   virtual ChannelDecision between_blocks(const ChannelView& view) = 0;
+  /// The receiver released the channel (lost, or a guided start not confirmed), between
+  /// blocks: whatever the controller keeps for it ends with it.
+  virtual void channel_ended() {}
 };
 
 /// The channel's own loops (ScalarLoopController) as a controller: the pull-in bandwidths
@@ -110,6 +114,13 @@ struct BlockSnapshot {
   std::vector<ChannelStatus> channels;          ///< channels that go on tracking, in channel order
 };
 
+/// A satellite the receiver does not track, with the ephemeris it has for it (decoded
+/// earlier or assisted).
+struct UntrackedSatellite {
+  int prn = 0;
+  Ephemeris ephemeris;
+};
+
 /// An outside filter that steers channels (ultra-tight aiding).
 class ChannelAiding {
  public:
@@ -122,6 +133,15 @@ class ChannelAiding {
   virtual void before_block() = 0;
   /// After each block is tracked, on the receiver's thread.
   virtual void after_block(const BlockSnapshot& snapshot) = 0;
+  /// Where the filter predicts the signals of satellites the receiver does not track, at
+  /// the snapshot's end (after after_block()): the receiver searches a narrow window
+  /// around each (GuidedSearch) and starts a channel there, already bit- and
+  /// time-synchronised, for the filter to steer. Only satellites the filter judges in view;
+  /// none when it cannot predict (the default).
+  virtual std::vector<SignalPrediction> predict_untracked(const BlockSnapshot& /*snapshot*/,
+                                                          const std::vector<UntrackedSatellite>& /*satellites*/) {
+    return {};
+  }
 };
 
 }  // namespace deepnav

@@ -76,6 +76,7 @@ void NavDecoder::try_decode() {
         pending_anchor_ = Anchor{bit_start_period_.front(), decoded->tlm_how.tow_count};
       } else if (decoded) {
         pending_anchor_.reset();
+        seeded_ = false;
         anchor_ = Anchor{bit_start_period_.front(), decoded->tlm_how.tow_count};
         if (decoded->tlm_how.subframe_id == 1)
           // A TOW count of 0 (the next subframe starts the week): this one began 6 s before.
@@ -95,6 +96,16 @@ void NavDecoder::try_decode() {
     bits_.pop_front();
     bit_start_period_.pop_front();
   }
+}
+
+void NavDecoder::seed_time(std::int64_t period, double transmit_sow) {
+  if (anchor_) return;  // a decoded (or earlier) time stands
+  constexpr std::int64_t kMsPerWeek = 604800000;
+  const std::int64_t ms = ((std::llround(transmit_sow * 1e3) % kMsPerWeek) + kMsPerWeek) % kMsPerWeek;
+  const std::int64_t into_subframe = ms % kPeriodsPerSubframe;
+  // The anchor is the start of the subframe the period lies in: its TOW count names the next one.
+  anchor_ = Anchor{period - into_subframe, static_cast<int>((ms / kPeriodsPerSubframe + 1) % kTowCountsPerWeek)};
+  seeded_ = true;
 }
 
 bool NavDecoder::consistent_with_anchor(const Anchor& a) const {

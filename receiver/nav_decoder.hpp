@@ -29,7 +29,15 @@ class NavDecoder {
   /// alternative to add(). Returns true when a new ephemeris was completed.
   bool add_bit(const PromptBit& bit);
 
+  /// Takes the channel's time from an outside prediction before any subframe is decoded
+  /// (a start guided by a navigation filter): code period `period` starts at transmit time
+  /// `transmit_sow`, a whole millisecond. The first subframe decoded confirms it; one that
+  /// disagrees replaces it once a second agrees (as for any anchor, see try_decode).
+  void seed_time(std::int64_t period, double transmit_sow);
+  /// Whether the channel's time is known: decoded, or seeded and not contradicted yet.
   bool synchronised() const { return anchor_.has_value(); }
+  /// The time was seeded and no subframe has confirmed it yet.
+  bool seeded() const { return seeded_; }
   const std::optional<Ephemeris>& ephemeris() const { return assembler_.ephemeris(); }
   const IonoParameters& iono() const { return assembler_.iono(); }
   const UtcParameters& utc() const { return assembler_.utc(); }
@@ -85,6 +93,7 @@ class NavDecoder {
   int failures_ = 0;
   int inconsistent_ = 0;
   int polarity_ = 0;
+  bool seeded_ = false;
 };
 
 /// Satellite transmit time (seconds of week) of the signal the channel's prompt replica is

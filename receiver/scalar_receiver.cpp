@@ -32,6 +32,19 @@ struct Channel {
   std::unique_ptr<NavDecoder> nav;
   double last_doppler_hz = 0.0;
   double start_t_s = 0.0;
+  /// Started from a guided search and not confirmed yet by the filter's lock criterion:
+  /// the search's record, finished when the channel is confirmed or dropped.
+  std::optional<GuidedSearchRecord> guided;
+  double guided_deadline_s = 0.0;
+  bool aided_lock_seen = false;  ///< the filter's lock criterion held in the block just tracked
+  bool drop = false;             ///< to be released after this block
+};
+
+/// A guided search under way, with the ephemeris the prediction came from.
+struct ActiveSearch {
+  GuidedSearch search;
+  Ephemeris ephemeris;
+  double started_s = 0.0;
 };
 
 }  // namespace
@@ -65,6 +78,11 @@ struct ScalarReceiver::Impl {
   std::unique_ptr<WorkerThreads> pool;  ///< channel workers (ReceiverConfig::threads > 1)
   unsigned thread_count = 1;
   std::map<int, NavigationStatus> finished_status;  ///< of channels already dropped
+  // Filter-guided reacquisition.
+  std::vector<ActiveSearch> searches;
+  std::map<int, double> guided_retry_at_s;  ///< per PRN: not searched again before this time
+  double last_guided_s = -std::numeric_limits<double>::infinity();
+  std::vector<GuidedSearchRecord> guided_log;
 
   static void add_status(std::map<int, NavigationStatus>& into, const Channel& ch) {
     NavigationStatus& s = into[ch.trk->prn()];
@@ -171,14 +189,20 @@ struct ScalarReceiver::Impl {
   bool tracked(int prn) const {
     return std::any_of(channels.begin(), channels.end(), [&](const Channel& ch) { return ch.trk->prn() == prn; });
   }
+  bool searching(int prn) const {
+    return std::any_of(searches.begin(), searches.end(),
+                       [&](const ActiveSearch& a) { return a.search.prediction().prn == prn; });
+  }
+  bool searchable(int prn) const {
+    return cfg.acquisition.prns.empty() || std::count(cfg.acquisition.prns.begin(), cfg.acquisition.prns.end(), prn);
+  }
 
   /// Searches `samples` (starting at absolute index `first`) for satellites not tracked yet.
   void acquire(const std::vector<Sample>& samples, std::int64_t first) {
     if (static_cast<int>(channels.size()) >= cfg.channels) return;
     std::vector<int> prns;
     for (int prn = 1; prn <= gps::kMaxPrn; ++prn)
-      if (!tracked(prn) && (cfg.acquisition.prns.empty() || std::count(cfg.acquisition.prns.begin(), cfg.acquisition.prns.end(), prn)))
-        prns.push_back(prn);
+      if (!tracked(prn) && !searching(prn) && searchable(prn)) prns.push_back(prn);
     if (prns.empty()) return;
     // One search engine for the run: its plans, code spectra and buffers are made once.
     if (!acquisition) acquisition = std::make_unique<Acquisition>(cfg.acquisition);
@@ -189,7 +213,7 @@ struct ScalarReceiver::Impl {
     for (const auto& r : results) {
       if (!r.detected || static_cast<int>(channels.size()) >= cfg.channels) continue;
       Channel ch;
-      ch.trk = std::make_unique<TrackingChannel>(cfg.tracking, ChannelStart{r.prn, r.doppler_hz, r.code_phase_chips, first});
+      ch.trk = std::make_unique<TrackingChannel>(cfg.tracking, ChannelStart{r.prn, r.doppler_hz, r.code_phase_chips, first, 0, std::nullopt});
       ch.loop = std::make_unique<ScalarChannelControl>(r.doppler_hz, cfg.pll_order, cfg.pull_in, cfg.tracking_loops);
       if (aiding) ch.steered = aiding->controller_for(r.prn);
       ch.nav = std::make_unique<NavDecoder>(r.prn, resolution_week());
@@ -268,6 +292,7 @@ struct ScalarReceiver::Impl {
       if (outside.owns_epoch && outside.lock) {
         snap.cn0_dbhz = outside.lock->cn0_dbhz;
         snap.aided_lock = outside.lock->locked;
+        ch.aided_lock_seen = ch.aided_lock_seen || outside.lock->locked;
       }
       out.push_back({e, snap, fresh});
     });
@@ -325,13 +350,135 @@ struct ScalarReceiver::Impl {
         if (on_correlation) on_correlation(r.epoch, r.snapshot);
       }
     }
+    settle_guided_channels(static_cast<double>(block.first_sample_index + static_cast<std::int64_t>(block.samples.size())) / fs);
     const auto lost = std::remove_if(channels.begin(), channels.end(), [&](const Channel& ch) {
-      if (ch.trk->state() != ChannelState::lost) return false;
-      spdlog::info("PRN {:2d}: loss of lock", ch.trk->prn());
+      if (ch.trk->state() != ChannelState::lost && !ch.drop) return false;
+      if (!ch.drop) spdlog::info("PRN {:2d}: loss of lock", ch.trk->prn());
+      if (ch.steered) ch.steered->channel_ended();
       add_status(finished_status, ch);
       return true;
     });
     channels.erase(lost, channels.end());
+  }
+
+  /// Confirms the guided channels the filter's lock criterion now holds, drops those it has
+  /// not held for confirm_within_s.
+  void settle_guided_channels(double t) {
+    for (Channel& ch : channels) {
+      const bool locked = ch.aided_lock_seen;
+      ch.aided_lock_seen = false;
+      if (!ch.guided) continue;
+      GuidedSearchRecord& rec = *ch.guided;
+      if (locked) {
+        rec.outcome = GuidedSearchRecord::Outcome::confirmed;
+      } else if (t > ch.guided_deadline_s || ch.trk->state() == ChannelState::lost) {
+        rec.outcome = GuidedSearchRecord::Outcome::dropped;
+        ch.drop = true;
+        guided_retry_at_s[rec.prn] = t + cfg.guided.retry_after_s;
+      } else {
+        continue;
+      }
+      rec.ended_s = t;
+      spdlog::info("PRN {:2d}: guided channel {} ({:.1f} s after the search found it)", rec.prn,
+                   locked ? "locked by the filter" : "not locked by the filter: dropped", t - ch.start_t_s);
+      guided_log.push_back(rec);
+      ch.guided.reset();
+    }
+  }
+
+  /// Filter-guided reacquisition after the block ending at snap.end_sample: the searches
+  /// under way take the block; finished ones start a channel or are recorded; then, every
+  /// interval_s, the filter is asked where the untracked satellites are and the narrow ones
+  /// searched from the next block on.
+  void guide(const SampleBlock& block, const BlockSnapshot& snap) {
+    const std::int64_t end = snap.end_sample;
+    const double t = static_cast<double>(end) / fs;
+    for (auto it = searches.begin(); it != searches.end();) {
+      it->search.add(block);
+      if (it->search.outcome() == GuidedSearch::Outcome::searching) {
+        ++it;
+        continue;
+      }
+      finish_search(*it, end);
+      it = searches.erase(it);
+    }
+    if (!time_ref || t - last_guided_s < cfg.guided.interval_s) return;
+    last_guided_s = t;
+    if (free_for_search() <= 0) return;
+    const GpsTime now = time_ref->plus_seconds(static_cast<double>(end - sample_ref) / fs);
+    std::vector<UntrackedSatellite> candidates;
+    for (int prn = 1; prn <= gps::kMaxPrn; ++prn) {
+      if (tracked(prn) || searching(prn) || !searchable(prn)) continue;
+      if (const auto r = guided_retry_at_s.find(prn); r != guided_retry_at_s.end() && t < r->second) continue;
+      if (const auto e = ephs.find(prn); e != ephs.end()) {
+        candidates.push_back({prn, e->second});
+      } else if (assisted) {
+        if (const Ephemeris* a = assisted->select(prn, now)) candidates.push_back({prn, *a});
+      }
+    }
+    if (candidates.empty()) return;
+    std::vector<SignalPrediction> predictions = aiding->predict_untracked(snap, candidates);
+    std::sort(predictions.begin(), predictions.end(),
+              [](const SignalPrediction& a, const SignalPrediction& b) { return a.elevation_deg > b.elevation_deg; });
+    for (const SignalPrediction& p : predictions) {
+      if (free_for_search() <= 0) break;
+      const auto c = std::find_if(candidates.begin(), candidates.end(), [&](const auto& u) { return u.prn == p.prn; });
+      if (c == candidates.end() || p.sample != end || searching(p.prn)) continue;
+      if (!GuidedSearch::is_narrow(cfg.guided.search, p)) {
+        spdlog::debug("PRN {:2d}: prediction too uncertain for a guided search ({:.1f} chips, {:.1f} Hz)", p.prn,
+                      p.code_sigma_chips, p.doppler_sigma_hz);
+        continue;
+      }
+      searches.push_back({GuidedSearch(cfg.guided.search, p, fs, cfg.tracking.if_hz), c->ephemeris, t});
+      spdlog::debug("PRN {:2d}: guided search at elevation {:.1f} deg ({} cells, {:.2f} chips / {:.1f} Hz 1-sigma)", p.prn,
+                    p.elevation_deg, searches.back().search.cells(), p.code_sigma_chips, p.doppler_sigma_hz);
+    }
+  }
+
+  int free_for_search() const {
+    return std::min(cfg.channels - static_cast<int>(channels.size() + searches.size()),
+                    cfg.guided.max_searches - static_cast<int>(searches.size()));
+  }
+
+  /// A finished search: a channel where it found the signal (unless that may be a tracked
+  /// satellite's cross-correlation), else a retry later.
+  void finish_search(const ActiveSearch& a, std::int64_t end) {
+    const double t = static_cast<double>(end) / fs;
+    const SignalPrediction& p = a.search.prediction();
+    GuidedSearchRecord rec{p.prn, a.started_s, t, p.elevation_deg, GuidedSearchRecord::Outcome::not_found,
+                           a.search.detection()};
+    const auto retry_later = [&](const char* why) {
+      guided_retry_at_s[p.prn] = t + cfg.guided.retry_after_s;
+      spdlog::debug("PRN {:2d}: guided search over {:.1f} s: {}", p.prn, t - a.started_s, why);
+      guided_log.push_back(rec);
+    };
+    if (!rec.detection || static_cast<int>(channels.size()) >= cfg.channels) return retry_later("not found");
+    const GuidedStart start = a.search.start_at(end, 0);
+    for (const Channel& ch : channels) {
+      const double lines_hz = std::remainder(start.channel.doppler_hz - ch.last_doppler_hz, 1000.0);
+      if (std::abs(lines_hz) < 2.0 * cfg.guided.search.doppler_step_hz &&
+          rec.detection->cn0_dbhz < ch.trk->cn0_dbhz() - cfg.guided.cross_correlation_margin_db) {
+        rec.outcome = GuidedSearchRecord::Outcome::cross_correlation;
+        return retry_later("rejected as a cross-correlation");
+      }
+    }
+    Channel ch;
+    ch.trk = std::make_unique<TrackingChannel>(cfg.tracking, start.channel);
+    ch.loop = std::make_unique<ScalarChannelControl>(start.channel.doppler_hz, cfg.pll_order, cfg.pull_in, cfg.tracking_loops);
+    ch.steered = aiding->controller_for(p.prn);
+    ch.nav = std::make_unique<NavDecoder>(p.prn, resolution_week());
+    ch.nav->seed_time(0, start.period0_transmit_sow);
+    ch.last_doppler_hz = start.channel.doppler_hz;
+    ch.start_t_s = t;
+    ch.guided = rec;
+    ch.guided_deadline_s = t + cfg.guided.confirm_within_s;
+    // The channel's view carries the ephemeris the prediction used (as for any channel with a transmit time).
+    ephs.emplace(p.prn, a.ephemeris);
+    const GuidedDetection& d = *rec.detection;
+    spdlog::info("PRN {:2d}: found by the filter-guided search ({:+.2f} chips, {:+.1f} Hz from the prediction, "
+                 "{:.1f} dB-Hz after {:.1f} s)", p.prn, d.code_offset_chips, d.doppler_offset_hz, d.cn0_dbhz, d.dwell_s);
+    acquired.push_back(p.prn);
+    channels.push_back(std::move(ch));
   }
 
   ReceiverEpoch observe(std::int64_t s) {
@@ -346,6 +493,9 @@ struct ScalarReceiver::Impl {
     for (const auto& ch : channels) {
       if (ch.trk->state() == ChannelState::tracking) ++ep.channels_tracking;
       if (!ch.nav->synchronised()) continue;
+      // A guided channel's time is the filter's prediction until the filter confirms it:
+      // not an observable of the receiver's own.
+      if (ch.guided) continue;
       // A channel held open through a fade (by an outside filter) has a replica but no
       // signal: no observable until the signal is back.
       if (ch.trk->lock_detector().ready() && ch.trk->cn0_dbhz() < cfg.tracking.lost_cn0_dbhz) continue;
@@ -441,8 +591,12 @@ void ScalarReceiver::run(const std::function<void(const ReceiverEpoch&)>& on_epo
         // A gap known only roughly leaves every code phase off by its error: start over
         // from acquisition as soon as the window after the gap is full.
         spdlog::info("a gap of estimated size at sample {}: every channel re-acquires", block.first_sample_index);
-        for (const Channel& ch : m.channels) m.add_status(m.finished_status, ch);
+        for (const Channel& ch : m.channels) {
+          m.add_status(m.finished_status, ch);
+          if (ch.steered) ch.steered->channel_ended();
+        }
         m.channels.clear();
+        m.searches.clear();
         m.last_reacquire_s = -std::numeric_limits<double>::infinity();
       }
     }
@@ -465,8 +619,10 @@ void ScalarReceiver::run(const std::function<void(const ReceiverEpoch&)>& on_epo
     const std::int64_t end = block.first_sample_index + static_cast<std::int64_t>(block.samples.size());
     m.take_signal_week(end);
     if (m.aiding) {
-      m.aiding->after_block(m.snapshot(end));
+      const BlockSnapshot snap = m.snapshot(end);
+      m.aiding->after_block(snap);
       m.collect_published();
+      if (m.cfg.guided.enabled) m.guide(block, snap);
     }
     // Keep the last acquisition window of samples for re-acquisition, while a channel is free.
     if (static_cast<int>(m.channels.size()) < m.cfg.channels)
@@ -536,6 +692,18 @@ std::vector<int> ScalarReceiver::acquired_prns() const { return impl_->acquired;
 std::optional<int> ScalarReceiver::signal_week() const {
   if (!impl_->signal_week) return std::nullopt;
   return impl_->signal_week->week;
+}
+
+const std::vector<GuidedSearchRecord>& ScalarReceiver::guided_searches() const { return impl_->guided_log; }
+
+const char* to_string(GuidedSearchRecord::Outcome outcome) {
+  switch (outcome) {
+    case GuidedSearchRecord::Outcome::not_found: return "not found";
+    case GuidedSearchRecord::Outcome::cross_correlation: return "cross-correlation";
+    case GuidedSearchRecord::Outcome::confirmed: return "confirmed";
+    case GuidedSearchRecord::Outcome::dropped: return "dropped";
+  }
+  return "?";
 }
 
 std::vector<NavigationStatus> ScalarReceiver::navigation_status() const {

@@ -34,6 +34,37 @@ inline constexpr unsigned kMaxReceiverThreads = 256;
 inline constexpr double kMinSampleRate_hz = 1.0e6;
 inline constexpr double kMaxSampleRate_hz = 2.0e8;
 
+/// Filter-guided reacquisition: with an outside filter that predicts the satellites the
+/// receiver does not track (ChannelAiding::predict_untracked), each is searched in a narrow
+/// window with long integrations (GuidedSearch) and a channel started where it is found,
+/// its bit edges and time taken from the prediction, so the filter steers it at once.
+struct GuidedReacquisitionConfig {
+  bool enabled = true;
+  GuidedSearchConfig search;
+  double interval_s = 1.0;          ///< how often the filter is asked for predictions
+  double retry_after_s = 10.0;      ///< a satellite not found, or dropped, is searched again after this
+  /// A guided channel that the filter's lock criterion (SignalLockReport) has not confirmed
+  /// within this is dropped: the detection was noise or another satellite's code.
+  double confirm_within_s = 8.0;
+  int max_searches = 3;             ///< at once (each costs about as much as 9 tracking channels)
+  /// A detection this far (dB) below a tracked satellite whose Doppler lies within two
+  /// Doppler steps of it, modulo the code's 1 kHz lines, may be that satellite's
+  /// cross-correlation and is rejected (the FFT acquisition's rule, for one candidate).
+  double cross_correlation_margin_db = 18.0;
+};
+
+/// One guided search, as products and diagnostics report it.
+struct GuidedSearchRecord {
+  enum class Outcome { not_found, cross_correlation, confirmed, dropped };
+  int prn = 0;
+  double started_s = 0.0;   ///< sample time the search began
+  double ended_s = 0.0;     ///< when its outcome was known (for a found signal: confirmed or dropped)
+  double elevation_deg = 0.0;
+  Outcome outcome = Outcome::not_found;
+  std::optional<GuidedDetection> detection;
+};
+const char* to_string(GuidedSearchRecord::Outcome outcome);
+
 struct ReceiverConfig {
   int channels = 12;
   unsigned threads = 1;                 ///< channel worker threads (0: all cores); 1 tracks inline
@@ -48,6 +79,7 @@ struct ReceiverConfig {
   int reference_week = 0;
   std::string reference_week_origin = "reference week";
   double reacquire_interval_s = 5.0;
+  GuidedReacquisitionConfig guided;
   AcquisitionConfig acquisition;        ///< sample rate and IF are taken from the source
   TrackingConfig tracking;
   LoopBandwidths pull_in{15.0, 10.0, 1.0};
@@ -162,6 +194,8 @@ class ScalarReceiver {
   std::optional<int> signal_week() const;
   /// Per PRN, over every channel that tracked it (dropped ones included).
   std::vector<NavigationStatus> navigation_status() const;
+  /// Every filter-guided search finished so far, in the order they finished.
+  const std::vector<GuidedSearchRecord>& guided_searches() const;
 
  private:
   struct Impl;

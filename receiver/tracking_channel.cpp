@@ -13,11 +13,6 @@ namespace {
 
 constexpr double kPeriod = gps::kCodeLength_chips;
 
-/// The code of the noise correlator: the next PRN. At zero lag two C/A codes correlate to
-/// exactly -1/1023 (the G1 sequence cancels and two shifts of G2 are a third shift of an
-/// m-sequence), so the tracked signal, which the noise correlator sees with the same code
-/// timing and carrier, leaks only 1e-6 of its power into the noise estimate.
-int noise_prn(int prn) { return prn % gps::kMaxPrn + 1; }
 
 }  // namespace
 
@@ -25,7 +20,7 @@ TrackingChannel::TrackingChannel(const TrackingConfig& config, const ChannelStar
     : cfg_(config),
       start_(start),
       code_(&ca_code_chips(start.prn)),
-      noise_code_(&ca_code_chips(noise_prn(start.prn))),
+      noise_code_(&ca_code_chips(noise_reference_prn(start.prn))),
       next_sample_(start.sample_index),
       code_phase_chips_(start.code_phase_chips),
       lock_(config.lock) {
@@ -39,6 +34,11 @@ TrackingChannel::TrackingChannel(const TrackingConfig& config, const ChannelStar
     throw std::invalid_argument("tracking: early-late spacing must be in (0, 2) chips and very-early/late spacing >= 0");
   nco_.carrier_doppler_hz = start.doppler_hz;
   nco_.code_rate_cps = gps::kCodeRate_cps * (1.0 + start.doppler_hz / gps::kL1_Hz);
+  if (start.bit_edge_period) {
+    bit_edge_ = ((*start.bit_edge_period % 20) + 20) % 20;
+    coherent_ms_ = cfg_.coherent_ms_after_bit_sync;
+    state_ = ChannelState::tracking;
+  }
 }
 
 void TrackingChannel::apply(const NcoCommand& command) {
@@ -189,11 +189,14 @@ void TrackingChannel::collect_bit(const CorrelatorEpoch& e) {
     bit_ms_ = 0;
     bit_first_sample_ = e.first_sample;
     bit_first_period_ = start;
+    // A channel started mid-period (a guided start, bit edges known at once) has a partial
+    // period 0: an integration through it rounds to whole milliseconds but is not a whole bit.
+    bit_whole_ = start > 0 || start_.code_phase_chips == 0.0;
   }
   bit_sum_ += e.prompt.real();
   bit_ms_ += ms;
   if (phase(e.code_period) != 0) return;
-  if (bit_ms_ == 20) bits_.push_back(PromptBit{bit_sum_, bit_first_sample_, bit_first_period_});
+  if (bit_ms_ == 20 && bit_whole_) bits_.push_back(PromptBit{bit_sum_, bit_first_sample_, bit_first_period_});
   bit_ms_ = 0;
 }
 

@@ -43,6 +43,10 @@ struct ChannelStart {
   double code_phase_chips = 0.0;  ///< prompt code phase at sample `sample_index`, [0, 1023)
   std::int64_t sample_index = 0;
   int channel = 0;                ///< the owner's channel number, copied into every epoch
+  /// The data-bit edge (a code period, counted from the start, at which a bit begins) when
+  /// it is known beforehand (a start from a filter's prediction of the transmit time): the
+  /// channel then skips pull-in and bit synchronisation and integrates along the bits at once.
+  std::optional<std::int64_t> bit_edge_period;
 };
 
 /// One data bit from the prompt, once the bits are synchronised: the sum of the prompt
@@ -145,6 +149,7 @@ class TrackingChannel {
   double bit_sum_ = 0.0;
   int bit_ms_ = 0;
   std::int64_t bit_first_sample_ = 0, bit_first_period_ = 0;
+  bool bit_whole_ = true;  ///< the bit in progress began on a whole code period
   std::vector<PromptBit> bits_;
 };
 

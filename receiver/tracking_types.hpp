@@ -32,6 +32,15 @@ inline int code_periods_into_bit(std::int64_t period, std::int64_t bit_edge_peri
   return static_cast<int>(((period - bit_edge_period) % kBit + kBit) % kBit);
 }
 
+/// The code of a channel's noise correlator: the next PRN. At zero lag two C/A codes
+/// correlate to exactly -1/1023 (the G1 sequence cancels and two shifts of G2 are a third
+/// shift of an m-sequence), so the tracked signal, which the noise correlator sees with the
+/// same code timing and carrier, leaks only 1e-6 of its power into the noise estimate.
+inline int noise_reference_prn(int prn) {
+  constexpr int kPrns = 32;
+  return prn % kPrns + 1;
+}
+
 struct CorrelatorEpoch {
   int prn = 0;
   int channel = 0;                      ///< the owner's channel number (ChannelStart::channel)

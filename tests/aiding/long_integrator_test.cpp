@@ -39,7 +39,7 @@ std::vector<CorrelatorEpoch> steered_epochs(double cn0_dbhz, double seconds, std
   TrackingConfig cfg;
   cfg.sample_rate_hz = spec.fs_hz;
   cfg.noise_on_every_period = true;
-  TrackingChannel ch(cfg, ChannelStart{spec.prn, spec.doppler0_hz, 0.0, 0, 0});
+  TrackingChannel ch(cfg, ChannelStart{spec.prn, spec.doppler0_hz, 0.0, 0, 0, std::nullopt});
   ch.set_loss_detection(false);
   std::vector<CorrelatorEpoch> epochs;
   for (int ms = 0; ms < seconds * 1000.0; ms += 100) ch.process(sig.next(100), epochs);

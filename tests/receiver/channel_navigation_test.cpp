@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "channel_test_signal.hpp"
+#include "receiver/guided_search.hpp"
 #include "receiver/nav_decoder.hpp"
 #include "receiver/tracking_channel.hpp"
 #include "receiver/tracking_loops.hpp"
@@ -63,7 +64,7 @@ Decoded run(const Source& src, double polarity) {
   testing::ChannelSignal sig(spec);
   TrackingConfig cfg;
   cfg.sample_rate_hz = kFs;
-  TrackingChannel ch(cfg, ChannelStart{spec.prn, spec.doppler0_hz + 30.0, spec.code0_chips + 0.2, 0, 0});
+  TrackingChannel ch(cfg, ChannelStart{spec.prn, spec.doppler0_hz + 30.0, spec.code0_chips + 0.2, 0, 0, std::nullopt});
   const LoopBandwidths pull_in{15.0, 10.0, 1.0};
   const LoopBandwidths narrow{10.0, 0.0, 0.5};
   ScalarLoopController loop(spec.doppler0_hz + 30.0, 2, pull_in);
@@ -147,6 +148,78 @@ TEST(ChannelNavigation, DecodesARealLnavStreamAndTransmitTimeInBothPolarities) {
   EXPECT_EQ(inverted.nav.polarity(), -upright.nav.polarity());
   EXPECT_NE(upright.nav.polarity(), 0);
   EXPECT_LT(std::abs(inverted.transmit_time_error_s), 0.03 / gps::kCodeRate_cps);
+}
+
+TEST(ChannelNavigation, AGuidedStartHasTheSignalsTimeAndBitsBeforeAnySubframe) {
+  // A filter predicts the signal 0.4 chip and 8 Hz off; the guided search finds it and the
+  // channel starts there with its bit edge and the decoder's time taken from the
+  // prediction. The transmit time is right from the first second (no subframe decoded yet),
+  // and every subframe decoded afterwards agrees with it.
+  const Source src = make_source();
+  testing::ChannelSignalSpec spec;
+  spec.fs_hz = kFs;
+  spec.prn = kPrn;
+  spec.cn0_dbhz = 45.0;
+  spec.seed = 78;
+  spec.bit = [&](std::int64_t k) { return src.bits.at(static_cast<std::size_t>(k)) ? -1 : 1; };
+  testing::ChannelSignal sig(spec);
+  const auto truth_sow = [&](std::int64_t sample) {
+    return src.first_bit * 0.02 + sig.code_chips(static_cast<double>(sample) / kFs) / gps::kCodeRate_cps;
+  };
+  SignalPrediction p;
+  p.prn = kPrn;
+  p.transmit_sow = truth_sow(0) - 0.4 / gps::kCodeRate_cps;
+  p.doppler_hz = spec.doppler0_hz - 8.0;
+  p.doppler_rate_hzps = spec.doppler_rate_hzps;
+  p.code_sigma_chips = 0.05;
+  p.doppler_sigma_hz = 1.0;
+  GuidedSearch search({}, p, kFs, 0.0);
+  std::int64_t end = 0;
+  while (search.outcome() == GuidedSearch::Outcome::searching) {
+    const SampleBlock b = sig.next(100);
+    search.add(b);
+    end = b.first_sample_index + static_cast<std::int64_t>(b.samples.size());
+  }
+  ASSERT_EQ(search.outcome(), GuidedSearch::Outcome::found);
+  const GuidedStart start = search.start_at(end, 0);
+  TrackingConfig cfg;
+  cfg.sample_rate_hz = kFs;
+  TrackingChannel ch(cfg, start.channel);
+  EXPECT_EQ(ch.state(), ChannelState::tracking);
+  NavDecoder nav(kPrn, 2190);
+  nav.seed_time(0, start.period0_transmit_sow);
+  EXPECT_TRUE(nav.synchronised());
+  EXPECT_TRUE(nav.seeded());
+  ScalarLoopController loop(start.channel.doppler_hz, 2, LoopBandwidths{10.0, 0.0, 0.5});
+  int bits = 0;
+  for (int ms = 0; ms < 36000; ms += 100) {
+    const SampleBlock b = sig.next(100);
+    ch.process(b, [&](const CorrelatorEpoch& e) {
+      EXPECT_TRUE(e.bit_synced);
+      ch.apply(loop.update(e, false));
+    });
+    for (const PromptBit& bit : ch.take_bits()) {
+      // Every bit the channel assembles starts on one of the signal's bit edges.
+      EXPECT_NEAR(std::remainder(truth_sow(bit.first_sample), 0.02), 0.0, 2e-6);
+      nav.add_bit(bit);
+      ++bits;
+    }
+    if (ms == 1000) {
+      ASSERT_EQ(nav.subframes_decoded(), 0);
+      const auto tx = transmit_time_sow(nav, ch, ch.next_sample());
+      ASSERT_TRUE(tx.has_value());
+      EXPECT_LT(std::abs(*tx - truth_sow(ch.next_sample())), 0.05 / gps::kCodeRate_cps);
+    }
+  }
+  EXPECT_GT(bits, 1700);
+  EXPECT_GE(nav.subframes_decoded(), 5);
+  EXPECT_EQ(nav.inconsistent_subframes(), 0);
+  EXPECT_FALSE(nav.seeded());
+  ASSERT_TRUE(nav.ephemeris().has_value());
+  EXPECT_EQ(nav.ephemeris()->iode, src.content.eph.iode);
+  const auto tx = transmit_time_sow(nav, ch, ch.next_sample());
+  ASSERT_TRUE(tx.has_value());
+  EXPECT_LT(std::abs(*tx - truth_sow(ch.next_sample())), 0.05 / gps::kCodeRate_cps);
 }
 
 }  // namespace

@@ -34,7 +34,7 @@ RunResult track(const ChannelSignalSpec& spec, double seconds, double doppler_er
   const double fs = spec.fs_hz;
   cfg.sample_rate_hz = fs;
   const double start_phase = std::fmod(spec.code0_chips, 1023.0);
-  ChannelStart start{spec.prn, spec.doppler0_hz + doppler_error_hz, std::fmod(start_phase + code_error_chips + 1023.0, 1023.0), 0, 4};
+  ChannelStart start{spec.prn, spec.doppler0_hz + doppler_error_hz, std::fmod(start_phase + code_error_chips + 1023.0, 1023.0), 0, 4, std::nullopt};
   TrackingChannel ch(cfg, start);
   const LoopBandwidths pull_in{15.0, 10.0, 1.0};
   const LoopBandwidths narrow{10.0, 0.0, 0.5};
@@ -162,7 +162,7 @@ TEST(TrackingChannel, VeryEarlyAndVeryLateAreSymmetricAroundTheTrackedPeak) {
 TEST(TrackingChannel, PhaseCorrectionsMoveTheNcosOnce) {
   TrackingConfig cfg;
   cfg.sample_rate_hz = 2.046e6;
-  TrackingChannel ch(cfg, ChannelStart{3, 1000.0, 1022.75, 100, 0});
+  TrackingChannel ch(cfg, ChannelStart{3, 1000.0, 1022.75, 100, 0, std::nullopt});
   NcoCommand cmd;
   cmd.code_rate_cps = 1.023e6;
   cmd.carrier_doppler_hz = 1000.0;
@@ -185,11 +185,11 @@ TEST(TrackingChannel, PhaseCorrectionsMoveTheNcosOnce) {
 TEST(TrackingChannel, BadSettingsAreRejected) {
   TrackingConfig cfg;
   cfg.coherent_ms_after_bit_sync = 3;
-  EXPECT_THROW(TrackingChannel(cfg, ChannelStart{3, 0.0, 0.0, 0, 0}), std::invalid_argument);
+  EXPECT_THROW(TrackingChannel(cfg, ChannelStart{3, 0.0, 0.0, 0, 0, std::nullopt}), std::invalid_argument);
   cfg.coherent_ms_after_bit_sync = 10;
-  EXPECT_THROW(TrackingChannel(cfg, ChannelStart{33, 0.0, 0.0, 0, 0}), std::invalid_argument);
+  EXPECT_THROW(TrackingChannel(cfg, ChannelStart{33, 0.0, 0.0, 0, 0, std::nullopt}), std::invalid_argument);
   cfg.sample_rate_hz = 0.0;
-  EXPECT_THROW(TrackingChannel(cfg, ChannelStart{3, 0.0, 0.0, 0, 0}), std::invalid_argument);
+  EXPECT_THROW(TrackingChannel(cfg, ChannelStart{3, 0.0, 0.0, 0, 0, std::nullopt}), std::invalid_argument);
 }
 
 }  // namespace
