@@ -198,7 +198,9 @@ void SteeredChannelController::short_sample(const CorrelatorEpoch& e, const Chan
     d.doppler_sample = e.first_sample;
   }
   d.cn0_dbhz = e.cn0_dbhz;
-  d.measurement = e.cn0_dbhz >= cfg_.min_cn0_dbhz;
+  // The channel's estimate only once its window is full (a channel started by a guided
+  // search is steered from its first integration).
+  d.measurement = ch.lock_detector().ready() && e.cn0_dbhz >= cfg_.min_cn0_dbhz;
   queue(d, e.first_sample + e.samples, view);
 }
 

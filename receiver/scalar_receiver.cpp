@@ -379,7 +379,7 @@ struct ScalarReceiver::Impl {
         continue;
       }
       rec.ended_s = t;
-      spdlog::info("PRN {:2d}: guided channel {} ({:.1f} s after the search found it)", rec.prn,
+      spdlog::info("t = {:.2f} s: PRN {:2d}: guided channel {} ({:.1f} s after the search found it)", t, rec.prn,
                    locked ? "locked by the filter" : "not locked by the filter: dropped", t - ch.start_t_s);
       guided_log.push_back(rec);
       ch.guided.reset();
@@ -430,7 +430,8 @@ struct ScalarReceiver::Impl {
         continue;
       }
       searches.push_back({GuidedSearch(cfg.guided.search, p, fs, cfg.tracking.if_hz), c->ephemeris, t});
-      spdlog::debug("PRN {:2d}: guided search at elevation {:.1f} deg ({} cells, {:.2f} chips / {:.1f} Hz 1-sigma)", p.prn,
+      spdlog::debug("t = {:.2f} s: PRN {:2d}: guided search at elevation {:.1f} deg ({} cells, {:.2f} chips / {:.1f} Hz "
+                    "1-sigma)", t, p.prn,
                     p.elevation_deg, searches.back().search.cells(), p.code_sigma_chips, p.doppler_sigma_hz);
     }
   }
@@ -449,7 +450,7 @@ struct ScalarReceiver::Impl {
                            a.search.detection()};
     const auto retry_later = [&](const char* why) {
       guided_retry_at_s[p.prn] = t + cfg.guided.retry_after_s;
-      spdlog::debug("PRN {:2d}: guided search over {:.1f} s: {}", p.prn, t - a.started_s, why);
+      spdlog::debug("t = {:.2f} s: PRN {:2d}: guided search over {:.1f} s: {}", t, p.prn, t - a.started_s, why);
       guided_log.push_back(rec);
     };
     if (!rec.detection || static_cast<int>(channels.size()) >= cfg.channels) return retry_later("not found");
@@ -475,8 +476,8 @@ struct ScalarReceiver::Impl {
     // The channel's view carries the ephemeris the prediction used (as for any channel with a transmit time).
     ephs.emplace(p.prn, a.ephemeris);
     const GuidedDetection& d = *rec.detection;
-    spdlog::info("PRN {:2d}: found by the filter-guided search ({:+.2f} chips, {:+.1f} Hz from the prediction, "
-                 "{:.1f} dB-Hz after {:.1f} s)", p.prn, d.code_offset_chips, d.doppler_offset_hz, d.cn0_dbhz, d.dwell_s);
+    spdlog::info("t = {:.2f} s: PRN {:2d}: found by the filter-guided search ({:+.2f} chips, {:+.1f} Hz from the "
+                 "prediction, {:.1f} dB-Hz after {:.1f} s)", t, p.prn, d.code_offset_chips, d.doppler_offset_hz, d.cn0_dbhz, d.dwell_s);
     acquired.push_back(p.prn);
     channels.push_back(std::move(ch));
   }

@@ -42,7 +42,7 @@ struct GuidedReacquisitionConfig {
   bool enabled = true;
   GuidedSearchConfig search;
   double interval_s = 1.0;          ///< how often the filter is asked for predictions
-  double retry_after_s = 10.0;      ///< a satellite not found, or dropped, is searched again after this
+  double retry_after_s = 4.0;       ///< a satellite not found, or dropped, is searched again after this
   /// A guided channel that the filter's lock criterion (SignalLockReport) has not confirmed
   /// within this is dropped: the detection was noise or another satellite's code.
   double confirm_within_s = 8.0;

@@ -172,6 +172,19 @@ nlohmann::json run_summary(const RunOptions& o, const OpenedSource& opened, aidi
                    "navigation bits?", n.prn, n.tracked_s, n.subframes_decoded, n.parity_failures);
   }
   summary["navigation"] = navigation;
+  // Filter-guided searches (ultra-tight): where each untracked satellite was looked for and
+  // what came of it.
+  nlohmann::json guided = nlohmann::json::array();
+  for (const GuidedSearchRecord& g : receiver.guided_searches()) {
+    nlohmann::json j = {{"prn", g.prn}, {"started_s", g.started_s}, {"ended_s", g.ended_s},
+                        {"elevation_deg", g.elevation_deg}, {"outcome", to_string(g.outcome)}};
+    if (g.detection)
+      j["detection"] = {{"dwell_s", g.detection->dwell_s}, {"cn0_dbhz", g.detection->cn0_dbhz},
+                        {"code_offset_chips", g.detection->code_offset_chips},
+                        {"doppler_offset_hz", g.detection->doppler_offset_hz}};
+    guided.push_back(j);
+  }
+  summary["guided_searches"] = guided;
   summary["mode"] = o.mode;
   if (const aiding::AidedReceiver* aided = session.aided()) {
     summary["mode_changes"] = aiding::mode_changes_json(aided->mode_changes());
@@ -382,6 +395,10 @@ const bool registered = register_command([](CommandParents& parents) {
                 "ionosphere model's delay (a signal without ionosphere)")
       ->default_str("true");
   add_long_integration_options(*cmd, o->long_integration);
+  cmd->add_flag("--guided-reacquisition,!--no-guided-reacquisition", o->receiver.guided.enabled,
+                "Ultra: search the satellites not tracked where the filter predicts them (a narrow window, seconds of "
+                "integration) and start their channels steered")
+      ->default_str("true");
   cmd->add_option("--max-solution-sigma", o->max_solution_sigma_m,
                   "Aided modes: a solution whose horizontal 1-sigma exceeds this (m) is not published")
       ->check(CLI::Range(0.1, 1e6))

@@ -94,6 +94,22 @@ TEST(GuidedSearch, FindsA17DbHzSignalOffTheCentreOfItsWindow) {
   EXPECT_LT(*start.channel.bit_edge_period, 20);
 }
 
+TEST(GuidedSearch, FindsA15DbHzSignalWithinItsLongestDwell) {
+  // 20 ms pieces summed for up to 4 s: at 15 dB-Hz the cell's mean power sum stands about 7
+  // sigma above noise alone at the last check, so nearly every search finds it.
+  int found = 0;
+  for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+    ChannelSignal sig(weak_signal(15.0, seed));
+    GuidedSearch search({}, predict(sig, 0.3, -7.0), kFs, 0.0);
+    run(search, sig);
+    if (search.outcome() != GuidedSearch::Outcome::found) continue;
+    ++found;
+    EXPECT_NEAR(search.detection()->code_offset_chips, 0.3, 0.15) << "seed " << seed;
+    EXPECT_NEAR(search.detection()->cn0_dbhz, 15.0, 2.0) << "seed " << seed;
+  }
+  EXPECT_GE(found, 7);
+}
+
 TEST(GuidedSearch, NoiseAloneIsNotFound) {
   // Eight full-length searches (4 s each) on noise: none may report a signal. With the
   // default false-alarm probability (1e-4 per search) a detection here means a wrong threshold.
