@@ -46,7 +46,7 @@ struct GuidedReacquisitionConfig {
   /// A guided channel that the filter's lock criterion (SignalLockReport) has not confirmed
   /// within this is dropped: the detection was noise or another satellite's code.
   double confirm_within_s = 8.0;
-  int max_searches = 3;             ///< at once (each costs about as much as 9 tracking channels)
+  int max_searches = 3;             ///< at once (each costs about as much as 2-3 tracking channels)
   /// A detection this far (dB) below a tracked satellite whose Doppler lies within two
   /// Doppler steps of it, modulo the code's 1 kHz lines, may be that satellite's
   /// cross-correlation and is rejected (the FFT acquisition's rule, for one candidate).
