@@ -57,6 +57,12 @@ double sinc_peak_offset(double neighbour, double centre, double step, double pie
 
 }  // namespace
 
+bool cross_correlation_suspect(double found_doppler_hz, double found_cn0_dbhz, double tracked_doppler_hz,
+                               double tracked_cn0_dbhz, double window_hz, double margin_db) {
+  const double from_line_hz = std::remainder(found_doppler_hz - tracked_doppler_hz, 1000.0);
+  return std::abs(from_line_hz) < window_hz && found_cn0_dbhz < tracked_cn0_dbhz - margin_db;
+}
+
 bool GuidedSearch::is_narrow(const GuidedSearchConfig& c, const SignalPrediction& p) {
   return code_half_width(c, p) <= c.max_code_half_width_chips && doppler_half_width(c, p) <= c.max_doppler_half_width_hz;
 }

@@ -70,6 +70,14 @@ struct GuidedStart {
   double period0_transmit_sow = 0.0;     ///< transmit time at the start of the channel's code period 0 (whole ms)
 };
 
+/// Whether a detection at `found_doppler_hz` and `found_cn0_dbhz` may be the
+/// cross-correlation of a tracked satellite: C/A codes cross-correlate (about -21 to -24 dB)
+/// where their Doppler difference lies near a multiple of the code's 1 kHz lines; within
+/// `window_hz` of one, a detection more than `margin_db` below the tracked signal cannot be
+/// told from it.
+bool cross_correlation_suspect(double found_doppler_hz, double found_cn0_dbhz, double tracked_doppler_hz,
+                               double tracked_cn0_dbhz, double window_hz, double margin_db);
+
 class GuidedSearch {
  public:
   /// Throws std::invalid_argument when the prediction's window is not narrow

@@ -456,9 +456,9 @@ struct ScalarReceiver::Impl {
     if (!rec.detection || static_cast<int>(channels.size()) >= cfg.channels) return retry_later("not found");
     const GuidedStart start = a.search.start_at(end, 0);
     for (const Channel& ch : channels) {
-      const double lines_hz = std::remainder(start.channel.doppler_hz - ch.last_doppler_hz, 1000.0);
-      if (std::abs(lines_hz) < 2.0 * cfg.guided.search.doppler_step_hz &&
-          rec.detection->cn0_dbhz < ch.trk->cn0_dbhz() - cfg.guided.cross_correlation_margin_db) {
+      if (cross_correlation_suspect(start.channel.doppler_hz, rec.detection->cn0_dbhz, ch.last_doppler_hz,
+                                    ch.trk->cn0_dbhz(), 2.0 * cfg.guided.search.doppler_step_hz,
+                                    cfg.guided.cross_correlation_margin_db)) {
         rec.outcome = GuidedSearchRecord::Outcome::cross_correlation;
         return retry_later("rejected as a cross-correlation");
       }

@@ -148,5 +148,30 @@ TEST(GuidedSearch, AWideOrUncertainPredictionIsRefused) {
   EXPECT_EQ(GuidedSearch({}, p, kFs, 0.0).cells(), 3 * 7 * 5);
 }
 
+TEST(GuidedSearch, AWeakDetectionNearAStrongSatellitesCodeLinesIsSuspect) {
+  // 45 dB-Hz tracked at 1200 Hz; a 20 dB-Hz detection 3 kHz + 15 Hz away sits on a line.
+  EXPECT_TRUE(cross_correlation_suspect(4215.0, 20.0, 1200.0, 45.0, 40.0, 18.0));
+  EXPECT_TRUE(cross_correlation_suspect(-1830.0, 20.0, 1200.0, 45.0, 40.0, 18.0));  // -3 kHz + -30 Hz
+  EXPECT_FALSE(cross_correlation_suspect(4700.0, 20.0, 1200.0, 45.0, 40.0, 18.0));  // between lines
+  EXPECT_FALSE(cross_correlation_suspect(4215.0, 30.0, 1200.0, 45.0, 40.0, 18.0));  // too strong for it
+}
+
+TEST(GuidedSearch, ACrossCorrelationIsWhatTheSuspicionGuardsAgainst) {
+  // A 50 dB-Hz PRN 7 signal, searched for as PRN 8 at a Doppler 1 kHz off PRN 7's (a code
+  // line): the search finds PRN 7's cross-correlation (seeded: it does here), weak and on a
+  // line, so the guard rejects it.
+  ChannelSignal sig(weak_signal(50.0, 4));
+  SignalPrediction p = predict(sig, 0.0, 0.0);
+  p.prn = 8;
+  p.doppler_hz += 1000.0;
+  GuidedSearch search({}, p, kFs, 0.0);
+  run(search, sig);
+  ASSERT_EQ(search.outcome(), GuidedSearch::Outcome::found);
+  const GuidedDetection& d = *search.detection();
+  EXPECT_LT(d.cn0_dbhz, 50.0 - 18.0);
+  EXPECT_TRUE(cross_correlation_suspect(p.doppler_hz + d.doppler_offset_hz, d.cn0_dbhz, sig.doppler_hz(0.0), 50.0,
+                                        40.0, 18.0));
+}
+
 }  // namespace
 }  // namespace deepnav
