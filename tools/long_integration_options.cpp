@@ -5,22 +5,15 @@
 namespace deepnav::cli {
 namespace {
 
+/// A whole number of data bits (CLI::Range checks the number and its bounds).
 CLI::Validator multiple_of_bits() {
   return CLI::Validator(
       [](std::string& text) -> std::string {
         int ms = 0;
-        try {
-          std::size_t used = 0;
-          ms = std::stoi(text, &used);
-          if (used != text.size()) return "expected a whole number of milliseconds, got '" + text + "'";
-        } catch (const std::exception&) {
-          return "expected a whole number of milliseconds, got '" + text + "'";
-        }
-        if (ms < 20 || ms > 2000 || ms % 20 != 0)
-          return "expected a multiple of 20 ms (one data bit) from 20 to 2000, got " + text;
-        return {};
+        if (!CLI::detail::lexical_cast(text, ms)) return {};  // not a number: Range says so
+        return ms % 20 == 0 ? std::string() : fmt::format("expected a multiple of 20 ms (one data bit), got {}", text);
       },
-      "MS (multiple of 20)");
+      "multiple of 20");
 }
 
 }  // namespace
@@ -28,11 +21,11 @@ CLI::Validator multiple_of_bits() {
 void add_long_integration_options(CLI::App& cmd, aiding::LongIntegrationConfig& config) {
   cmd.add_option("--coherent-ms", config.coherent_ms,
                  "Ultra-tight, weak signals: coherent integration with the data bits wiped off (ms; 20: no wipe-off)")
-      ->check(multiple_of_bits())
+      ->check(CLI::Range(20, 2000) & multiple_of_bits())
       ->capture_default_str();
   cmd.add_option("--noncoherent-ms", config.noncoherent_ms,
                  "Ultra-tight, weak signals: 20 ms bits whose data are not predicted are summed in power over this (ms)")
-      ->check(multiple_of_bits())
+      ->check(CLI::Range(20, 2000) & multiple_of_bits())
       ->capture_default_str();
   cmd.add_flag("--assist-data-bits", config.assist_data_bits,
                "Ultra-tight: predict subframes 1-3 from the assisted ephemeris (--ephemeris-from) before they are "
