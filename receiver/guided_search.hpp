@@ -102,7 +102,7 @@ class GuidedSearch {
 
  private:
   /// Code phase (chips, unwrapped: 0 is the start of the code period the prediction's
-  /// sample lies in) of a replica `offset_chips` from the prediction in Doppler bin `bin`.
+  /// sample lies in) at `sample` of a replica `offset_chips` and `doppler_offset_hz` from the prediction.
   double code_chips_at(double offset_chips, double doppler_offset_hz, std::int64_t sample) const;
   double doppler_at(double doppler_offset_hz, std::int64_t sample) const;
   void correlate_span(const SampleBlock& block, std::int64_t first, int n);

@@ -132,6 +132,27 @@ TEST(GuidedSearch, AStrongSignalIsFoundAtTheFirstCheck) {
   EXPECT_NEAR(search.detection()->doppler_offset_hz, -25.0, 5.0);
 }
 
+TEST(GuidedSearch, LostSamplesDropOnlyThePiecesTheyCut) {
+  // One 10 ms block in ten never arrives (a lossy stream): the pieces it cuts are dropped,
+  // the others still add up, and the start is where the signal is.
+  ChannelSignal sig(weak_signal(35.0, 11));
+  GuidedSearch search({}, predict(sig, -0.8, 9.0), kFs, 0.0);
+  std::int64_t end = 0;
+  for (int block = 0; search.outcome() == GuidedSearch::Outcome::searching && block < 600; ++block) {
+    const SampleBlock b = sig.next(10);
+    end = b.first_sample_index + static_cast<std::int64_t>(b.samples.size());
+    if (block % 10 != 5) search.add(b);
+  }
+  ASSERT_EQ(search.outcome(), GuidedSearch::Outcome::found);
+  // 1 s of whole pieces needed about 1.25 s of samples (each gap cuts one or two bits).
+  EXPECT_NEAR(search.detection()->dwell_s, 1.0, 0.021);
+  EXPECT_GT(static_cast<double>(end) / kFs, 1.15);
+  EXPECT_NEAR(search.detection()->code_offset_chips, -0.8, 0.1);
+  const GuidedStart start = search.start_at(end, 0);
+  const double true_phase = std::fmod(sig.code_chips(static_cast<double>(end) / kFs), 1023.0);
+  EXPECT_NEAR(std::remainder(start.channel.code_phase_chips - true_phase, 1023.0), 0.0, 0.1);
+}
+
 TEST(GuidedSearch, AWideOrUncertainPredictionIsRefused) {
   ChannelSignal sig(weak_signal(40.0, 9));
   SignalPrediction p = predict(sig, 0.0, 0.0);
