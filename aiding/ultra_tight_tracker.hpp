@@ -109,8 +109,8 @@ class UltraTightTracker {
     int count = 0;
   };
   std::map<int, ResidualSum> residual_sums_;
-  std::map<int, std::int64_t> last_measured_sample_;
-  std::set<int> disagreeing_;  ///< PRNs given back for disagreeing with the filter (warned once)  ///< per PRN, where its latest measurement refers to
+  std::map<int, std::int64_t> last_measured_sample_;  ///< per PRN, where its latest measurement refers to
+  std::set<int> disagreeing_;  ///< PRNs given back for disagreeing with the filter (warned once)
   int measuring_ = 0;
 };
 

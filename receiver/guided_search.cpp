@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "ins/gps_time.hpp"
 #include "receiver/acquisition.hpp"
 #include "receiver/correlator.hpp"
 #include "receiver/tracking_types.hpp"
@@ -16,7 +17,6 @@ namespace {
 
 constexpr double kBit_s = 0.02;
 constexpr double kCallSpacing_chips = 1.25;  // five taps 0.25 chip apart per call
-constexpr double kSecondsPerWeek = 604800.0;
 
 double code_half_width(const GuidedSearchConfig& c, const SignalPrediction& p) {
   return std::max(c.min_code_half_width_chips, c.sigmas * p.code_sigma_chips);

@@ -100,7 +100,7 @@ void NavDecoder::try_decode() {
 
 void NavDecoder::seed_time(std::int64_t period, double transmit_sow) {
   if (anchor_) return;  // a decoded (or earlier) time stands
-  constexpr std::int64_t kMsPerWeek = 604800000;
+  constexpr std::int64_t kMsPerWeek = kTowCountsPerWeek * kPeriodsPerSubframe;
   const std::int64_t ms = ((std::llround(transmit_sow * 1e3) % kMsPerWeek) + kMsPerWeek) % kMsPerWeek;
   const std::int64_t into_subframe = ms % kPeriodsPerSubframe;
   // The anchor is the start of the subframe the period lies in: its TOW count names the next one.

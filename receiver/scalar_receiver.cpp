@@ -453,7 +453,8 @@ struct ScalarReceiver::Impl {
       spdlog::debug("t = {:.2f} s: PRN {:2d}: guided search over {:.1f} s: {}", t, p.prn, t - a.started_s, why);
       guided_log.push_back(rec);
     };
-    if (!rec.detection || static_cast<int>(channels.size()) >= cfg.channels) return retry_later("not found");
+    if (!rec.detection) return retry_later("not found");
+    if (static_cast<int>(channels.size()) >= cfg.channels) return retry_later("found, but no channel free");
     const GuidedStart start = a.search.start_at(end, 0);
     for (const Channel& ch : channels) {
       if (cross_correlation_suspect(start.channel.doppler_hz, rec.detection->cn0_dbhz, ch.last_doppler_hz,

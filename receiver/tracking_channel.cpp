@@ -13,7 +13,6 @@ namespace {
 
 constexpr double kPeriod = gps::kCodeLength_chips;
 
-
 }  // namespace
 
 TrackingChannel::TrackingChannel(const TrackingConfig& config, const ChannelStart& start)
@@ -35,7 +34,7 @@ TrackingChannel::TrackingChannel(const TrackingConfig& config, const ChannelStar
   nco_.carrier_doppler_hz = start.doppler_hz;
   nco_.code_rate_cps = gps::kCodeRate_cps * (1.0 + start.doppler_hz / gps::kL1_Hz);
   if (start.bit_edge_period) {
-    bit_edge_ = ((*start.bit_edge_period % 20) + 20) % 20;
+    bit_edge_ = code_periods_into_bit(*start.bit_edge_period, 0);
     coherent_ms_ = cfg_.coherent_ms_after_bit_sync;
     state_ = ChannelState::tracking;
   }

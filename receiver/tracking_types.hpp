@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <optional>
 
+#include "signals/gps_constants.hpp"
+
 namespace deepnav {
 
 /// Rates for the channel's numerically controlled oscillators from the next sample on.
@@ -22,9 +24,6 @@ struct NcoCommand {
   std::optional<double> carrier_phase_correction_cycles;
 };
 
-/// One integration of one channel: correlator sums and the NCO state at its end.
-/// Correlator sums are in sample units (a noise-free aligned signal of amplitude A over
-/// n samples gives |prompt| = A n); the lock flags and C/N0 include this integration.
 /// Code periods from the start of the data bit that code period `period` falls in, given the
 /// code period at which some bit starts (0..19; for periods before that edge too).
 inline int code_periods_into_bit(std::int64_t period, std::int64_t bit_edge_period) {
@@ -36,11 +35,11 @@ inline int code_periods_into_bit(std::int64_t period, std::int64_t bit_edge_peri
 /// correlate to exactly -1/1023 (the G1 sequence cancels and two shifts of G2 are a third
 /// shift of an m-sequence), so the tracked signal, which the noise correlator sees with the
 /// same code timing and carrier, leaks only 1e-6 of its power into the noise estimate.
-inline int noise_reference_prn(int prn) {
-  constexpr int kPrns = 32;
-  return prn % kPrns + 1;
-}
+inline int noise_reference_prn(int prn) { return prn % gps::kMaxPrn + 1; }
 
+/// One integration of one channel: correlator sums and the NCO state at its end.
+/// Correlator sums are in sample units (a noise-free aligned signal of amplitude A over
+/// n samples gives |prompt| = A n); the lock flags and C/N0 include this integration.
 struct CorrelatorEpoch {
   int prn = 0;
   int channel = 0;                      ///< the owner's channel number (ChannelStart::channel)

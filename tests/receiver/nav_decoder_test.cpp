@@ -122,26 +122,27 @@ TEST(NavDecoder, ASubframeAtOddsWithTheChannelTimeIsNotTaken) {
   NavData nav;
   const auto c = content_for(10, GpsTime{2190, 525600.0}, nav);
   const std::int64_t first_bit = static_cast<std::int64_t>(525600.0 / 0.02);
+  // The broadcast bits of each (first bit, count) stretch, one after the other.
+  const auto splice = [&](std::initializer_list<std::pair<std::int64_t, int>> stretches) {
+    std::vector<std::uint8_t> bits;
+    for (const auto& [from, count] : stretches) {
+      const auto part = lnav::lnav_bits(c, first_bit + from, count);
+      bits.insert(bits.end(), part.begin(), part.end());
+    }
+    return bits;
+  };
   // 4 subframes in order, then one subframe that parity-checks but carries the data of 53
   // subframes later (a subframe read wrong at weak signal can), then 3 more in order.
-  std::vector<std::uint8_t> bits = lnav::lnav_bits(c, first_bit, 1200);
-  const auto odd = lnav::lnav_bits(c, first_bit + 1200 + 53 * 300, 300);
-  bits.insert(bits.end(), odd.begin(), odd.end());
-  const auto after = lnav::lnav_bits(c, first_bit + 1500, 900);
-  bits.insert(bits.end(), after.begin(), after.end());
   NavDecoder dec(10, 2190);
-  feed(dec, bits, 0);
+  feed(dec, splice({{0, 1200}, {1200 + 53 * 300, 300}, {1500, 900}}), 0);
   EXPECT_EQ(dec.inconsistent_subframes(), 1);
   const auto tx = dec.transmit_time_sow(20 * 2000, 0.0);
   ASSERT_TRUE(tx.has_value());
   EXPECT_NEAR(*tx, (first_bit + 2000) * 0.02, 1e-9);  // the channel's own time kept
 
   // Two subframes that agree with each other outvote the anchor (it was the wrong one).
-  std::vector<std::uint8_t> moved = lnav::lnav_bits(c, first_bit, 600);
-  const auto later = lnav::lnav_bits(c, first_bit + 600 + 53 * 300, 900);
-  moved.insert(moved.end(), later.begin(), later.end());
   NavDecoder dec2(10, 2190);
-  feed(dec2, moved, 0);
+  feed(dec2, splice({{0, 600}, {600 + 53 * 300, 900}}), 0);
   EXPECT_EQ(dec2.inconsistent_subframes(), 1);
   const auto tx2 = dec2.transmit_time_sow(20 * 1400, 0.0);
   ASSERT_TRUE(tx2.has_value());
