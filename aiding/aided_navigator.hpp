@@ -19,7 +19,7 @@
 #include "aiding/satellite_fault_monitor.hpp"
 #include "ins/kalman_filter.hpp"
 #include "ins/strapdown.hpp"
-#include "receiver/range_model.hpp"
+#include "receiver/pvt/range_model.hpp"
 
 namespace deepnav::aiding {
 

@@ -3,7 +3,7 @@
 #include <stdexcept>
 
 #include "ins/gps_time.hpp"
-#include "receiver/nav_decoder.hpp"
+#include "receiver/navdata/nav_decoder.hpp"
 
 namespace deepnav::aiding {
 namespace {

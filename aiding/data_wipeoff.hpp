@@ -14,8 +14,8 @@
 #include <cstdint>
 #include <optional>
 
-#include "receiver/nav_bit_monitor.hpp"
-#include "receiver/nav_bit_predictor.hpp"
+#include "receiver/navdata/nav_bit_monitor.hpp"
+#include "receiver/navdata/nav_bit_predictor.hpp"
 #include "signals/ephemeris.hpp"
 
 namespace deepnav {

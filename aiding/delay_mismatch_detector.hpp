@@ -33,8 +33,8 @@
 #include <optional>
 #include <vector>
 
-#include "receiver/pvt_solver.hpp"
-#include "receiver/range_weight.hpp"
+#include "receiver/pvt/pvt_solver.hpp"
+#include "receiver/pvt/range_weight.hpp"
 
 namespace deepnav::aiding {
 

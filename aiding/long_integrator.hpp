@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "aiding/integration_cn0_estimator.hpp"
-#include "receiver/tracking_types.hpp"
+#include "receiver/tracking/tracking_types.hpp"
 
 namespace deepnav::aiding {
 

@@ -12,7 +12,7 @@
 // is dr - [(C_b_n l) x] eps for the lever arm l (IMU -> antenna, body axes).
 //
 // Noise. How far a pseudorange can be trusted from the satellite's elevation and the
-// signal's C/N0 is the one RangeErrorModel the PVT weighs with (receiver/range_weight.hpp);
+// signal's C/N0 is the one RangeErrorModel the PVT weighs with (receiver/pvt/range_weight.hpp);
 // what depends on how the channel measured is here: a scalar channel's observables (tight
 // coupling), one integration of a steered channel's discriminators (ultra-tight), and a
 // PVT fix's position and velocity (loose coupling).
@@ -20,7 +20,7 @@
 #include <optional>
 
 #include "aiding/error_state.hpp"
-#include "receiver/range_weight.hpp"
+#include "receiver/pvt/range_weight.hpp"
 
 namespace deepnav::aiding {
 

@@ -12,7 +12,7 @@
 #include "ins/frames.hpp"
 #include "ins/rotations.hpp"
 #include "ins/wgs84.hpp"
-#include "receiver/range_model.hpp"
+#include "receiver/pvt/range_model.hpp"
 #include "signals/gps_constants.hpp"
 
 namespace deepnav::aiding {

@@ -34,7 +34,7 @@
 #include "receiver/observations/carrier_smoothing.hpp"
 #include "receiver/observations/rinex_obs_reader.hpp"
 #include "receiver/products/product_sink.hpp"
-#include "receiver/pvt_solver.hpp"
+#include "receiver/pvt/pvt_solver.hpp"
 #include "signals/rinex_nav.hpp"
 
 namespace deepnav::aiding {

@@ -6,9 +6,9 @@
 #include <cmath>
 
 #include "aiding/measurement_models.hpp"
-#include "receiver/nav_decoder.hpp"
-#include "receiver/tracking_channel.hpp"
-#include "receiver/tracking_loops.hpp"
+#include "receiver/navdata/nav_decoder.hpp"
+#include "receiver/tracking/tracking_channel.hpp"
+#include "receiver/tracking/tracking_loops.hpp"
 
 namespace deepnav::aiding {
 namespace {

@@ -16,7 +16,7 @@
 #include "aiding/data_wipeoff.hpp"
 #include "aiding/integration_cn0_estimator.hpp"
 #include "aiding/long_integrator.hpp"
-#include "receiver/channel_controller.hpp"
+#include "receiver/tracking/channel_controller.hpp"
 #include "signals/ephemeris.hpp"
 
 namespace deepnav::aiding {

@@ -8,7 +8,7 @@
 
 #include "aiding/measurement_models.hpp"
 #include "ins/gps_time.hpp"
-#include "receiver/tracking_loops.hpp"
+#include "receiver/tracking/tracking_loops.hpp"
 #include "signals/gps_constants.hpp"
 
 namespace deepnav::aiding {

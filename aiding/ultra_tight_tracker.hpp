@@ -34,7 +34,7 @@
 #include "aiding/aided_navigator.hpp"
 #include "aiding/steered_channel_controller.hpp"
 #include "aiding/delay_mismatch_detector.hpp"
-#include "receiver/channel_controller.hpp"
+#include "receiver/tracking/channel_controller.hpp"
 
 namespace deepnav::aiding {
 

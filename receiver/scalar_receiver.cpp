@@ -14,9 +14,9 @@
 #include <set>
 
 #include "receiver/build_date.hpp"
-#include "receiver/correlator.hpp"
-#include "receiver/nav_decoder.hpp"
-#include "receiver/sample_history.hpp"
+#include "receiver/tracking/correlator.hpp"
+#include "receiver/navdata/nav_decoder.hpp"
+#include "receiver/sources/sample_history.hpp"
 #include "receiver/worker_threads.hpp"
 #include "signals/gps_constants.hpp"
 

@@ -16,13 +16,13 @@
 #include <string>
 #include <vector>
 
-#include "receiver/acquisition.hpp"
-#include "receiver/nav_decoder.hpp"
-#include "receiver/pvt_solver.hpp"
-#include "receiver/sample_source.hpp"
-#include "receiver/tracking_channel.hpp"
-#include "receiver/channel_controller.hpp"
-#include "receiver/tracking_loops.hpp"
+#include "receiver/acquisition/acquisition.hpp"
+#include "receiver/navdata/nav_decoder.hpp"
+#include "receiver/pvt/pvt_solver.hpp"
+#include "receiver/sources/sample_source.hpp"
+#include "receiver/tracking/tracking_channel.hpp"
+#include "receiver/tracking/channel_controller.hpp"
+#include "receiver/tracking/tracking_loops.hpp"
 #include "signals/rinex_nav.hpp"
 
 namespace deepnav {

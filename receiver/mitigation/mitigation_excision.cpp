@@ -2,7 +2,7 @@
 
 #include <fftw3.h>
 
-#include "receiver/fftw_plan.hpp"
+#include "receiver/acquisition/fftw_plan.hpp"
 
 #include <algorithm>
 #include <cmath>

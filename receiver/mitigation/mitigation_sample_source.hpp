@@ -21,7 +21,7 @@
 
 #include "receiver/mitigation/mitigation_config.hpp"
 #include "receiver/mitigation/mitigation_stage.hpp"
-#include "receiver/sample_source.hpp"
+#include "receiver/sources/sample_source.hpp"
 
 namespace deepnav {
 

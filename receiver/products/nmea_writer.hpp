@@ -4,7 +4,7 @@
 // when decoded, else the value given).
 #include <string>
 
-#include "receiver/pvt_solver.hpp"
+#include "receiver/pvt/pvt_solver.hpp"
 
 namespace deepnav {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "receiver/products/product_sink.hpp"
-#include "receiver/truth_file.hpp"
+#include "receiver/products/truth_file.hpp"
 
 namespace deepnav {
 

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "receiver/pvt_solver.hpp"
+#include "receiver/pvt/pvt_solver.hpp"
 
 namespace deepnav {
 

@@ -16,8 +16,8 @@
 #include <utility>
 #include <vector>
 
-#include "receiver/sample_converter.hpp"
-#include "receiver/sample_source.hpp"
+#include "receiver/sources/sample_converter.hpp"
+#include "receiver/sources/sample_source.hpp"
 #include "receiver/stream/stream_protocol.hpp"
 #include "receiver/stream/stream_sample_queue.hpp"
 

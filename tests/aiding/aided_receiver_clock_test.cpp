@@ -9,8 +9,8 @@
 
 #include "aiding/aided_receiver.hpp"
 #include "ins/imu_file.hpp"
-#include "receiver/file_sample_source.hpp"
-#include "receiver/truth_file.hpp"
+#include "receiver/sources/file_sample_source.hpp"
+#include "receiver/products/truth_file.hpp"
 #include "signals/gps_constants.hpp"
 #include "signals/sim/if_synthesizer.hpp"
 #include "signals/rinex_nav.hpp"

@@ -12,7 +12,7 @@
 
 #include "aiding/data_wipeoff.hpp"
 #include "aiding/integration_cn0_estimator.hpp"
-#include "receiver/tracking_channel.hpp"
+#include "receiver/tracking/tracking_channel.hpp"
 #include "tests/receiver/channel_test_signal.hpp"
 
 namespace deepnav::aiding {

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "receiver/correlator.hpp"
+#include "receiver/tracking/correlator.hpp"
 
 namespace {
 

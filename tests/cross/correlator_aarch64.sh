@@ -5,7 +5,7 @@
 # (portable and NEON) must give the portable kernel's integers.
 #   correlator_aarch64.sh <source dir> <work dir>
 # Exit 77 (ctest: skipped) with a message when the cross compiler, qemu or the GoogleTest
-# sources are missing (tools/install_deps.sh installs them).
+# sources are missing (scripts/install_deps.sh installs them).
 set -euo pipefail
 src=$1
 work=$2
@@ -18,7 +18,7 @@ command -v "$qemu" >/dev/null || missing+=("$qemu (package qemu-user)")
 [[ -f $gtest/src/gtest-all.cc ]] || missing+=("$gtest (package libgtest-dev)")
 if ((${#missing[@]})); then
   list=$(printf '%s, ' "${missing[@]}")
-  echo "SKIPPED: the AArch64 correlator test needs ${list%, }; tools/install_deps.sh installs them"
+  echo "SKIPPED: the AArch64 correlator test needs ${list%, }; scripts/install_deps.sh installs them"
   exit 77
 fi
 mkdir -p "$work"
@@ -28,7 +28,7 @@ command -v ccache >/dev/null && launcher=(ccache)
 # fmt header-only: the cross toolchain has no aarch64 libfmt to link.
 flags=(-O2 -std=c++20 -Wall -Wextra -Werror -DFMT_HEADER_ONLY -I"$src")
 objects=()
-for f in receiver/correlator.cpp receiver/correlator/kernel_portable.cpp receiver/correlator/kernel_neon.cpp \
+for f in receiver/tracking/correlator.cpp receiver/tracking/kernels/kernel_portable.cpp receiver/tracking/kernels/kernel_neon.cpp \
          signals/ca_code.cpp signals/sim/satellite_signal_kernel.cpp tests/receiver/correlator_test.cpp; do
   o=$(echo "$f" | tr / _).o
   "${launcher[@]}" "$cxx" "${flags[@]}" -c "$src/$f" -o "$o"

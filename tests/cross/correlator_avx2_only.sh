@@ -6,7 +6,7 @@
 # reported as skipped, not passed. (Emulation says nothing about speed.)
 #   correlator_avx2_only.sh <receiver_tests binary>
 # Exit 77 (ctest: skipped) with a message where qemu-x86_64 is missing or the host is not
-# x86-64 (tools/install_deps.sh installs qemu-user).
+# x86-64 (scripts/install_deps.sh installs qemu-user).
 set -uo pipefail
 tests=$1
 qemu=qemu-x86_64
@@ -15,7 +15,7 @@ if [[ $(uname -m) != x86_64 ]]; then
   exit 77
 fi
 if ! command -v "$qemu" > /dev/null; then
-  echo "SKIPPED: the AVX2-only correlator test needs $qemu (package qemu-user); tools/install_deps.sh installs it"
+  echo "SKIPPED: the AVX2-only correlator test needs $qemu (package qemu-user); scripts/install_deps.sh installs it"
   exit 77
 fi
 log=$(mktemp)

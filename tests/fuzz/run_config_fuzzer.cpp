@@ -1,4 +1,4 @@
-// Command configuration files (tools/yaml_config.hpp, `deepnav run --config FILE`): the
+// Command configuration files (tools/cli/yaml_config.hpp, `deepnav run --config FILE`): the
 // input is read by the YAML reader for a `run` command holding one option of each kind
 // the real commands use (text, number, bounded number, integer range, choice, flag,
 // negatable flag, fixed-length list). Errors must be UserError naming the file.
@@ -6,8 +6,8 @@
 #include <sstream>
 
 #include "tests/fuzz/fuzz_support.hpp"
-#include "tools/command_registry.hpp"
-#include "tools/yaml_config.hpp"
+#include "tools/cli/command_registry.hpp"
+#include "tools/cli/yaml_config.hpp"
 
 namespace {
 

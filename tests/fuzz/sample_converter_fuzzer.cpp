@@ -1,4 +1,4 @@
-// Raw IF bytes -> samples (receiver/sample_converter.hpp) in every sample format: the
+// Raw IF bytes -> samples (receiver/sources/sample_converter.hpp) in every sample format: the
 // input's first three bytes choose the format (a packed one's whole layout) and the
 // spectrum inversion, the rest are the samples. Packed and cu8 samples must come out as
 // the odd quantizer levels their bits allow.
@@ -6,7 +6,7 @@
 #include <cstdlib>
 #include <vector>
 
-#include "receiver/sample_converter.hpp"
+#include "receiver/sources/sample_converter.hpp"
 #include "tests/fuzz/fuzz_support.hpp"
 
 namespace {

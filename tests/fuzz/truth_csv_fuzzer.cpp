@@ -1,8 +1,8 @@
-// Synthesizer truth files (receiver/truth_file.hpp): read from the input as from a file,
+// Synthesizer truth files (receiver/products/truth_file.hpp): read from the input as from a file,
 // then interpolated across its span as the run statistics do.
 #include <sstream>
 
-#include "receiver/truth_file.hpp"
+#include "receiver/products/truth_file.hpp"
 #include "tests/fuzz/fuzz_support.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

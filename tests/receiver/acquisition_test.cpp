@@ -1,4 +1,4 @@
-#include "receiver/acquisition.hpp"
+#include "receiver/acquisition/acquisition.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <map>
 #include <set>
 
-#include "receiver/file_sample_source.hpp"
+#include "receiver/sources/file_sample_source.hpp"
 #include "signals/sim/gaussian_noise.hpp"
 #include "signals/gps_constants.hpp"
 #include "signals/sim/satellite_signal_kernel.hpp"

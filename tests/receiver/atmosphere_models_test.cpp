@@ -1,4 +1,4 @@
-#include "receiver/atmosphere_models.hpp"
+#include "receiver/pvt/atmosphere_models.hpp"
 
 #include <gtest/gtest.h>
 

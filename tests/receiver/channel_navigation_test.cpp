@@ -7,10 +7,10 @@
 #include <cmath>
 
 #include "channel_test_signal.hpp"
-#include "receiver/guided_search.hpp"
-#include "receiver/nav_decoder.hpp"
-#include "receiver/tracking_channel.hpp"
-#include "receiver/tracking_loops.hpp"
+#include "receiver/acquisition/guided_search.hpp"
+#include "receiver/navdata/nav_decoder.hpp"
+#include "receiver/tracking/tracking_channel.hpp"
+#include "receiver/tracking/tracking_loops.hpp"
 #include "signals/lnav_message.hpp"
 #include "signals/rinex_nav.hpp"
 

@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-#include "receiver/sample_source.hpp"
+#include "receiver/sources/sample_source.hpp"
 #include "signals/ca_code.hpp"
 #include "signals/sim/gaussian_noise.hpp"
 #include "signals/gps_constants.hpp"

@@ -1,4 +1,4 @@
-#include "receiver/correlator.hpp"
+#include "receiver/tracking/correlator.hpp"
 
 #include <gtest/gtest.h>
 

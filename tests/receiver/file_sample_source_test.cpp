@@ -1,4 +1,4 @@
-#include "receiver/file_sample_source.hpp"
+#include "receiver/sources/file_sample_source.hpp"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // is found in the window with its offsets and C/N0, the channel it starts has the signal's
 // code phase, bit edges and transmit time; noise alone is not found; a prediction too
 // uncertain for a narrow window is refused.
-#include "receiver/guided_search.hpp"
+#include "receiver/acquisition/guided_search.hpp"
 
 #include <gtest/gtest.h>
 

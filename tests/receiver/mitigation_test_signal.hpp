@@ -11,7 +11,7 @@
 #include <random>
 #include <vector>
 
-#include "receiver/sample_source.hpp"
+#include "receiver/sources/sample_source.hpp"
 #include "signals/ca_code.hpp"
 #include "signals/sim/jammer.hpp"
 

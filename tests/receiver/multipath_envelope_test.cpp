@@ -31,8 +31,8 @@
 #include <cstdio>
 #include <vector>
 
-#include "receiver/correlator.hpp"
-#include "receiver/tracking_loops.hpp"
+#include "receiver/tracking/correlator.hpp"
+#include "receiver/tracking/tracking_loops.hpp"
 #include "signals/ca_code.hpp"
 #include "signals/gps_constants.hpp"
 #include "signals/sim/multipath_channel.hpp"

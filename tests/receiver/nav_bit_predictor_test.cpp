@@ -1,4 +1,4 @@
-#include "receiver/nav_bit_predictor.hpp"
+#include "receiver/navdata/nav_bit_predictor.hpp"
 
 #include <gtest/gtest.h>
 
@@ -8,8 +8,8 @@
 #include <random>
 #include <vector>
 
-#include "receiver/nav_bit_monitor.hpp"
-#include "receiver/nav_decoder.hpp"
+#include "receiver/navdata/nav_bit_monitor.hpp"
+#include "receiver/navdata/nav_decoder.hpp"
 #include "signals/lnav_parity.hpp"
 #include "signals/rinex_nav.hpp"
 #include "signals/sim/lnav_broadcast.hpp"

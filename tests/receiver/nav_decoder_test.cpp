@@ -1,4 +1,4 @@
-#include "receiver/nav_decoder.hpp"
+#include "receiver/navdata/nav_decoder.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "receiver/pvt_solver.hpp"
+#include "receiver/pvt/pvt_solver.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "receiver/raim.hpp"
+#include "receiver/pvt/raim.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "receiver/range_model.hpp"
+#include "receiver/pvt/range_model.hpp"
 
 #include <gtest/gtest.h>
 

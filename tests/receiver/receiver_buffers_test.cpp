@@ -6,8 +6,8 @@
 #include <random>
 #include <vector>
 
-#include "receiver/sample_history.hpp"
-#include "receiver/windowed_sum.hpp"
+#include "receiver/sources/sample_history.hpp"
+#include "receiver/tracking/windowed_sum.hpp"
 
 namespace deepnav {
 namespace {

@@ -7,7 +7,7 @@
 #include <chrono>
 #include <random>
 
-#include "receiver/acquisition.hpp"
+#include "receiver/acquisition/acquisition.hpp"
 #include "receiver/scalar_receiver.hpp"
 #include "receiver/worker_threads.hpp"
 

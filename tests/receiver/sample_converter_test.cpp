@@ -1,4 +1,4 @@
-// Raw IF bytes -> samples (receiver/sample_converter.hpp): regressions found by fuzzing
+// Raw IF bytes -> samples (receiver/sources/sample_converter.hpp): regressions found by fuzzing
 // (tests/fuzz/sample_converter_fuzzer.cpp).
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include <cstring>
 #include <vector>
 
-#include "receiver/sample_converter.hpp"
+#include "receiver/sources/sample_converter.hpp"
 
 namespace deepnav {
 namespace {

@@ -1,4 +1,4 @@
-#include "receiver/tracking_channel.hpp"
+#include "receiver/tracking/tracking_channel.hpp"
 
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "channel_test_signal.hpp"
-#include "receiver/tracking_loops.hpp"
+#include "receiver/tracking/tracking_loops.hpp"
 
 namespace deepnav {
 namespace {

@@ -1,4 +1,4 @@
-#include "receiver/tracking_loops.hpp"
+#include "receiver/tracking/tracking_loops.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // The truth file reader: column names must be unique (a repeated name once made the reader
 // index past a row), and every value a whole finite number (std::stod used to take "nan",
 // "inf" and the "123.4" of "123.4junk").
-#include "receiver/truth_file.hpp"
+#include "receiver/products/truth_file.hpp"
 
 #include <gtest/gtest.h>
 

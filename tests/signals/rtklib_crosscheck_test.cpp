@@ -155,7 +155,7 @@ class RtklibCrossCheck : public ::testing::Test {
   void SetUp() override {
     if (std::system("command -v rnx2rtkp > /dev/null 2>&1") != 0) {
       GTEST_FAIL() << "rnx2rtkp (RTKLIB) is not installed: install the Debian package rtklib "
-                      "(tools/install_deps.sh installs it)";
+                      "(scripts/install_deps.sh installs it)";
     }
     dir_ = fs::path(DEEPNAV_BINARY_DIR) / "test_output" / "rtklib_crosscheck";
     fs::create_directories(dir_);

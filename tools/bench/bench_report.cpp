@@ -1,0 +1,99 @@
+#include "tools/bench/bench_report.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <stdexcept>
+
+#include <unistd.h>
+
+#include "ins/input_error.hpp"
+
+namespace deepnav::bench {
+
+BenchReport::BenchReport(std::string title, std::vector<std::string> columns)
+    : title_(std::move(title)), columns_(std::move(columns)), precision_(columns_.size(), 3) {}
+
+void BenchReport::set_precision(const std::string& column, int decimals) {
+  const auto it = std::find(columns_.begin(), columns_.end(), column);
+  if (it == columns_.end()) throw std::invalid_argument("BenchReport: no column '" + column + "'");
+  precision_[static_cast<std::size_t>(it - columns_.begin())] = decimals;
+}
+
+void BenchReport::add_row(std::vector<Cell> row) {
+  if (row.size() != columns_.size())
+    throw std::invalid_argument(fmt::format("BenchReport '{}': row has {} cells, table has {} columns", title_,
+                                            row.size(), columns_.size()));
+  rows_.push_back(std::move(row));
+}
+
+std::string bench_scratch_dir(const std::string& given, const std::string& name) {
+  // A folder of this process's own inside the given one: benchmarks delete their scratch
+  // folder when done, and must not delete what the user pointed them at.
+  const std::filesystem::path parent = given.empty() ? std::filesystem::temp_directory_path() : std::filesystem::path(given);
+  return (parent / fmt::format("deepnav_{}_{}", name, getpid())).string();
+}
+
+std::string source_relative(const std::string& path) {
+  const std::string root = std::string(DEEPNAV_SOURCE_DIR) + "/";
+  return path.rfind(root, 0) == 0 ? path.substr(root.size()) : path;
+}
+
+void BenchReport::add_note(const std::string& key, nlohmann::json value) { notes_[key] = std::move(value); }
+
+std::string BenchReport::format_cell(std::size_t column, const Cell& cell) const {
+  if (const auto* s = std::get_if<std::string>(&cell)) return *s;
+  if (const auto* i = std::get_if<long long>(&cell)) return fmt::format("{}", *i);
+  return fmt::format("{:.{}f}", std::get<double>(cell), precision_[column]);
+}
+
+std::string BenchReport::to_text() const {
+  std::vector<std::size_t> width(columns_.size());
+  for (std::size_t c = 0; c < columns_.size(); ++c) width[c] = columns_[c].size();
+  std::vector<std::vector<std::string>> text;
+  for (const auto& row : rows_) {
+    auto& line = text.emplace_back();
+    for (std::size_t c = 0; c < row.size(); ++c) {
+      line.push_back(format_cell(c, row[c]));
+      width[c] = std::max(width[c], line.back().size());
+    }
+  }
+  std::string out = title_ + "\n";
+  auto append_line = [&](const std::vector<std::string>& cells) {
+    for (std::size_t c = 0; c < cells.size(); ++c) out += fmt::format("{}{:>{}}", c ? "  " : "", cells[c], width[c]);
+    out += "\n";
+  };
+  append_line(columns_);
+  std::vector<std::string> rule;
+  for (auto w : width) rule.emplace_back(w, '-');
+  append_line(rule);
+  for (const auto& line : text) append_line(line);
+  for (const auto& [key, value] : notes_.items())
+    out += fmt::format("{}: {}\n", key, value.is_string() ? value.get<std::string>() : value.dump());
+  return out;
+}
+
+nlohmann::json BenchReport::to_json() const {
+  nlohmann::json rows = nlohmann::json::array();
+  for (const auto& row : rows_) {
+    nlohmann::json object = nlohmann::json::object();
+    for (std::size_t c = 0; c < row.size(); ++c)
+      std::visit([&](const auto& value) { object[columns_[c]] = value; }, row[c]);
+    rows.push_back(std::move(object));
+  }
+  return {{"title", title_}, {"columns", columns_}, {"rows", rows}, {"notes", notes_}};
+}
+
+void BenchReport::emit(const std::string& json_path) const {
+  std::cout << to_text() << std::flush;
+  if (json_path.empty()) return;
+  std::ofstream out(json_path);
+  if (!out) throw InputError("cannot write JSON report to '" + json_path + "'");
+  out << to_json().dump(2) << '\n';
+  if (!out.flush()) throw InputError("failed while writing JSON report to '" + json_path + "'");
+}
+
+}  // namespace deepnav::bench

@@ -1,0 +1,177 @@
+// `deepnav acquire`: cold-start acquisition of an IF file, printed as a table.
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "receiver/acquisition/acquisition.hpp"
+#include "receiver/sources/file_sample_source.hpp"
+#include "tools/cli/cli_checks.hpp"
+#include "tools/cli/command_registry.hpp"
+#include "receiver/sources/sample_source_factory.hpp"
+
+namespace deepnav::cli {
+namespace {
+
+struct AcquireOptions {
+  std::string input;
+  std::string format = "ibyte";
+  double fs_hz = 0.0;
+  double if_hz = 0.0;
+  double skip_s = 0.0;
+  bool inverted = false;
+  std::string metadata;
+  bool format_given = false, fs_given = false, if_given = false, inverted_given = false;
+  AcquisitionConfig acq;
+  std::string prn_list;
+  std::string json_path;
+};
+
+std::vector<int> parse_prns(const std::string& text) {
+  std::vector<int> prns;
+  std::stringstream s(text);
+  std::string item;
+  while (std::getline(s, item, ',')) {
+    try {
+      std::size_t used = 0;
+      const int prn = std::stoi(item, &used);
+      if (used != item.size() || prn < 1 || prn > 32) throw std::invalid_argument(item);
+      prns.push_back(prn);
+    } catch (const std::exception&) {
+      throw UserError("--prn: '" + item + "' is not a PRN in 1..32 (expected a list like 1,5,31)");
+    }
+  }
+  return prns;
+}
+
+nlohmann::json to_json(const AcquisitionResult& r) {
+  return {{"prn", r.prn},
+          {"detected", r.detected},
+          {"doppler_hz", r.doppler_hz},
+          {"delay_samples", r.delay_samples},
+          {"code_phase_chips", r.code_phase_chips},
+          {"cn0_dbhz", r.cn0_dbhz},
+          {"statistic", r.statistic},
+          {"threshold", r.threshold},
+          {"cross_correlation_suspect", r.cross_correlation_suspect}};
+}
+
+void run_acquire(AcquireOptions o) {
+  SourceRequest request;
+  request.input = o.input;
+  request.format = o.format;
+  request.fs_hz = o.fs_hz;
+  request.if_hz = o.if_hz;
+  request.skip_s = o.skip_s;
+  request.inverted = o.inverted;
+  request.metadata = o.metadata;
+  request.format_given = o.format_given;
+  request.fs_given = o.fs_given;
+  request.if_given = o.if_given;
+  request.inverted_given = o.inverted_given;
+  const FileSampleSourceOptions src_opt = file_source_options(request);
+  o.acq.sample_rate_hz = src_opt.sample_rate_hz;
+  o.acq.if_hz = src_opt.intermediate_frequency_hz;
+  if (!o.prn_list.empty()) o.acq.prns = parse_prns(o.prn_list);
+  std::vector<AcquisitionResult> results;
+  try {
+    FileSampleSource source(src_opt);
+    for (const auto& w : source.warnings()) spdlog::warn("{}", w);
+    Acquisition acquisition(o.acq);
+    std::vector<Sample> samples(static_cast<std::size_t>(acquisition.samples_needed()));
+    std::size_t got = 0;
+    while (got < samples.size()) {
+      const std::size_t n = source.read(std::span<Sample>(samples.data() + got, samples.size() - got));
+      if (n == 0) break;
+      got += n;
+    }
+    samples.resize(got);
+    if (const std::string problem = if_sample_problem(samples, source.is_real()); !problem.empty())
+      throw UserError(fmt::format("{}: {}", o.input, problem));
+    if (got < samples.capacity()) spdlog::warn("{}: only {} samples available, the non-coherent sum is shorter", o.input, got);
+    results = acquisition.search(samples);
+  } catch (const std::invalid_argument& e) {
+    throw UserError(e.what());
+  } catch (const std::runtime_error& e) {
+    throw UserError(e.what());
+  }
+  if (!o.json_path.empty()) {
+    nlohmann::json all = nlohmann::json::array();
+    for (const auto& r : results) all.push_back(to_json(r));
+    const std::string text = nlohmann::json{{"input", src_opt.path.string()},
+                                            {"sample_rate_hz", src_opt.sample_rate_hz},
+                                            {"if_hz", src_opt.intermediate_frequency_hz},
+                                            {"results", all}}.dump(2) + "\n";
+    if (o.json_path == "-") {
+      std::cout << text;
+    } else {
+      std::ofstream out(o.json_path);
+      if (!(out << text)) throw UserError("cannot write '" + o.json_path + "'");
+    }
+  }
+  int detected = 0;
+  for (const auto& r : results) detected += r.detected;
+  if (o.json_path != "-") {
+    fmt::print("{:>4} {:>11} {:>13} {:>12} {:>9} {:>10} {:>10}\n", "PRN", "doppler_hz", "delay_samples", "delay_chips",
+               "cn0_dbhz", "statistic", "threshold");
+    for (const auto& r : results) {
+      if (!r.detected) continue;
+      fmt::print("{:>4} {:>11.1f} {:>13.2f} {:>12.3f} {:>9.1f} {:>10.1f} {:>10.1f}\n", r.prn, r.doppler_hz,
+                 r.delay_samples, r.delay_samples * 1.023e6 / src_opt.sample_rate_hz, r.cn0_dbhz, r.statistic, r.threshold);
+    }
+  }
+  if (detected == 0)
+    throw UserError(o.metadata.empty() ? "no satellite acquired: check --fs, --if, --format, --inverted-spectrum"
+                                       : "no satellite acquired: check the metadata file '" + o.metadata + "'",
+                    3);
+}
+
+const bool registered = register_command([](CommandParents& parents) {
+  auto o = std::make_shared<AcquireOptions>();
+  CLI::App* cmd = parents.root.add_subcommand("acquire", "Cold-start FFT acquisition of an IF file: detected PRNs, Doppler, code delay");
+  cmd->add_option("--input", o->input, "IF sample file")->check(CLI::ExistingFile);
+  cmd->add_option("--metadata", o->metadata,
+                  "ION GNSS SDR metadata file (XML) describing the IF file (format, rate, IF, inversion; the file "
+                  "unless --input names it); flags given as well override it")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--format", o->format, sample_format_choices())->capture_default_str();
+  cmd->add_option("--fs", o->fs_hz, "Sample rate (Hz); required without --metadata")
+      ->check(finite_in(1.023e6, kMaxAcquisitionSampleRate_hz, "a sample rate in Hz"));
+  cmd->add_option("--if", o->if_hz, "Intermediate frequency (Hz), 0 for complex baseband")
+      ->check(finite_in(-kMaxAcquisitionSampleRate_hz / 2, kMaxAcquisitionSampleRate_hz / 2, "a frequency in Hz"))
+      ->capture_default_str();
+  cmd->add_option("--skip", o->skip_s, "Seconds skipped at the start of the file")
+      ->check(finite_in(0.0, 1e7, "seconds"))
+      ->capture_default_str();
+  cmd->add_flag("--inverted-spectrum", o->inverted, "The front end delivers I - jQ");
+  cmd->add_option("--doppler-max", o->acq.doppler_max_hz, "Doppler search half-width (Hz)")
+      ->check(finite_in(0.0, 50000.0, "a Doppler in Hz"))
+      ->capture_default_str();
+  cmd->add_option("--doppler-step", o->acq.doppler_step_hz, "Doppler bin (Hz); 0: 2/(3 T)")
+      ->check(finite_in(0.0, 10000.0, "a Doppler step in Hz"))
+      ->capture_default_str();
+  cmd->add_option("--coherent-ms", o->acq.coherent_ms, "Coherent integration (1-10 ms)")
+      ->check(CLI::Range(1, 10))
+      ->capture_default_str();
+  cmd->add_option("--noncoherent", o->acq.noncoherent, "Coherent blocks summed non-coherently")
+      ->check(CLI::Range(1, kMaxNoncoherent))
+      ->capture_default_str();
+  cmd->add_option("--pfa", o->acq.pfa, "False-alarm probability per PRN")
+      ->check(finite_above(0.0, 0.5, "a probability"))
+      ->capture_default_str();
+  cmd->add_option("--prn", o->prn_list, "Only these PRNs, e.g. 1,5,31");
+  cmd->add_option("--json", o->json_path, "Write every searched PRN as JSON to FILE ('-': stdout instead of the table)");
+  cmd->callback([o, cmd] {
+    o->format_given = cmd->count("--format") > 0;
+    o->fs_given = cmd->count("--fs") > 0;
+    o->if_given = cmd->count("--if") > 0;
+    o->inverted_given = cmd->count("--inverted-spectrum") > 0;
+    run_acquire(*o);
+  });
+});
+
+}  // namespace
+}  // namespace deepnav::cli

@@ -1,0 +1,431 @@
+// `deepnav run`: the receiver on an IF file, with its products in an output folder.
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "receiver/build_date.hpp"
+#include "receiver/mitigation/mitigation_config.hpp"
+#include "receiver/products/file_products.hpp"
+#include "receiver/products/run_statistics.hpp"
+#include "receiver/products/truth_file.hpp"
+#include "signals/data_path.hpp"
+#include "signals/rinex_nav.hpp"
+#include "signals/text_output_file.hpp"
+#include "tools/cli/atmosphere_options.hpp"
+#include "tools/cli/long_integration_options.hpp"
+#include "tools/cli/cli_checks.hpp"
+#include "tools/cli/command_registry.hpp"
+#include "tools/bench/process_usage.hpp"
+#include "tools/cli/progress.hpp"
+#include "receiver/sources/sample_source_factory.hpp"
+#include "tools/cli/stop_signals.hpp"
+#include "tools/cli/yaml_config.hpp"
+#include "signals/sample_format.hpp"
+#include "aiding/navigation_session.hpp"
+#include "ins/imu_file.hpp"
+#include "ins/imu_model.hpp"
+#include "ins/imu_range_check.hpp"
+
+namespace deepnav::cli {
+using namespace deepnav::bench;  // the engines this command drives
+namespace {
+
+struct RunOptions {
+  std::string input, format = "ibyte", out_dir, truth_path, assist_nav;
+  double fs_hz = 0.0, if_hz = 0.0, skip_s = 0.0;
+  bool inverted = false, raw = false;
+  std::string metadata;
+  bool format_given = false, fs_given = false, if_given = false, inverted_given = false;
+  std::string rtl_gain = "auto";
+  bool rtl_agc = false, rtl_bias_tee = false;
+  int rtl_ppm = 0;
+  double reconnect_timeout_s = 30.0;
+  std::string mitigation = "none";
+  ReceiverConfig receiver;
+  // INS aiding (--mode loose|tight|ultra).
+  std::string assist_ephemeris;
+  std::string mode = "scalar", imu_path, imu_grade = "tactical", imu_grades_file = "data/imu_grades.yaml";
+  std::vector<double> imu_lever_arm_m{0.0, 0.0, 0.0};
+  bool filter_troposphere = false;
+  bool filter_ionosphere = false;
+  bool fault_exclusion = true;
+  double max_solution_sigma_m = 100.0;
+  bool detect_troposphere_mismatch = true;
+  bool detect_ionosphere_mismatch = true;
+  aiding::LongIntegrationConfig long_integration;
+  bool print_config = false;
+};
+
+aiding::NavMode parse_mode(const RunOptions& o) {
+  const aiding::NavMode mode = aiding::parse_nav_mode(o.mode);
+  if (mode != aiding::NavMode::scalar && o.imu_path.empty())
+    throw UserError("--mode " + o.mode + " needs an IMU file (--imu FILE)");
+  return mode;
+}
+
+/// What the run found wrong with its IMU log: gaps (the INS stops across them) and samples
+/// beyond the configured grade's measurement range (flagged).
+struct ImuIntegrity {
+  std::vector<ImuGap> gaps;
+  ImuRangeExcess beyond_range;
+};
+
+/// Reports the IMU log's gaps and out-of-range samples (with the file) and returns them.
+ImuIntegrity check_imu(const RunOptions& o, const ImuLog& imu, const ImuErrorModel& grade) {
+  for (const ImuGap& g : imu.gaps)
+    spdlog::warn("{}:{}: no IMU data from t = {:.3f} s to {:.3f} s: the INS stops across the gap", o.imu_path, g.line,
+                 g.t_before_s, g.t_after_s);
+  ImuIntegrity out{imu.gaps, samples_beyond_range(imu.samples, grade)};
+  if (out.beyond_range.samples > 0)
+    spdlog::warn("{}: {} samples beyond the {} grade's measurement range, the first at t = {:.3f} s ({}): a wrong "
+                 "--imu-grade, a unit error or a corrupt sample",
+                 o.imu_path, out.beyond_range.samples, o.imu_grade, *out.beyond_range.first_t_s,
+                 out.beyond_range.first_what);
+  return out;
+}
+
+ImuLog read_imu(const RunOptions& o) {
+  try {
+    return read_imu_csv(o.imu_path);
+  } catch (const std::runtime_error& e) {
+    throw UserError(e.what());
+  }
+}
+
+aiding::AidedReceiverConfig aided_config(const RunOptions& o, aiding::NavMode mode) {
+  aiding::AidedReceiverConfig c;
+  c.mode = mode;
+  c.receiver = o.receiver;
+  try {
+    // The default (data/imu_grades.yaml) is the project's file from any working directory.
+    c.imu = load_imu_grade(resolve_path(o.imu_grades_file, ".", DEEPNAV_SOURCE_DIR), o.imu_grade).model;
+  } catch (const std::runtime_error& e) {
+    throw UserError(e.what());
+  }
+  c.lever_arm_imu_to_antenna_b_m = -Eigen::Vector3d(o.imu_lever_arm_m[0], o.imu_lever_arm_m[1], o.imu_lever_arm_m[2]);
+  c.troposphere.enabled = o.filter_troposphere;
+  c.ionosphere.enabled = o.filter_ionosphere;
+  c.troposphere.enable_on_mismatch = o.detect_troposphere_mismatch;
+  c.ionosphere.enable_on_mismatch = o.detect_ionosphere_mismatch;
+  c.fault_exclusion = o.fault_exclusion;
+  c.max_published_sigma_m = o.max_solution_sigma_m;
+  c.ultra.long_integration = o.long_integration;
+  return c;
+}
+
+/// The session's configuration from the options (assistance files read here).
+aiding::NavigationSessionConfig session_config(const RunOptions& o, aiding::NavMode mode) {
+  aiding::NavigationSessionConfig c;
+  if (mode == aiding::NavMode::scalar) {
+    c.navigator.mode = mode;
+    c.navigator.receiver = o.receiver;
+  } else {
+    c.navigator = aided_config(o, mode);
+  }
+  c.mitigation.mode = parse_mitigation_mode(o.mitigation);
+  try {
+    // Both assistance options usually name the same file: read it once.
+    std::optional<NavData> iono_nav;
+    if (!o.assist_nav.empty()) {
+      iono_nav = read_rinex_nav(o.assist_nav);
+      c.assisted_iono = iono_nav->iono;
+    }
+    if (!o.assist_ephemeris.empty())
+      c.assisted_ephemerides = o.assist_ephemeris == o.assist_nav ? *iono_nav : read_rinex_nav(o.assist_ephemeris);
+  } catch (const std::runtime_error& e) {
+    throw UserError(e.what());
+  }
+  return c;
+}
+
+nlohmann::json run_summary(const RunOptions& o, const OpenedSource& opened, aiding::NavigationSession& session,
+                           const RunStatistics& stats, bool scored, const ImuIntegrity& imu_integrity) {
+  ScalarReceiver& receiver = session.receiver();
+  nlohmann::json summary = {
+      {"input", opened.input},
+      // What the run processed: a file's length only when it was read to the end (not after
+      // Ctrl-C), and a stream's from its first sample (not from sample 0).
+      {"duration_s", receiver.processed_s()},
+      {"epochs", stats.epochs()},
+      {"fixes", stats.fixes()},
+      {"time_to_first_fix_s", stats.first_fix_s() ? nlohmann::json(*stats.first_fix_s()) : nlohmann::json(nullptr)},
+      {"acquired_prns", receiver.acquired_prns()},
+      {"ephemerides", receiver.ephemerides().size()},
+      {"ephemerides_decoded", receiver.decoded_ephemerides().size()},
+      {"satellites_used", stats.satellites().json()},
+      {"pdop", stats.pdop().json()}};
+  if (scored) {
+    summary["truth"] = o.truth_path;
+    summary["horizontal_error_m"] = stats.horizontal_error_m().json();
+    summary["vertical_error_m"] = stats.vertical_error_m().json();
+    summary["velocity_error_mps"] = stats.velocity_error_mps().json();
+  }
+  // Navigation data per satellite: a channel tracked for a whole frame without an
+  // ephemeris points at corrupted navigation bits (or a wrong --week / spectrum sense).
+  nlohmann::json navigation = nlohmann::json::array();
+  for (const NavigationStatus& n : receiver.navigation_status()) {
+    navigation.push_back({{"prn", n.prn}, {"tracked_s", n.tracked_s}, {"subframes_decoded", n.subframes_decoded},
+                          {"parity_failures", n.parity_failures}, {"ephemeris_decoded", n.ephemeris}});
+    if (n.tracked_s > 36.0 && !n.ephemeris)
+      spdlog::warn("PRN {:2d}: tracked {:.0f} s but no ephemeris decoded ({} subframes, {} failed parity): corrupted "
+                   "navigation bits?", n.prn, n.tracked_s, n.subframes_decoded, n.parity_failures);
+  }
+  summary["navigation"] = navigation;
+  // Filter-guided searches (ultra-tight): where each untracked satellite was looked for and
+  // what came of it.
+  nlohmann::json guided = nlohmann::json::array();
+  for (const GuidedSearchRecord& g : receiver.guided_searches()) {
+    nlohmann::json j = {{"prn", g.prn}, {"started_s", g.started_s}, {"ended_s", g.ended_s},
+                        {"elevation_deg", g.elevation_deg}, {"outcome", to_string(g.outcome)}};
+    if (g.detection)
+      j["detection"] = {{"dwell_s", g.detection->dwell_s}, {"cn0_dbhz", g.detection->cn0_dbhz},
+                        {"code_offset_chips", g.detection->code_offset_chips},
+                        {"doppler_offset_hz", g.detection->doppler_offset_hz}};
+    guided.push_back(j);
+  }
+  summary["guided_searches"] = guided;
+  summary["mode"] = o.mode;
+  if (const aiding::AidedReceiver* aided = session.aided()) {
+    summary["mode_changes"] = aiding::mode_changes_json(aided->mode_changes());
+    summary["seconds_in_mode"] = session.seconds_in_mode();
+    summary["ins_start"] = aided->ins_start_method();
+    summary["filter_restarts"] = aided->filter_restarts();
+    nlohmann::json gaps = nlohmann::json::array();
+    for (const ImuGap& g : imu_integrity.gaps) gaps.push_back({{"from_s", g.t_before_s}, {"to_s", g.t_after_s}, {"line", g.line}});
+    summary["imu_gaps"] = gaps;
+    summary["imu_samples_beyond_range"] = imu_integrity.beyond_range.samples;
+    summary["satellite_exclusions"] = aided->satellite_exclusions();
+    summary["withheld_solutions"] = aided->withheld_solutions();
+    const auto state_from = [](const aiding::DelayMismatchReport& m) {
+      return m.state_from_s ? nlohmann::json(*m.state_from_s) : nlohmann::json(nullptr);
+    };
+    if (const aiding::DelayMismatchReport& m = aided->troposphere_mismatch(); m.found_at_s)
+      summary["troposphere_mismatch"] = {
+          {"found_at_s", *m.found_at_s}, {"zenith_error_m", m.fitted_error}, {"state_from_s", state_from(m)}};
+    if (const aiding::DelayMismatchReport& m = aided->ionosphere_mismatch(); m.found_at_s)
+      summary["ionosphere_mismatch"] = {
+          {"found_at_s", *m.found_at_s}, {"scale_error", m.fitted_error}, {"state_from_s", state_from(m)}};
+  }
+  summary["interrupted"] = opened.interrupted();
+  // What failed, if anything: the run itself (the products hold what came before), and
+  // each product that could not be written (the others are).
+  const std::optional<std::string> stream_failure = opened.failure();
+  summary["error"] = session.run_error()  ? nlohmann::json(*session.run_error())
+                     : stream_failure     ? nlohmann::json(*stream_failure)
+                                          : nlohmann::json(nullptr);
+  nlohmann::json failed = nlohmann::json::array();
+  for (const ProductFailure& f : session.product_failures()) failed.push_back({{"product", f.product}, {"error", f.error}});
+  summary["products_failed"] = failed;
+  if (opened.is_stream) summary["stream"] = opened.report();
+  // What the run cost: peak memory stays flat with run length (products are written as
+  // the run goes), which a long stream can check from here.
+  summary["resources"] = {{"peak_rss_mib", peak_rss_mib()}, {"cpu_s", process_cpu_s()}};
+  return summary;
+}
+
+/// summary.json, written once the run has ended (the figures are the whole run's).
+class SummarySink : public ProductSink {
+ public:
+  SummarySink(const std::string& path, std::function<nlohmann::json()> summary) : file_(path), summary_(std::move(summary)) {}
+  void finish(const NavData&) override {
+    file_.write(summary_().dump(2) + "\n");
+    file_.commit();
+  }
+  std::string name() const override { return "summary.json"; }
+
+ private:
+  TextOutputFile file_;
+  std::function<nlohmann::json()> summary_;
+};
+
+/// --week names a week near the data: from the first GPS week to 1024 weeks (about 20
+/// years) after this program was built.
+void check_week_option(int week) {
+  const int last = build_time().week + 1024;
+  if (week < 1 || week > last)
+    throw UserError(fmt::format("--week {} is not a GPS week of any recording: expected 1 (1980) to {} (1024 weeks after "
+                                "this program's build date)",
+                                week, last));
+}
+
+void run_receiver(RunOptions o) {
+  std::optional<TruthFile> truth;
+  try {
+    if (!o.truth_path.empty()) truth.emplace(o.truth_path);
+  } catch (const std::runtime_error& e) {
+    throw UserError(e.what());
+  }
+  // A file or a tcp:// / udp:// stream; Ctrl-C ends the source, so the products are still written.
+  StopOnSignals stop_signals;
+  SourceRequest request;
+  request.input = o.input;
+  request.format = o.format;
+  request.fs_hz = o.fs_hz;
+  request.if_hz = o.if_hz;
+  request.skip_s = o.skip_s;
+  request.inverted = o.inverted;
+  request.raw = o.raw;
+  request.reconnect_timeout_s = o.reconnect_timeout_s;
+  request.stop = &stop_signals.flag();
+  request.metadata = o.metadata;
+  request.format_given = o.format_given;
+  request.fs_given = o.fs_given;
+  request.if_given = o.if_given;
+  request.inverted_given = o.inverted_given;
+  request.rtl_gain = o.rtl_gain;
+  request.rtl_agc = o.rtl_agc;
+  request.rtl_ppm = o.rtl_ppm;
+  request.rtl_bias_tee = o.rtl_bias_tee;
+  OpenedSource opened = open_sample_source(request);
+  std::error_code ec;
+  std::filesystem::create_directories(o.out_dir, ec);
+  if (ec) throw UserError("cannot create output folder '" + o.out_dir + "': " + ec.message());
+
+  const aiding::NavMode mode = parse_mode(o);
+  std::optional<ImuLog> imu;
+  if (mode != aiding::NavMode::scalar) imu = read_imu(o);
+  const aiding::NavigationSessionConfig config = session_config(o, mode);
+  const ImuIntegrity imu_integrity = imu ? check_imu(o, *imu, config.navigator.imu) : ImuIntegrity{};
+  std::vector<std::unique_ptr<ProductSink>> products =
+      file_products(o.out_dir, std::filesystem::path(opened.input).filename().string(), 1.0 / o.receiver.observation_rate_hz);
+  aiding::NavigationSession session(config, *opened.source, std::move(imu), opened.duration_s);
+  RunStatistics stats(truth ? &*truth : nullptr);
+  SummarySink summary((std::filesystem::path(o.out_dir) / "summary.json").string(),
+                      [&] { return run_summary(o, opened, session, stats, truth.has_value(), imu_integrity); });
+  std::vector<ProductSink*> sinks{&stats};
+  for (const auto& p : products) sinks.push_back(p.get());
+  sinks.push_back(&summary);
+
+  const double total_s = opened.duration_s.value_or(0.0);
+  ProgressLine progress("run", total_s);
+  try {
+    session.run(sinks, [&](double t) {
+      if (total_s > 0.0) progress.update(t / total_s);  // a stream's length is not known
+    });
+  } catch (const std::exception& e) {
+    progress.finish();
+    if (session.run_error()) throw UserError(fmt::format("{} (products written up to there)", e.what()));
+    throw UserError(e.what());
+  }
+  progress.finish();
+  fmt::print("{} fixes in {} epochs; first fix at {} s; satellites acquired: {}\n", stats.fixes(), stats.epochs(),
+             stats.first_fix_s() ? fmt::format("{:.1f}", *stats.first_fix_s()) : std::string("-"),
+             session.receiver().acquired_prns().size());
+  if (truth && !stats.horizontal_error_m().values.empty())
+    fmt::print("error vs truth: horizontal RMS {:.2f} m, vertical RMS {:.2f} m, velocity RMS {:.3f} m/s\n",
+               stats.horizontal_error_m().rms(), stats.vertical_error_m().rms(), stats.velocity_error_mps().rms());
+  if (opened.interrupted())
+    spdlog::warn("interrupted: products written up to sample {}", opened.source->next_sample_index());
+  if (const auto failure = opened.failure()) throw UserError(*failure + " (products written up to there)");
+}
+
+const bool registered = register_command([](CommandParents& parents) {
+  auto o = std::make_shared<RunOptions>();
+  CLI::App* cmd = parents.root.add_subcommand("run", "Run the receiver on an IF file: PVT and products in --out");
+  cmd->add_option("--input", o->input,
+                  "IF sample file, tcp://HOST:PORT, udp://HOST:PORT (subscribe), udp://@HOST:PORT (listen) or "
+                  "rtltcp://HOST:PORT (an rtl_tcp server: RTL-SDR, cu8 at --fs, default 2048000)");
+  cmd->add_option("--metadata", o->metadata,
+                  "ION GNSS SDR metadata file (XML) describing the IF file: its format, rate, IF and inversion, and "
+                  "the file itself unless --input names it; flags given as well override it")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--format", o->format, sample_format_choices())->capture_default_str();
+  cmd->add_option("--fs", o->fs_hz, "Sample rate (Hz); a framed stream's header carries it")
+      ->check(finite_in(kMinSampleRate_hz, kMaxSampleRate_hz, "a sample rate in Hz"));
+  cmd->add_flag("--raw", o->raw, "The stream is bare samples (no deepnav framing): needs --format and --fs");
+  cmd->add_option("--reconnect-timeout", o->reconnect_timeout_s, "Seconds a dropped stream is retried (with backoff)")
+      ->check(finite_in(0.0, 86400.0, "seconds"))
+      ->capture_default_str();
+  cmd->add_option("--if", o->if_hz, "Intermediate frequency (Hz); rtltcp://: the dongle is tuned to 1575.42 MHz minus it")
+      ->check(finite_in(-kMaxSampleRate_hz / 2, kMaxSampleRate_hz / 2, "a frequency in Hz, below half the sample rate"))
+      ->capture_default_str();
+  cmd->add_option("--rtl-gain", o->rtl_gain, "rtltcp://: tuner gain in dB (the nearest step), or auto (the tuner's AGC)")
+      ->capture_default_str();
+  cmd->add_flag("--rtl-agc", o->rtl_agc, "rtltcp://: switch on the RTL2832's digital AGC");
+  cmd->add_option("--rtl-ppm", o->rtl_ppm, "rtltcp://: crystal frequency correction (ppm)")->capture_default_str();
+  cmd->add_flag("--rtl-bias-tee", o->rtl_bias_tee, "rtltcp://: power an active antenna through the coax (bias tee)");
+  cmd->add_option("--skip", o->skip_s, "Seconds skipped at the start")
+      ->check(finite_in(0.0, 1e7, "seconds"))
+      ->capture_default_str();
+  cmd->add_flag("--inverted-spectrum", o->inverted, "The front end delivers I - jQ");
+  cmd->add_option("--mitigation", o->mitigation, "Interference mitigation: none, notch, excision, blanking, auto (blanking then excision)")
+      ->check(CLI::IsMember(mitigation_mode_names()))
+      ->capture_default_str();
+  cmd->add_option("--out", o->out_dir, "Output folder")->required();
+  cmd->add_option("--truth", o->truth_path, "Synthesizer truth.csv: adds error statistics to summary.json");
+  cmd->add_option("--channels", o->receiver.channels, "Tracking channels")
+      ->check(CLI::Range(1, 32).description("1 to 32 (one per GPS PRN at most)"))
+      ->capture_default_str();
+  cmd->add_option("--pll-order", o->receiver.pll_order, "Carrier loop order: 2, or 3 for high dynamics (follows Doppler ramps)")
+      ->check(CLI::IsMember({2, 3}))
+      ->capture_default_str();
+  cmd->add_option("--threads", o->receiver.threads, "Channel worker threads (0: all cores; every mode's products are the same for any count)")
+      ->check(CLI::Range(0u, kMaxReceiverThreads))
+      ->capture_default_str();
+  cmd->add_option("--rate", o->receiver.observation_rate_hz, "Observation/PVT rate (Hz, up to 50)")
+      ->check(finite_in(0.01, 50.0, "a rate in Hz"))
+      ->capture_default_str();
+  cmd->add_option("--doppler-max", o->receiver.acquisition.doppler_max_hz, "Acquisition Doppler half-width (Hz)")
+      ->check(finite_in(100.0, 50000.0, "a Doppler in Hz"))
+      ->capture_default_str();
+  cmd->add_option("--iono-from", o->assist_nav,
+                  "RINEX navigation file whose ionosphere parameters are used until the broadcast ones are decoded")
+      ->check(CLI::ExistingFile);
+  add_atmosphere_options(*cmd, o->receiver.atmosphere);
+  cmd->add_option("--ephemeris-from", o->assist_ephemeris,
+                  "RINEX navigation file whose ephemerides are used until the broadcast ones are decoded (assisted start)")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--mode", o->mode, "scalar, or INS-aided: loose (PVT), tight (pseudorange/rate), ultra (filter steers the channels)")
+      ->check(CLI::IsMember({"scalar", "loose", "tight", "ultra"}))
+      ->capture_default_str();
+  cmd->add_option("--imu", o->imu_path, "IMU CSV file (increments or rates, see README) for the aided modes")->check(CLI::ExistingFile);
+  cmd->add_option("--imu-grade", o->imu_grade, "The IMU's grade in --imu-grades-file (its noise and bias figures)")->capture_default_str();
+  cmd->add_option("--imu-grades-file", o->imu_grades_file, "IMU grades YAML file (relative: from here, else the project's data/)")->capture_default_str();
+  cmd->add_flag("--filter-troposphere,!--no-filter-troposphere", o->filter_troposphere,
+               "Tight/ultra: estimate a zenith troposphere residual (an 18th filter state)");
+  cmd->add_flag("--filter-ionosphere,!--no-filter-ionosphere", o->filter_ionosphere,
+               "Tight/ultra: estimate the ionosphere model's scale error (a 19th filter state)");
+  cmd->add_flag("--troposphere-mismatch,!--no-troposphere-mismatch", o->detect_troposphere_mismatch,
+                "Tight/ultra: take the zenith troposphere state when the fixes show the troposphere model wrong by "
+                "over 1.5 m at the zenith (a signal without troposphere)")
+      ->default_str("true");
+  cmd->add_flag("--ionosphere-mismatch,!--no-ionosphere-mismatch", o->detect_ionosphere_mismatch,
+                "Tight/ultra: take the ionosphere scale state when the fixes show the signal without most of the "
+                "ionosphere model's delay (a signal without ionosphere)")
+      ->default_str("true");
+  add_long_integration_options(*cmd, o->long_integration);
+  cmd->add_flag("--guided-reacquisition,!--no-guided-reacquisition", o->receiver.guided.enabled,
+                "Ultra: search the satellites not tracked where the filter predicts them (a narrow window, seconds of "
+                "integration) and start their channels steered")
+      ->default_str("true");
+  cmd->add_option("--max-solution-sigma", o->max_solution_sigma_m,
+                  "Aided modes: a solution whose horizontal 1-sigma exceeds this (m) is not published")
+      ->check(CLI::Range(0.1, 1e6))
+      ->capture_default_str();
+  cmd->add_flag("--fault-exclusion,!--no-fault-exclusion", o->fault_exclusion,
+                "Tight/ultra: exclude a satellite whose pseudorange innovations disagree with the filter")
+      ->default_str("true");  // flags capture no default: --print-config reads this one
+  cmd->add_option("--imu-lever-arm", o->imu_lever_arm_m, "IMU position from the antenna, body axes x y z (m), as a scenario's imu.lever_arm_m")
+      ->expected(3)
+      ->check(finite_in(-100.0, 100.0, "metres"));
+  cmd->add_option("--week", o->receiver.reference_week,
+                  "GPS week near the data: resolves the week number the satellites broadcast modulo 1024, and must "
+                  "agree with it (default: the --ephemeris-from file's epoch, else the build date)");
+  add_print_config(*cmd, o->print_config);
+  cmd->callback([o, cmd] {
+    if (o->print_config) return fmt::print("{}", effective_config(*cmd));
+    if (cmd->get_option("--week")->count() > 0) check_week_option(o->receiver.reference_week);
+    o->receiver.reference_week_origin = "--week";
+    o->format_given = cmd->count("--format") > 0;
+    o->fs_given = cmd->count("--fs") > 0;
+    o->if_given = cmd->count("--if") > 0;
+    o->inverted_given = cmd->count("--inverted-spectrum") > 0;
+    run_receiver(*o);
+  });
+});
+
+}  // namespace
+}  // namespace deepnav::cli

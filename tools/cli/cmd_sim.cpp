@@ -1,0 +1,117 @@
+// `deepnav sim`: synthesizes the IF file and truth of a scenario.
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "signals/sim/if_synthesizer.hpp"
+#include "signals/rinex_nav.hpp"
+#include "signals/sim/scenario.hpp"
+#include "signals/text_output_file.hpp"
+#include "tools/cli/cli_checks.hpp"
+#include "tools/cli/command_registry.hpp"
+#include "tools/cli/progress.hpp"
+
+namespace deepnav::cli {
+namespace {
+
+struct SimOptions {
+  std::string scenario_path;
+  std::string out_dir;
+  unsigned threads = 0;
+  double duration_s = -1.0;
+};
+
+nlohmann::json summary_json(const Scenario& sc, const SynthesisSummary& s) {
+  nlohmann::json sats = nlohmann::json::array();
+  for (const auto& sat : s.satellites) {
+    sats.push_back({{"prn", sat.prn},
+                    {"elevation_deg", sat.elevation_start_deg},
+                    {"azimuth_deg", sat.azimuth_start_deg},
+                    {"doppler_hz", sat.doppler_start_hz},
+                    {"cn0_dbhz", sat.cn0_start_dbhz},
+                    {"code_phase_chips", sat.code_phase_start_chips}});
+  }
+  return {{"if_file", std::filesystem::path(s.if_path).filename().string()},
+          {"metadata_file", std::filesystem::path(s.metadata_path).filename().string()},
+          {"format", std::string(to_string(sc.format))},
+          {"sample_rate_hz", sc.sample_rate_hz},
+          {"if_hz", sc.if_hz},
+          {"adc_bits", sc.adc.bits},
+          {"start_gps_week", sc.start_time.week},
+          {"start_gps_sow", sc.start_time.sow},
+          {"duration_s", s.duration_s},
+          {"samples", s.samples},
+          {"bytes", s.bytes},
+          {"truth_file", "truth.csv"},
+          {"sat_truth_file", "sat_truth.csv"},
+          {"satellites", sats},
+          {"wall_s", s.wall_s}};
+}
+
+void print_summary(const Scenario& sc, const SynthesisSummary& s) {
+  fmt::print("wrote {} ({} samples, {:.3f} s, {} at {:.0f} Hz, IF {:.0f} Hz) in {:.1f} s ({:.1f}x real time)\n", s.if_path,
+             s.samples, s.duration_s, to_string(sc.format), sc.sample_rate_hz, sc.if_hz, s.wall_s,
+             s.duration_s / std::max(s.wall_s, 1e-9));
+  fmt::print("truth: {}  satellites: {}\n", s.truth_path, s.sat_truth_path);
+  fmt::print("{:>4} {:>8} {:>8} {:>11} {:>9} {:>11}\n", "PRN", "el_deg", "az_deg", "doppler_hz", "cn0_dbhz", "code_chips");
+  for (const auto& sat : s.satellites) {
+    fmt::print("{:>4} {:>8.2f} {:>8.2f} {:>11.2f} {:>9.1f} {:>11.3f}\n", sat.prn, sat.elevation_start_deg,
+               sat.azimuth_start_deg, sat.doppler_start_hz, sat.cn0_start_dbhz, sat.code_phase_start_chips);
+  }
+}
+
+void run_sim(const SimOptions& o) {
+  Scenario sc;
+  try {
+    sc = load_scenario(o.scenario_path, DEEPNAV_SOURCE_DIR);
+    if (o.duration_s > 0.0) sc.duration_s = o.duration_s;
+    validate_scenario(sc);
+  } catch (const std::exception& e) {
+    throw UserError(e.what());
+  }
+  NavData nav;
+  try {
+    nav = read_rinex_nav(sc.nav_file);
+  } catch (const std::exception& e) {
+    throw UserError(e.what());
+  }
+  IfSynthesizer synth(sc, std::move(nav));
+  SynthesisOptions options;
+  options.threads = o.threads;
+  ProgressLine progress("sim", sc.duration_s);
+  options.progress = [&](double fraction) { progress.update(fraction); };
+  SynthesisSummary summary;
+  try {
+    summary = synth.run(o.out_dir, options);
+  } catch (const std::runtime_error& e) {
+    throw UserError(e.what());
+  }
+  progress.finish();
+  TextOutputFile json((std::filesystem::path(o.out_dir) / "synthesis.json").string());
+  json.write(summary_json(sc, summary).dump(2) + "\n");
+  json.commit();
+  print_summary(sc, summary);
+}
+
+const bool registered = register_command([](CommandParents& parents) {
+  auto opts = std::make_shared<SimOptions>();
+  CLI::App* cmd = parents.root.add_subcommand("sim", "Synthesize a GPS L1 C/A IF file and its truth from a scenario");
+  cmd->add_option("--scenario", opts->scenario_path, "Scenario file (YAML or JSON; schema in README.md)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--out", opts->out_dir, "Output folder (created if missing)")->required();
+  cmd->add_option("--threads", opts->threads, "Worker threads for the satellite signals (0: all cores)")
+      ->check(CLI::Range(0u, 256u))
+      ->capture_default_str();
+  cmd->add_option("--duration", opts->duration_s, "Override the scenario's duration (s)")
+      ->check(finite_in(1e-3, 86400.0, "seconds"));
+  cmd->callback([opts] { run_sim(*opts); });
+});
+
+}  // namespace
+}  // namespace deepnav::cli
