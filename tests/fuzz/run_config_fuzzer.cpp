@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "tests/fuzz/fuzz_support.hpp"
-#include "tools/cli/command_registry.hpp"
+#include "tools/cli/commands.hpp"
 #include "tools/cli/yaml_config.hpp"
 
 namespace {

@@ -17,7 +17,7 @@ msg=$(cmake -DROOT="$src/tests/layering/include_violation" -P "$src/scripts/chec
 check "receiver including the synthesizer fails (exit $rc)" \
   '[ $rc -ne 0 ] && grep -q "receiver/reads_the_synthesizer.cpp: #include \"signals/sim/if_synthesizer.hpp\"" <<< "$msg"'
 check "bench including the command line fails" \
-  'grep -q "tools/bench/reads_the_cli.cpp: #include \"tools/cli/command_registry.hpp\"" <<< "$msg"'
+  'grep -q "tools/bench/reads_the_cli.cpp: #include \"tools/cli/commands.hpp\"" <<< "$msg"'
 msg=$(cmake -S "$src/tests/layering/link_violation" -B "$work/violation" -DDEEPNAV_SOURCE_DIR="$src" 2>&1); rc=$?
 check "receiver linking the synthesizer fails (exit $rc)" \
   '[ $rc -ne 0 ] && grep -q "deepnav_receiver -> helper -> deepnav_signals_sim" <<< "$msg"'

@@ -10,7 +10,7 @@
 #include "receiver/acquisition/acquisition.hpp"
 #include "receiver/sources/file_sample_source.hpp"
 #include "tools/cli/cli_checks.hpp"
-#include "tools/cli/command_registry.hpp"
+#include "tools/cli/commands.hpp"
 #include "receiver/sources/sample_source_factory.hpp"
 
 namespace deepnav::cli {
@@ -129,7 +129,9 @@ void run_acquire(AcquireOptions o) {
                     3);
 }
 
-const bool registered = register_command([](CommandParents& parents) {
+}  // namespace
+
+void add_acquire_command(CommandParents& parents) {
   auto o = std::make_shared<AcquireOptions>();
   CLI::App* cmd = parents.root.add_subcommand("acquire", "Cold-start FFT acquisition of an IF file: detected PRNs, Doppler, code delay");
   cmd->add_option("--input", o->input, "IF sample file")->check(CLI::ExistingFile);
@@ -171,7 +173,6 @@ const bool registered = register_command([](CommandParents& parents) {
     o->inverted_given = cmd->count("--inverted-spectrum") > 0;
     run_acquire(*o);
   });
-});
+}
 
-}  // namespace
 }  // namespace deepnav::cli

@@ -21,7 +21,7 @@
 #include "ins/sim/static_imu_sim.hpp"
 #include "ins/wgs84.hpp"
 #include "tools/bench/bench_report.hpp"
-#include "tools/cli/command_registry.hpp"
+#include "tools/cli/commands.hpp"
 #include "tools/bench/python_plot.hpp"
 
 namespace deepnav::cli {
@@ -304,7 +304,9 @@ void run_align_bench(const AlignBenchOptions& opt) {
   }
 }
 
-const bool registered = register_command([](CommandParents& parents) {
+}  // namespace
+
+void add_bench_align_command(CommandParents& parents) {
   auto opt = std::make_shared<AlignBenchOptions>();
   CLI::App* cmd = parents.bench.add_subcommand(
       "align", "Coarse alignment error analysis (paper 000), stationarity check and fine-alignment convergence");
@@ -313,7 +315,6 @@ const bool registered = register_command([](CommandParents& parents) {
   cmd->add_option("--runs", opt->runs, "Fine-alignment Monte Carlo runs per grade")->check(CLI::PositiveNumber);
   cmd->add_option("--seed", opt->seed, "Seed of the random generator");
   cmd->callback([opt] { run_align_bench(*opt); });
-});
+}
 
-}  // namespace
 }  // namespace deepnav::cli

@@ -28,7 +28,7 @@
 #include "tools/cli/atmosphere_options.hpp"
 #include "tools/bench/bench_report.hpp"
 #include "tools/bench/child_process.hpp"
-#include "tools/cli/command_registry.hpp"
+#include "tools/cli/commands.hpp"
 #include "tools/cli/progress.hpp"
 
 #include <unistd.h>
@@ -425,7 +425,9 @@ void run_coupling(CouplingOptions o) {
   }
 }
 
-const bool registered = register_command([](CommandParents& parents) {
+}  // namespace
+
+void add_bench_coupling_command(CommandParents& parents) {
   auto o = std::make_shared<CouplingOptions>();
   CLI::App* cmd = parents.bench.add_subcommand("coupling", "Paper 003: loose/tight/ultra-tight position errors per trajectory");
   cmd->add_option("--trajectories", o->trajectories, "Trajectory presets")->delimiter(',')->capture_default_str();
@@ -451,7 +453,6 @@ const bool registered = register_command([](CommandParents& parents) {
   cmd->add_option("--json", o->json_path, "Write the figures as JSON to this file");
   add_atmosphere_options(*cmd, o->atmosphere);
   cmd->callback([o] { run_coupling(*o); });
-});
+}
 
-}  // namespace
 }  // namespace deepnav::cli

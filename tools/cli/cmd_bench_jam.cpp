@@ -16,7 +16,7 @@
 #include "receiver/mitigation/mitigation_config.hpp"
 #include "signals/sim/scenario.hpp"
 #include "tools/bench/child_process.hpp"
-#include "tools/cli/command_registry.hpp"
+#include "tools/cli/commands.hpp"
 #include "tools/cli/long_integration_options.hpp"
 #include "tools/bench/jam_point.hpp"
 #include "tools/bench/jam_report.hpp"
@@ -185,7 +185,9 @@ void run_sweep(const SweepOptions& o) {
   if (failed > 0) throw UserError(fmt::format("{} point(s) failed to run; rerun the same command to retry them", failed));
 }
 
-const bool registered = register_command([](CommandParents& parents) {
+}  // namespace
+
+void add_bench_jam_command(CommandParents& parents) {
   auto o = std::make_shared<SweepOptions>();
   CLI::App* cmd = parents.bench.add_subcommand(
       "jam", "Jamming sweep: J/S thresholds per jammer, receiver mode and mitigation (CSV, table, plots)");
@@ -228,7 +230,6 @@ const bool registered = register_command([](CommandParents& parents) {
                fig["solution"]["fix_availability"].get<double>(), fig["solution"]["horizontal_max_m"].dump(),
                fig["failed"].get<bool>() ? "FAIL (" + fig["failure"].get<std::string>() + ")" : "ok");
   });
-});
+}
 
-}  // namespace
 }  // namespace deepnav::cli

@@ -21,7 +21,7 @@
 #include "ins/leverarm_ekf.hpp"
 #include "ins/ship_roll_model.hpp"
 #include "tools/bench/bench_report.hpp"
-#include "tools/cli/command_registry.hpp"
+#include "tools/cli/commands.hpp"
 #include "tools/bench/python_plot.hpp"
 
 namespace deepnav::cli {
@@ -247,7 +247,9 @@ void run_leverarm_bench(const LeverArmBenchOptions& opt) {
   }
 }
 
-const bool registered = register_command([](CommandParents& parents) {
+}  // namespace
+
+void add_bench_leverarm_command(CommandParents& parents) {
   auto opt = std::make_shared<LeverArmBenchOptions>();
   CLI::App* cmd = parents.bench.add_subcommand(
       "leverarm", "Attitude EKF with lever-arm state (paper 004): Table 1, rate table, 3-D lever arm");
@@ -256,7 +258,6 @@ const bool registered = register_command([](CommandParents& parents) {
   cmd->add_option("--runs", opt->runs, "Monte Carlo runs per lever arm")->check(CLI::PositiveNumber);
   cmd->add_option("--seed", opt->seed, "Base seed of the random generators");
   cmd->callback([opt] { run_leverarm_bench(*opt); });
-});
+}
 
-}  // namespace
 }  // namespace deepnav::cli

@@ -27,7 +27,7 @@
 #include "tools/bench/aided_scenario_run.hpp"
 #include "tools/bench/bench_report.hpp"
 #include "tools/bench/process_usage.hpp"
-#include "tools/cli/command_registry.hpp"
+#include "tools/cli/commands.hpp"
 
 namespace deepnav::cli {
 using namespace deepnav::bench;  // the engines this command drives
@@ -235,7 +235,9 @@ void run_rx_bench(const RxBenchOptions& o) {
   report.emit(o.json_path);
 }
 
-const bool registered = register_command([](CommandParents& parents) {
+}  // namespace
+
+void add_bench_rx_command(CommandParents& parents) {
   auto o = std::make_shared<RxBenchOptions>();
   CLI::App* cmd = parents.bench.add_subcommand("rx", "Receiver real-time factor (8/12 channels, 1 thread/all cores, ultra) and correlator throughput");
   cmd->add_option("--scenario", o->scenario, "Scenario with 12 satellites and an imu section")->capture_default_str();
@@ -249,7 +251,6 @@ const bool registered = register_command([](CommandParents& parents) {
                   "Correlator kernel for the receiver runs (portable, avx2, avx512, neon; default: the CPU's fastest, or "
                   "DEEPNAV_CORRELATOR_KERNEL)");
   cmd->callback([o] { run_rx_bench(*o); });
-});
+}
 
-}  // namespace
 }  // namespace deepnav::cli

@@ -10,7 +10,7 @@
 #include "signals/sim/scenario.hpp"
 #include "tools/bench/bench_report.hpp"
 #include "tools/bench/process_usage.hpp"
-#include "tools/cli/command_registry.hpp"
+#include "tools/cli/commands.hpp"
 
 namespace deepnav::cli {
 using namespace deepnav::bench;  // the engines this command drives
@@ -62,7 +62,9 @@ void run_bench(const BenchSimOptions& o) {
   report.emit(o.json_path);
 }
 
-const bool registered = register_command([](CommandParents& parents) {
+}  // namespace
+
+void add_bench_sim_command(CommandParents& parents) {
   auto o = std::make_shared<BenchSimOptions>();
   CLI::App* cmd = parents.bench.add_subcommand("sim", "IF synthesis speed on one core and all cores, peak memory");
   cmd->add_option("--scenario", o->scenario, "Base scenario (its time, place and clock are used)")->capture_default_str();
@@ -73,7 +75,6 @@ const bool registered = register_command([](CommandParents& parents) {
   cmd->add_option("--work-dir", o->work_dir, "Where the (deleted) IF files are written; default: the temp folder");
   cmd->add_option("--json", o->json_path, "Write the figures as JSON to this file");
   cmd->callback([o] { run_bench(*o); });
-});
+}
 
-}  // namespace
 }  // namespace deepnav::cli

@@ -19,7 +19,7 @@
 #include "signals/sim/scenario.hpp"
 #include "tools/bench/bench_report.hpp"
 #include "tools/bench/process_usage.hpp"
-#include "tools/cli/command_registry.hpp"
+#include "tools/cli/commands.hpp"
 #include "receiver/sources/sample_source_factory.hpp"
 #include "receiver/stream/thread_safe_logging.hpp"
 
@@ -153,7 +153,9 @@ void bench_stream(const BenchStreamOptions& o) {
   report.emit(o.json_path);
 }
 
-const bool registered = register_command([](CommandParents& parents) {
+}  // namespace
+
+void add_bench_stream_command(CommandParents& parents) {
   auto o = std::make_shared<BenchStreamOptions>();
   CLI::App* cmd = parents.bench.add_subcommand(
       "stream", "Loopback streaming: throughput server -> receiver (MB/s, x real time) and CPU at real-time pace");
@@ -163,7 +165,6 @@ const bool registered = register_command([](CommandParents& parents) {
   cmd->add_option("--paced", o->paced_s, "Seconds of signal for the real-time run")->capture_default_str();
   cmd->add_option("--json", o->json_path, "Also write the figures as JSON");
   cmd->callback([o] { bench_stream(*o); });
-});
+}
 
-}  // namespace
 }  // namespace deepnav::cli

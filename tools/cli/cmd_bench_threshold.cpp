@@ -19,7 +19,7 @@
 #include "signals/sim/scenario.hpp"
 #include "tools/bench/aided_scenario_run.hpp"
 #include "tools/bench/bench_report.hpp"
-#include "tools/cli/command_registry.hpp"
+#include "tools/cli/commands.hpp"
 #include "tools/cli/long_integration_options.hpp"
 
 namespace deepnav::cli {
@@ -221,7 +221,9 @@ void run_threshold(const ThresholdOptions& o) {
   report.emit(o.json_path);
 }
 
-const bool registered = register_command([](CommandParents& parents) {
+}  // namespace
+
+void add_bench_threshold_command(CommandParents& parents) {
   auto o = std::make_shared<ThresholdOptions>();
   CLI::App* cmd = parents.bench.add_subcommand("threshold", "Lowest C/N0 at which the scalar loops keep lock (C/N0 ramp)");
   cmd->add_option("--scenario", o->scenario, "Base scenario (static)")->capture_default_str();
@@ -241,7 +243,6 @@ const bool registered = register_command([](CommandParents& parents) {
   cmd->add_option("--work-dir", o->work_dir, "Where the (deleted) IF file is written");
   cmd->add_option("--json", o->json_path, "Write the figures as JSON to this file");
   cmd->callback([o] { run_threshold(*o); });
-});
+}
 
-}  // namespace
 }  // namespace deepnav::cli

@@ -15,7 +15,7 @@
 #include "signals/data_path.hpp"
 #include "signals/text_output_file.hpp"
 #include "tools/cli/atmosphere_options.hpp"
-#include "tools/cli/command_registry.hpp"
+#include "tools/cli/commands.hpp"
 #include "tools/cli/yaml_config.hpp"
 
 namespace deepnav::cli {
@@ -251,7 +251,9 @@ void run_fuse(CLI::App& root, FuseOptions o) {
              fusion->report().zero_velocity_updates);
 }
 
-const bool registered = register_command([](CommandParents& parents) {
+}  // namespace
+
+void add_fuse_command(CommandParents& parents) {
   auto o = std::make_shared<FuseOptions>();
   CLI::App* root = &parents.root;
   CLI::App* cmd = parents.root.add_subcommand(
@@ -315,7 +317,6 @@ const bool registered = register_command([](CommandParents& parents) {
     if (o->print_config) return fmt::print("{}", effective_config(*cmd));
     run_fuse(*root, *o);
   });
-});
+}
 
-}  // namespace
 }  // namespace deepnav::cli

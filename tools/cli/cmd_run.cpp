@@ -17,7 +17,7 @@
 #include "tools/cli/atmosphere_options.hpp"
 #include "tools/cli/long_integration_options.hpp"
 #include "tools/cli/cli_checks.hpp"
-#include "tools/cli/command_registry.hpp"
+#include "tools/cli/commands.hpp"
 #include "tools/bench/process_usage.hpp"
 #include "tools/cli/progress.hpp"
 #include "receiver/sources/sample_source_factory.hpp"
@@ -322,7 +322,9 @@ void run_receiver(RunOptions o) {
   if (const auto failure = opened.failure()) throw UserError(*failure + " (products written up to there)");
 }
 
-const bool registered = register_command([](CommandParents& parents) {
+}  // namespace
+
+void add_run_command(CommandParents& parents) {
   auto o = std::make_shared<RunOptions>();
   CLI::App* cmd = parents.root.add_subcommand("run", "Run the receiver on an IF file: PVT and products in --out");
   cmd->add_option("--input", o->input,
@@ -425,7 +427,6 @@ const bool registered = register_command([](CommandParents& parents) {
     o->inverted_given = cmd->count("--inverted-spectrum") > 0;
     run_receiver(*o);
   });
-});
+}
 
-}  // namespace
 }  // namespace deepnav::cli

@@ -13,7 +13,7 @@
 #include "signals/rinex_nav.hpp"
 #include "signals/sim/scenario.hpp"
 #include "signals/sim/synthesized_if_stream.hpp"
-#include "tools/cli/command_registry.hpp"
+#include "tools/cli/commands.hpp"
 #include "receiver/sources/sample_source_factory.hpp"
 #include "tools/cli/stop_signals.hpp"
 #include "receiver/stream/thread_safe_logging.hpp"
@@ -125,7 +125,9 @@ void serve(ServeOptions o) {
   spdlog::info("{} session(s) served", server->reports().size());
 }
 
-const bool registered = register_command([](CommandParents& parents) {
+}  // namespace
+
+void add_serve_command(CommandParents& parents) {
   auto o = std::make_shared<ServeOptions>();
   CLI::App* cmd = parents.root.add_subcommand(
       "serve", "Stream IF (a scenario synthesized on the fly, or a file) over TCP/UDP to `deepnav run --input tcp://...`");
@@ -155,7 +157,6 @@ const bool registered = register_command([](CommandParents& parents) {
   cmd->add_option("--sessions", o->sessions, "Exit after this many sessions ended (0: serve until Ctrl-C)")->capture_default_str();
   cmd->add_option("--port-file", o->port_file, "Write the bound ports here ('tcp N' and 'udp N' lines) once listening");
   cmd->callback([o] { serve(*o); });
-});
+}
 
-}  // namespace
 }  // namespace deepnav::cli

@@ -13,7 +13,7 @@
 #include "signals/sim/scenario.hpp"
 #include "signals/text_output_file.hpp"
 #include "tools/cli/cli_checks.hpp"
-#include "tools/cli/command_registry.hpp"
+#include "tools/cli/commands.hpp"
 #include "tools/cli/progress.hpp"
 
 namespace deepnav::cli {
@@ -98,7 +98,9 @@ void run_sim(const SimOptions& o) {
   print_summary(sc, summary);
 }
 
-const bool registered = register_command([](CommandParents& parents) {
+}  // namespace
+
+void add_sim_command(CommandParents& parents) {
   auto opts = std::make_shared<SimOptions>();
   CLI::App* cmd = parents.root.add_subcommand("sim", "Synthesize a GPS L1 C/A IF file and its truth from a scenario");
   cmd->add_option("--scenario", opts->scenario_path, "Scenario file (YAML or JSON; schema in README.md)")
@@ -111,7 +113,6 @@ const bool registered = register_command([](CommandParents& parents) {
   cmd->add_option("--duration", opts->duration_s, "Override the scenario's duration (s)")
       ->check(finite_in(1e-3, 86400.0, "seconds"));
   cmd->callback([opts] { run_sim(*opts); });
-});
+}
 
-}  // namespace
 }  // namespace deepnav::cli

@@ -1,20 +1,13 @@
-// The deepnav command line. Subcommands register themselves (command_registry.hpp)
-// and do their work in CLI11 callbacks, so errors surface from app.parse().
+// The deepnav command line. Each subcommand is added from its own file (commands.hpp) and
+// does its work in a CLI11 callback, so errors surface from app.parse().
 #include <spdlog/sinks/stdout_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include <exception>
 #include <iostream>
 
-#include "tools/cli/command_registry.hpp"
+#include "tools/cli/commands.hpp"
 #include "tools/cli/yaml_config.hpp"
-
-namespace deepnav::cli {
-std::vector<CommandRegistrar>& command_registry() {
-  static std::vector<CommandRegistrar> registry;
-  return registry;
-}
-}  // namespace deepnav::cli
 
 int main(int argc, char** argv) {
   using namespace deepnav::cli;
@@ -31,7 +24,19 @@ int main(int argc, char** argv) {
   CLI::App* bench = app.add_subcommand("bench", "Benchmarks: each prints a table, and writes JSON with --json FILE");
   bench->require_subcommand(1);
   CommandParents parents{app, *bench};
-  for (auto& registrar : command_registry()) registrar(parents);
+  add_acquire_command(parents);
+  add_bench_align_command(parents);
+  add_bench_coupling_command(parents);
+  add_bench_jam_command(parents);
+  add_bench_leverarm_command(parents);
+  add_bench_rx_command(parents);
+  add_bench_sim_command(parents);
+  add_bench_stream_command(parents);
+  add_bench_threshold_command(parents);
+  add_fuse_command(parents);
+  add_run_command(parents);
+  add_serve_command(parents);
+  add_sim_command(parents);
 
   try {
     app.parse(argc, argv);

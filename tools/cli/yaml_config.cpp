@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "ins/yaml_checks.hpp"
-#include "tools/cli/command_registry.hpp"
+#include "tools/cli/commands.hpp"
 
 namespace deepnav::cli {
 namespace {

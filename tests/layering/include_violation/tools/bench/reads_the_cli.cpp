@@ -1,2 +1,2 @@
 // Fixture of tests/layering/layering_checks.sh: a benchmark engine that includes the command line.
-#include "tools/cli/command_registry.hpp"
+#include "tools/cli/commands.hpp"
