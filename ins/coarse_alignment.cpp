@@ -65,7 +65,7 @@ AlignedAttitude align_two_step(const Eigen::Vector3d& f_b_mps2, const Eigen::Vec
   require_finite(f_b_mps2, "specific force f_b");
   require_finite(w_ib_b_radps, "angular rate w_ib_b");
   if (f_b_mps2.norm() <= 0.0) throw std::invalid_argument("two-step alignment: specific force f_b is zero");
-  // Step 1, levelling (paper eqs. 10-11): f_b = C_n^b [0 0 -g], so f_y = -g sin(roll) cos(pitch),
+  // Step 1, levelling (paper 000 [docs/references.md], eqs. 10-11): f_b = C_n^b [0 0 -g], so f_y = -g sin(roll) cos(pitch),
   // f_z = -g cos(roll) cos(pitch), f_x = g sin(pitch). atan2 with the signs keeps any roll.
   const double roll = std::atan2(-f_b_mps2.y(), -f_b_mps2.z());
   const double pitch = std::atan2(f_b_mps2.x(), std::hypot(f_b_mps2.y(), f_b_mps2.z()));

@@ -1,5 +1,5 @@
 #pragma once
-// Stationary coarse alignment (paper 000): the two-step method (roll and pitch
+// Stationary coarse alignment (paper 000 [docs/references.md]): the two-step method (roll and pitch
 // from the accelerometers, then yaw from the levelled gyro vector) and Britting's
 // one-shot method (C_b^n from f, w and f x w at once), the analytic tilt-error
 // formulas of the paper's Table 1, and a stationarity check that refuses to

@@ -12,7 +12,7 @@ namespace deepnav {
 /// Error statistics of one sensor triad (three gyros or three accelerometers), as a
 /// datasheet states them. Turn-on quantities (bias_sigma, scale factor, misalignment)
 /// are drawn once per run from the seeded generator; `bias` is a deterministic part
-/// added on top (the paper 003 preset uses it for its stated 100 ug / 0.1 deg/h).
+/// added on top (the paper 003 [docs/references.md] preset uses it for its stated 100 ug / 0.1 deg/h).
 struct TriadErrorSpec {
   Eigen::Vector3d bias = Eigen::Vector3d::Zero();  ///< deterministic bias, rad/s or m/s^2
   double bias_sigma = 0.0;                         ///< turn-on bias 1 sigma per axis

@@ -1,6 +1,6 @@
 #pragma once
 // IMU readings of a sensor mounted at a lever arm from the rotation centre (the
-// centre of gravity, which does not translate): paper 004 eq. 14,
+// centre of gravity, which does not translate): paper 004 [docs/references.md] eq. 14,
 //   f_b = -C_n^b g_n + ([w x][w x] + [w' x]) L_b + accelerometer errors,
 //   w_meas = w_nb_b + gyro drift (first-order Markov) + white noise.
 // Earth rate is left out: an industrial MEMS gyro cannot see it in these scenarios.

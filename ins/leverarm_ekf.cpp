@@ -10,7 +10,7 @@
 namespace deepnav {
 namespace {
 
-/// Omega(w) with q' = 1/2 Omega(w) q for q = [q0 q1 q2 q3] (paper eq. 1, times 2).
+/// Omega(w) with q' = 1/2 Omega(w) q for q = [q0 q1 q2 q3] (paper 004 [docs/references.md] eq. 1, times 2).
 Eigen::Matrix4d omega_matrix(const Eigen::Vector3d& w) {
   Eigen::Matrix4d m;
   m << 0.0, -w.x(), -w.y(), -w.z(),  //

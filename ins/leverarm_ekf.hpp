@@ -1,5 +1,5 @@
 #pragma once
-// Attitude EKF of paper 004 with the lever arm as a state.
+// Attitude EKF of paper 004 [docs/references.md] with the lever arm as a state.
 //
 // State x = [q (4, body->NED quaternion, scalar first), mu (3, gyro drift, first-order
 // Markov with rate beta and steady-state sigma), L (0, 1 or 3 lever-arm components,

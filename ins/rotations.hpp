@@ -1,5 +1,5 @@
 #pragma once
-// Attitude representations in the papers' convention and conversions between them.
+// Attitude representations in the papers' convention [docs/references.md] and conversions between them.
 //
 // Body axes: x forward, y right, z down. Navigation frame: NED. Euler angles are the
 // 3-2-1 (yaw-pitch-roll) sequence: C_b_n = Rz(yaw) * Ry(pitch) * Rx(roll), where

@@ -1,5 +1,5 @@
 #pragma once
-// Angular-motion scenarios of paper 004 (attitude with a lever arm): a small vessel
+// Angular-motion scenarios of paper 004 [docs/references.md] (attitude with a lever arm): a small vessel
 // rolled by an external moment, the single-axis rate table, and a multi-axis
 // oscillation (rich motion for estimating a 3-D lever arm). Each produces the true
 // attitude, body rate and angular acceleration at a fixed sample rate; the centre of

@@ -1,7 +1,7 @@
 #pragma once
 // Strapdown inertial navigation in the local-level NED frame.
 //
-// Why NED: the aiding filter's error states, the papers' equations and every report
+// Why NED: the aiding filter's error states, the papers' equations [docs/references.md] and every report
 // are NED; latitude/longitude/height kept directly as the position avoid an
 // ECEF -> geodetic conversion per step. (The frame is singular only at the poles.)
 //

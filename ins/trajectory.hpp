@@ -10,7 +10,7 @@
 namespace deepnav {
 
 /// Kinematic state of the body (vehicle) frame at time t (seconds from the start).
-/// Attitude and rates follow the papers' convention: body axes x forward, y right,
+/// Attitude and rates follow the papers' convention [docs/references.md]: body axes x forward, y right,
 /// z down; NED navigation frame; C_b_n rotates body vectors into NED.
 struct TrajectoryState {
   double t_s = 0.0;

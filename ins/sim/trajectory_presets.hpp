@@ -1,5 +1,5 @@
 #pragma once
-// Analytic vehicle trajectories and the named scenarios of paper 003.
+// Analytic vehicle trajectories and the named scenarios of paper 003 [docs/references.md].
 //
 // Construction: the horizontal path is a chain of segments (straight with constant
 // acceleration, or an arc at constant speed and turn rate) plus a constant climb rate,

@@ -1,6 +1,6 @@
 #pragma once
-// The deepnav IF streaming protocol (version 1), little endian throughout. README.md,
-// "Streaming", has the tables.
+// The deepnav IF streaming protocol (version 1), little endian throughout. docs/streaming.md,
+// "Protocol", has the tables.
 //
 //  server -> client: one StreamHeader, then frames (TCP: back to back; UDP: the header
 //  and each frame in a datagram of its own). A frame carries a sequence number (0, 1, 2,

@@ -2,8 +2,8 @@
 // One tracking channel: code and carrier NCOs, the correlator bank, integration over
 // code periods (1 ms, extended up to 20 ms along data-bit edges once the bits are
 // synchronised), bit synchronisation and lock monitoring. The channel is steered only
-// through NcoCommands (apply()); in scalar mode its owner passes every epoch to a
-// ScalarLoopController and feeds the command back.
+// through NcoCommands (apply()); its owner passes every epoch to the channel's
+// ChannelController (channel_controller.hpp) and applies the command it answers.
 #include <array>
 #include <cstdint>
 #include <deque>

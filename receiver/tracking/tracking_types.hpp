@@ -1,8 +1,8 @@
 #pragma once
-// The seam between a channel and whoever steers it (DESIGN.md): a channel applies
-// NcoCommands and emits CorrelatorEpochs. The scalar loop controller and, later, the
-// ultra-tight aiding filter both turn epochs into commands; the channel does not know
-// which one is driving it.
+// The seam between a channel and whoever steers it (docs/architecture.md): a channel applies
+// NcoCommands and emits CorrelatorEpochs. Its own loops and the ultra-tight aiding filter
+// both turn epochs into commands, as ChannelControllers (channel_controller.hpp); the
+// channel does not know which one is driving it.
 #include <complex>
 #include <cstdint>
 #include <optional>

@@ -1,7 +1,7 @@
 #pragma once
 // A synthesis scenario: everything `deepnav sim` needs to produce an IF file and
 // its truth. Loaded from YAML (JSON is valid YAML too); every field is validated
-// and an error names the file and the field. The schema is documented in README.md.
+// and an error names the file and the field. The schema is documented in docs/scenarios.md.
 #include <array>
 #include <cstdint>
 #include <map>

@@ -1,5 +1,5 @@
 // The closed-loop INS/GNSS filter against simulated truth: loose updates on paper 003's
-// land circle, tight updates from broadcast-ephemeris satellites (including a stretch
+// [docs/references.md] land circle, tight updates from broadcast-ephemeris satellites (including a stretch
 // with only three), and an hour-long run that must keep the covariance sound.
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes the binary seeds of the stream and sample-converter harnesses (corpus/stream_tcp,
-corpus/stream_udp, corpus/sample_converter): valid streams in the layouts README.md,
-"Streaming", tables, so that fuzzing starts from inputs that reach the frame checks.
+corpus/stream_udp, corpus/sample_converter): valid streams in the layouts of docs/streaming.md,
+"Protocol", tables, so that fuzzing starts from inputs that reach the frame checks.
 Run from anywhere: python3 tests/fuzz/make_seeds.py"""
 import os
 import random

@@ -94,7 +94,7 @@ TEST(CoarseAlignment, OneShotPitchErrorReachesPaperOrderForZGyro) {
   const StaticImuMean imu = stationary_imu_outputs(C, kLat, kGravity);
   const Eigen::Vector3d w = imu.w_ib_b_radps + Eigen::Vector3d(0.0, 0.0, 1.0 * kDegPerHour);
   const AlignedAttitude one = align_one_shot(imu.f_b_mps2, w, kLat, kGravity).attitude;
-  // Paper 000: about 2.3 deg. 1/2 * (1 deg/h) / (15.04 deg/h * cos 35 deg) = 2.33 deg.
+  // Paper 000 [docs/references.md]: about 2.3 deg. 1/2 * (1 deg/h) / (15.04 deg/h * cos 35 deg) = 2.33 deg.
   EXPECT_NEAR(std::abs(one.pitch_rad) / kDeg, 2.33, 0.1);
   const AlignedAttitude two = align_two_step(imu.f_b_mps2, w);
   EXPECT_LT(std::abs(two.pitch_rad), 1e-12);

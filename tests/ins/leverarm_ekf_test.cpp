@@ -73,7 +73,7 @@ TEST(LeverArmEkf, SmoothedAngularAccelerationOfASine) {
   }
 }
 
-// Paper 004 Table 1: the conventional filter's roll error grows with the arm; the
+// Paper 004 [docs/references.md] Table 1: the conventional filter's roll error grows with the arm; the
 // lever-arm filter's stays flat and below it; the arm itself is recovered.
 TEST(LeverArmEkf, ShipScenarioReproducesPaperFinding) {
   const auto truth = simulate_ship_roll({});

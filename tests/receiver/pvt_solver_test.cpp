@@ -22,7 +22,7 @@ struct Scene {
   Eigen::Vector3d r_true, v_true;
 };
 
-/// Pseudoranges and Dopplers as the synthesizer models them (signals/satellite_signal_model)
+/// Pseudoranges and Dopplers as the synthesizer models them (signals/sim/satellite_signal_model)
 /// for a receiver at a known place with clock bias 1e-4 s and drift 5e-7.
 Scene make_scene(const Eigen::Vector3d& v_ecef, double noise_m, std::uint64_t seed) {
   Scene s;

@@ -3,7 +3,7 @@
 //
 // Method: for a known receiver position and epoch we synthesize a RINEX 2.11 observation
 // file whose C1 pseudoranges come from OUR ephemeris code: light-time iteration with the
-// Sagnac rotation (signals/line_of_sight), our satellite clock including the relativistic
+// Sagnac rotation (signals/sim/line_of_sight), our satellite clock including the relativistic
 // term, minus TGD as an L1 C/A user applies it, receiver clock zero, no ionosphere and no
 // troposphere. RTKLIB's rnx2rtkp then solves single-point positions with its ionosphere and
 // troposphere models off and writes its per-satellite pseudorange residuals (stat file).

@@ -1,4 +1,4 @@
-"""Plots for `deepnav bench align`: paper 000 Figs. 2-4 style error sweeps, the
+"""Plots for `deepnav bench align`: paper 000 [docs/references.md] Figs. 2-4 style error sweeps, the
 simulated-vs-analytic agreement, and fine-alignment heading convergence.
 Usage: plot_align.py DIR (reads DIR/align_sweep.json and DIR/align_fine.json)."""
 import json

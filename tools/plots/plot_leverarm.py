@@ -1,4 +1,4 @@
-"""Plots for `deepnav bench leverarm` (paper 004 Figs. 2-4 and 6 style).
+"""Plots for `deepnav bench leverarm` (paper 004 [docs/references.md] Figs. 2-4 and 6 style).
 Usage: plot_leverarm.py DIR (reads DIR/leverarm_traces.json)."""
 import json
 import os
