@@ -8,7 +8,7 @@
 #include <random>
 
 #include "receiver/acquisition/acquisition.hpp"
-#include "receiver/scalar_receiver.hpp"
+#include "receiver/gps_receiver.hpp"
 #include "receiver/worker_threads.hpp"
 
 namespace deepnav {
@@ -53,7 +53,7 @@ TEST(ReceiverLimits, AGapOfAnyLengthCostsNoEpochPerStep) {
   // grid resumes after the gap instead of making an epoch for every second of it.
   GappedNoise source(2455200, 1000000000000000, 1023000);
   ReceiverConfig cfg;
-  ScalarReceiver receiver(cfg, source);
+  GpsReceiver receiver(cfg, source);
   std::vector<std::int64_t> epochs;
   const auto start = std::chrono::steady_clock::now();
   receiver.run([&](const ReceiverEpoch& e) { epochs.push_back(e.sample_index); });
@@ -67,7 +67,7 @@ TEST(ReceiverLimits, AGapOfAnyLengthCostsNoEpochPerStep) {
 TEST(ReceiverLimits, ProcessedDurationCountsFromTheFirstSample) {
   // A stream whose first sample is 10^9 (summary.json's duration_s once counted from 0).
   GappedNoise source(409200, 0, 0, 1000000000);
-  ScalarReceiver receiver(ReceiverConfig{}, source);
+  GpsReceiver receiver(ReceiverConfig{}, source);
   EXPECT_EQ(receiver.processed_s(), 0.0);
   receiver.run([](const ReceiverEpoch&) {});
   EXPECT_DOUBLE_EQ(receiver.processed_s(), 0.2);
@@ -77,7 +77,7 @@ TEST(ReceiverLimits, SettingsOutsideTheReceiversRangeAreErrors) {
   GappedNoise source(100, 0, 0);
   const auto error_of = [&](const ReceiverConfig& cfg) -> std::string {
     try {
-      ScalarReceiver r(cfg, source);
+      GpsReceiver r(cfg, source);
     } catch (const std::invalid_argument& e) {
       return e.what();
     }

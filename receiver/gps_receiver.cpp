@@ -1,4 +1,4 @@
-#include "receiver/scalar_receiver.hpp"
+#include "receiver/gps_receiver.hpp"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -49,7 +49,7 @@ struct ActiveSearch {
 
 }  // namespace
 
-struct ScalarReceiver::Impl {
+struct GpsReceiver::Impl {
   ReceiverConfig cfg;
   SampleSource& src;
   double fs;
@@ -561,11 +561,11 @@ struct ScalarReceiver::Impl {
   }
 };
 
-ScalarReceiver::ScalarReceiver(ReceiverConfig config, SampleSource& source)
+GpsReceiver::GpsReceiver(ReceiverConfig config, SampleSource& source)
     : impl_(std::make_unique<Impl>(std::move(config), source)) {}
-ScalarReceiver::~ScalarReceiver() = default;
+GpsReceiver::~GpsReceiver() = default;
 
-void ScalarReceiver::run(const std::function<void(const ReceiverEpoch&)>& on_epoch,
+void GpsReceiver::run(const std::function<void(const ReceiverEpoch&)>& on_epoch,
                          const std::function<void(const CorrelatorEpoch&, const ChannelSnapshot&)>& on_correlation,
                          const std::function<void(double)>& progress) {
   Impl& m = *impl_;
@@ -652,51 +652,51 @@ void ScalarReceiver::run(const std::function<void(const ReceiverEpoch&)>& on_epo
   }
 }
 
-void ScalarReceiver::set_assisted_iono(const IonoParameters& iono) {
+void GpsReceiver::set_assisted_iono(const IonoParameters& iono) {
   if (!impl_->iono.valid) impl_->iono = iono;
 }
 
-void ScalarReceiver::set_assisted_ephemerides(const NavData& nav) { impl_->assisted = nav; }
+void GpsReceiver::set_assisted_ephemerides(const NavData& nav) { impl_->assisted = nav; }
 
-const Ephemeris* ScalarReceiver::ephemeris(int prn) const {
+const Ephemeris* GpsReceiver::ephemeris(int prn) const {
   const auto it = impl_->ephs.find(prn);
   return it == impl_->ephs.end() ? nullptr : &it->second;
 }
 
-void ScalarReceiver::set_channel_aiding(ChannelAiding* aiding) {
+void GpsReceiver::set_channel_aiding(ChannelAiding* aiding) {
   impl_->aiding = aiding;
   for (Channel& ch : impl_->channels) ch.steered = aiding ? aiding->controller_for(ch.trk->prn()) : nullptr;
 }
 
-std::optional<GpsTime> ScalarReceiver::receiver_time(std::int64_t sample_index) const {
+std::optional<GpsTime> GpsReceiver::receiver_time(std::int64_t sample_index) const {
   if (!impl_->time_ref) return std::nullopt;
   return impl_->time_ref->plus_seconds(static_cast<double>(sample_index - impl_->sample_ref) / impl_->fs);
 }
 
-double ScalarReceiver::sample_rate_hz() const { return impl_->fs; }
-double ScalarReceiver::processed_s() const {
+double GpsReceiver::sample_rate_hz() const { return impl_->fs; }
+double GpsReceiver::processed_s() const {
   return impl_->first_index < 0 ? 0.0 : static_cast<double>(impl_->end_index - impl_->first_index) / impl_->fs;
 }
-double ScalarReceiver::clock_steps_s() const { return impl_->clock_steps_s; }
+double GpsReceiver::clock_steps_s() const { return impl_->clock_steps_s; }
 
-std::map<int, Ephemeris> ScalarReceiver::ephemerides() const { return impl_->ephs; }
+std::map<int, Ephemeris> GpsReceiver::ephemerides() const { return impl_->ephs; }
 
-std::map<int, Ephemeris> ScalarReceiver::decoded_ephemerides() const {
+std::map<int, Ephemeris> GpsReceiver::decoded_ephemerides() const {
   std::map<int, Ephemeris> out;
   for (int prn : impl_->decoded_prns) out.emplace(prn, impl_->ephs.at(prn));
   return out;
 }
-IonoParameters ScalarReceiver::iono() const { return impl_->iono; }
-const AtmosphereModels& ScalarReceiver::atmosphere() const { return impl_->cfg.atmosphere; }
-UtcParameters ScalarReceiver::utc() const { return impl_->utc; }
-std::vector<int> ScalarReceiver::acquired_prns() const { return impl_->acquired; }
+IonoParameters GpsReceiver::iono() const { return impl_->iono; }
+const AtmosphereModels& GpsReceiver::atmosphere() const { return impl_->cfg.atmosphere; }
+UtcParameters GpsReceiver::utc() const { return impl_->utc; }
+std::vector<int> GpsReceiver::acquired_prns() const { return impl_->acquired; }
 
-std::optional<int> ScalarReceiver::signal_week() const {
+std::optional<int> GpsReceiver::signal_week() const {
   if (!impl_->signal_week) return std::nullopt;
   return impl_->signal_week->week;
 }
 
-const std::vector<GuidedSearchRecord>& ScalarReceiver::guided_searches() const { return impl_->guided_log; }
+const std::vector<GuidedSearchRecord>& GpsReceiver::guided_searches() const { return impl_->guided_log; }
 
 const char* to_string(GuidedSearchRecord::Outcome outcome) {
   switch (outcome) {
@@ -708,7 +708,7 @@ const char* to_string(GuidedSearchRecord::Outcome outcome) {
   return "?";
 }
 
-std::vector<NavigationStatus> ScalarReceiver::navigation_status() const {
+std::vector<NavigationStatus> GpsReceiver::navigation_status() const {
   std::map<int, NavigationStatus> all = impl_->finished_status;
   for (const auto& ch : impl_->channels) Impl::add_status(all, ch);
   std::vector<NavigationStatus> out;

@@ -146,10 +146,10 @@ struct NavigationStatus {
   bool ephemeris = false;     ///< decoded from the signal (not assisted)
 };
 
-class ScalarReceiver {
+class GpsReceiver {
  public:
-  ScalarReceiver(ReceiverConfig config, SampleSource& source);
-  ~ScalarReceiver();
+  GpsReceiver(ReceiverConfig config, SampleSource& source);
+  ~GpsReceiver();
   /// Runs to the end of the source; `on_epoch` sees every observation epoch, `on_epochs`
   /// (optional) every correlator epoch of every channel.
   void run(const std::function<void(const ReceiverEpoch&)>& on_epoch,
