@@ -6,6 +6,8 @@
 #include <atomic>
 #include <chrono>
 #include <random>
+#include <stdexcept>
+#include <vector>
 
 #include "receiver/acquisition/acquisition.hpp"
 #include "receiver/gps_receiver.hpp"
@@ -105,6 +107,24 @@ TEST(WorkerThreads, RunsEveryPostedTaskAndJoins) {
     for (int i = 0; i < 100; ++i) pool.post([&] { ++done; });
   }
   EXPECT_EQ(done.load(), 100);
+}
+
+TEST(WorkerThreads, RunInSharesDoesEveryItemOnceAndRethrows) {
+  WorkerThreads pool(3, "test worker");
+  for (WorkerThreads* workers : {&pool, static_cast<WorkerThreads*>(nullptr)}) {
+    std::vector<int> done(10, 0);
+    run_in_shares(workers, done.size(), [&](std::size_t i) { ++done[i]; });
+    EXPECT_EQ(done, std::vector<int>(10, 1));
+  }
+  // Four shares of two items: the third stops at its first item's exception, the others
+  // finish before it is rethrown.
+  std::vector<std::atomic<int>> reached(8);
+  const auto fail_at_4 = [&](std::size_t i) {
+    ++reached[i];
+    if (i == 4) throw std::runtime_error("item 4");
+  };
+  EXPECT_THROW(run_in_shares(&pool, reached.size(), fail_at_4), std::runtime_error);
+  for (std::size_t i = 0; i < reached.size(); ++i) EXPECT_EQ(reached[i].load(), i == 5 ? 0 : 1) << i;
 }
 
 TEST(Acquisition, SettingsThatWouldExhaustMemoryAreErrors) {
