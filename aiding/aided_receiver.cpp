@@ -25,7 +25,7 @@ constexpr double kRecentPvt_s = 3.0;
 
 struct AidedReceiver::Impl : ChannelAiding {
   AidedReceiverConfig cfg;
-  ScalarReceiver rx;
+  GnssReceiver rx;
   ImuLog imu;
   std::size_t next_imu = 0;
   std::size_t next_gap = 0;  ///< first IMU gap not reached yet
@@ -460,7 +460,7 @@ void AidedReceiver::run(const std::function<void(const AidedEpoch&)>& on_epoch,
   impl_->rx.run([&](const ReceiverEpoch& ep) { on_epoch(impl_->on_observation(ep)); }, on_correlation, progress);
 }
 
-ScalarReceiver& AidedReceiver::receiver() { return impl_->rx; }
+GnssReceiver& AidedReceiver::receiver() { return impl_->rx; }
 const std::vector<ModeChange>& AidedReceiver::mode_changes() const { return impl_->modes.changes(); }
 const std::string& AidedReceiver::ins_start_method() const { return impl_->start_method; }
 int AidedReceiver::filter_restarts() const { return impl_->restarts; }

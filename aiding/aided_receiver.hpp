@@ -17,7 +17,7 @@
 #include "aiding/mode_manager.hpp"
 #include "aiding/ultra_tight_tracker.hpp"
 #include "ins/imu_file.hpp"
-#include "receiver/scalar_receiver.hpp"
+#include "receiver/gnss_receiver.hpp"
 
 namespace deepnav::aiding {
 
@@ -89,7 +89,7 @@ class AidedReceiver {
            const std::function<void(const CorrelatorEpoch&, const ChannelSnapshot&)>& on_correlation = {},
            const std::function<void(double)>& progress = {});
 
-  ScalarReceiver& receiver();
+  GnssReceiver& receiver();
   const std::vector<ModeChange>& mode_changes() const;
   /// How the INS was started ("" until it was).
   const std::string& ins_start_method() const;

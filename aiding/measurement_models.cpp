@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "ins/rotations.hpp"
-#include "receiver/scalar_receiver.hpp"
+#include "receiver/gnss_receiver.hpp"
 #include "signals/gps_constants.hpp"
 
 namespace deepnav::aiding {

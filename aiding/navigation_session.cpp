@@ -46,7 +46,7 @@ NavigationSession::NavigationSession(NavigationSessionConfig config, SampleSourc
     : config_(std::move(config)),
       mitigated_(std::make_unique<MitigationSampleSource>(source, config_.mitigation)) {
   if (config_.navigator.mode == NavMode::scalar) {
-    scalar_ = std::make_unique<ScalarReceiver>(config_.navigator.receiver, *mitigated_);
+    scalar_ = std::make_unique<GnssReceiver>(config_.navigator.receiver, *mitigated_);
   } else {
     if (!imu) throw std::invalid_argument(std::string("mode ") + to_string(config_.navigator.mode) + " needs an IMU log");
     aided_ = std::make_unique<AidedReceiver>(config_.navigator, *mitigated_, std::move(*imu), duration_s);
@@ -57,7 +57,7 @@ NavigationSession::NavigationSession(NavigationSessionConfig config, SampleSourc
 
 NavigationSession::~NavigationSession() = default;
 
-ScalarReceiver& NavigationSession::receiver() { return aided_ ? aided_->receiver() : *scalar_; }
+GnssReceiver& NavigationSession::receiver() { return aided_ ? aided_->receiver() : *scalar_; }
 
 void NavigationSession::hand_out(const ReceiverEpoch& ep, const AidedEpoch* a, const std::vector<ProductSink*>& sinks) {
   if (a) seconds_in_mode_[to_string(a->mode)] += 1.0 / config_.navigator.receiver.observation_rate_hz;

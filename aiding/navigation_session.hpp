@@ -50,7 +50,7 @@ class NavigationSession {
   const std::optional<std::string>& run_error() const { return run_error_; }
   const std::vector<ProductFailure>& product_failures() const { return product_failures_; }
 
-  ScalarReceiver& receiver();
+  GnssReceiver& receiver();
   /// The aided navigator (nullptr in scalar mode).
   const AidedReceiver* aided() const { return aided_.get(); }
   /// Seconds spent in each navigation mode.
@@ -61,7 +61,7 @@ class NavigationSession {
   NavigationSessionConfig config_;
   std::unique_ptr<SampleSource> mitigated_;
   std::unique_ptr<AidedReceiver> aided_;
-  std::unique_ptr<ScalarReceiver> scalar_;
+  std::unique_ptr<GnssReceiver> scalar_;
   std::map<std::string, double> seconds_in_mode_;
   std::optional<std::string> run_error_;
   std::vector<ProductFailure> product_failures_;

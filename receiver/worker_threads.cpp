@@ -2,7 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
+#include <exception>
+#include <latch>
 #include <stdexcept>
 #include <system_error>
 
@@ -68,6 +71,37 @@ void WorkerThreads::work() {
     }
     task();
   }
+}
+
+void run_in_shares(WorkerThreads* workers, std::size_t n, const std::function<void(std::size_t)>& work) {
+  if (!workers || n <= 1) {
+    for (std::size_t i = 0; i < n; ++i) work(i);
+    return;
+  }
+  const std::size_t shares = std::min(workers->size() + 1, n);
+  const auto share = [&](std::size_t g) {
+    for (std::size_t i = g * n / shares; i < (g + 1) * n / shares; ++i) work(i);
+  };
+  std::latch done(static_cast<std::ptrdiff_t>(shares - 1));
+  std::vector<std::exception_ptr> errors(shares);
+  for (std::size_t g = 1; g < shares; ++g) {
+    workers->post([&, g] {
+      try {
+        share(g);
+      } catch (...) {
+        errors[g] = std::current_exception();
+      }
+      done.count_down();
+    });
+  }
+  try {
+    share(0);
+  } catch (...) {
+    errors[0] = std::current_exception();
+  }
+  done.wait();
+  for (const auto& e : errors)
+    if (e) std::rethrow_exception(e);
 }
 
 }  // namespace deepnav

@@ -10,7 +10,7 @@
 #include <string_view>
 #include <vector>
 
-#include "receiver/scalar_receiver.hpp"
+#include "receiver/gnss_receiver.hpp"
 #include "signals/rinex_nav.hpp"
 
 namespace deepnav {

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "ins/gps_time.hpp"
-#include "receiver/scalar_receiver.hpp"
+#include "receiver/gnss_receiver.hpp"
 
 namespace deepnav {
 

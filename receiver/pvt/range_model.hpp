@@ -65,7 +65,7 @@ struct RangePrediction {
 
 /// Prediction at receiver time t_rx (receiver clock corrected by `clock_bias_m`) for a
 /// receiver at r_rx moving with v_rx (the velocity only moves the atmosphere's rate).
-/// `models`: the receiver's choice (ScalarReceiver::atmosphere(), the same the PVT
+/// `models`: the receiver's choice (GnssReceiver::atmosphere(), the same the PVT
 /// applies); `iono` is used only with the Klobuchar model and may be invalid (no
 /// ionosphere applied).
 RangePrediction predict_range(const Ephemeris& eph, const GpsTime& t_rx, double clock_bias_m,

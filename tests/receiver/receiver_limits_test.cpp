@@ -6,9 +6,11 @@
 #include <atomic>
 #include <chrono>
 #include <random>
+#include <stdexcept>
+#include <vector>
 
 #include "receiver/acquisition/acquisition.hpp"
-#include "receiver/scalar_receiver.hpp"
+#include "receiver/gnss_receiver.hpp"
 #include "receiver/worker_threads.hpp"
 
 namespace deepnav {
@@ -53,7 +55,7 @@ TEST(ReceiverLimits, AGapOfAnyLengthCostsNoEpochPerStep) {
   // grid resumes after the gap instead of making an epoch for every second of it.
   GappedNoise source(2455200, 1000000000000000, 1023000);
   ReceiverConfig cfg;
-  ScalarReceiver receiver(cfg, source);
+  GnssReceiver receiver(cfg, source);
   std::vector<std::int64_t> epochs;
   const auto start = std::chrono::steady_clock::now();
   receiver.run([&](const ReceiverEpoch& e) { epochs.push_back(e.sample_index); });
@@ -67,7 +69,7 @@ TEST(ReceiverLimits, AGapOfAnyLengthCostsNoEpochPerStep) {
 TEST(ReceiverLimits, ProcessedDurationCountsFromTheFirstSample) {
   // A stream whose first sample is 10^9 (summary.json's duration_s once counted from 0).
   GappedNoise source(409200, 0, 0, 1000000000);
-  ScalarReceiver receiver(ReceiverConfig{}, source);
+  GnssReceiver receiver(ReceiverConfig{}, source);
   EXPECT_EQ(receiver.processed_s(), 0.0);
   receiver.run([](const ReceiverEpoch&) {});
   EXPECT_DOUBLE_EQ(receiver.processed_s(), 0.2);
@@ -77,7 +79,7 @@ TEST(ReceiverLimits, SettingsOutsideTheReceiversRangeAreErrors) {
   GappedNoise source(100, 0, 0);
   const auto error_of = [&](const ReceiverConfig& cfg) -> std::string {
     try {
-      ScalarReceiver r(cfg, source);
+      GnssReceiver r(cfg, source);
     } catch (const std::invalid_argument& e) {
       return e.what();
     }
@@ -105,6 +107,24 @@ TEST(WorkerThreads, RunsEveryPostedTaskAndJoins) {
     for (int i = 0; i < 100; ++i) pool.post([&] { ++done; });
   }
   EXPECT_EQ(done.load(), 100);
+}
+
+TEST(WorkerThreads, RunInSharesDoesEveryItemOnceAndRethrows) {
+  WorkerThreads pool(3, "test worker");
+  for (WorkerThreads* workers : {&pool, static_cast<WorkerThreads*>(nullptr)}) {
+    std::vector<int> done(10, 0);
+    run_in_shares(workers, done.size(), [&](std::size_t i) { ++done[i]; });
+    EXPECT_EQ(done, std::vector<int>(10, 1));
+  }
+  // Four shares of two items: the third stops at its first item's exception, the others
+  // finish before it is rethrown.
+  std::vector<std::atomic<int>> reached(8);
+  const auto fail_at_4 = [&](std::size_t i) {
+    ++reached[i];
+    if (i == 4) throw std::runtime_error("item 4");
+  };
+  EXPECT_THROW(run_in_shares(&pool, reached.size(), fail_at_4), std::runtime_error);
+  for (std::size_t i = 0; i < reached.size(); ++i) EXPECT_EQ(reached[i].load(), i == 5 ? 0 : 1) << i;
 }
 
 TEST(Acquisition, SettingsThatWouldExhaustMemoryAreErrors) {

@@ -19,7 +19,7 @@
 #include "ins/imu_file.hpp"
 #include "receiver/tracking/correlator.hpp"
 #include "receiver/sources/file_sample_source.hpp"
-#include "receiver/scalar_receiver.hpp"
+#include "receiver/gnss_receiver.hpp"
 #include "signals/gps_constants.hpp"
 #include "signals/sim/if_synthesizer.hpp"
 #include "signals/rinex_nav.hpp"

@@ -13,7 +13,7 @@
 
 #include "aiding/navigation_session.hpp"
 #include "receiver/sources/file_sample_source.hpp"
-#include "receiver/scalar_receiver.hpp"
+#include "receiver/gnss_receiver.hpp"
 #include "signals/sim/if_synthesizer.hpp"
 #include "signals/rinex_nav.hpp"
 #include "signals/sim/scenario.hpp"

@@ -143,7 +143,7 @@ aiding::NavigationSessionConfig session_config(const RunOptions& o, aiding::NavM
 
 nlohmann::json run_summary(const RunOptions& o, const OpenedSource& opened, aiding::NavigationSession& session,
                            const RunStatistics& stats, bool scored, const ImuIntegrity& imu_integrity) {
-  ScalarReceiver& receiver = session.receiver();
+  GnssReceiver& receiver = session.receiver();
   nlohmann::json summary = {
       {"input", opened.input},
       // What the run processed: a file's length only when it was read to the end (not after

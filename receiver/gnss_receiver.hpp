@@ -1,13 +1,12 @@
 #pragma once
-// The scalar receiver: cold-start acquisition, one TrackingChannel per satellite
-// steered by its own ScalarLoopController, navigation data, observables at common
-// receiver epochs, and PVT. Lost channels are released and their satellites searched
-// again every few seconds.
-//
-// Receiver time: once four channels carry a transmit time, the clock is set to the
-// latest transmit time plus 68 ms at that sample and then advances with the sample
-// count; after every fix it is steered by the estimated bias, so pseudoranges keep
-// within a few metres of the clock bias the solution reports.
+// The GNSS receiver (today GPS L1 C/A; named for the systems it is built to take): acquisition at the start and again every few seconds while a
+// channel is free (AcquisitionSchedule); one ReceiverChannel per satellite, closed by its
+// own scalar loops or, given a ChannelAiding, steered by an outside filter (ultra-tight
+// aiding, see tracking/channel_controller.hpp); the navigation data in use
+// (BroadcastNavigation); the receiver clock and the GPS week (ReceiverClock); observables
+// at common receiver epochs, and PVT. Lost channels are released; their satellites are
+// searched again by the acquisition, and with an outside filter also in a narrow window
+// where the filter predicts them (GuidedReacquisition).
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -17,11 +16,12 @@
 #include <vector>
 
 #include "receiver/acquisition/acquisition.hpp"
-#include "receiver/navdata/nav_decoder.hpp"
+#include "receiver/acquisition/guided_reacquisition.hpp"
 #include "receiver/pvt/pvt_solver.hpp"
+#include "receiver/receiver_channel.hpp"
 #include "receiver/sources/sample_source.hpp"
-#include "receiver/tracking/tracking_channel.hpp"
 #include "receiver/tracking/channel_controller.hpp"
+#include "receiver/tracking/tracking_channel.hpp"
 #include "receiver/tracking/tracking_loops.hpp"
 #include "signals/rinex_nav.hpp"
 
@@ -33,37 +33,6 @@ inline constexpr unsigned kMaxReceiverThreads = 256;
 /// end samples faster than 200 Msps (a 10 ms block would then be 2 million samples).
 inline constexpr double kMinSampleRate_hz = 1.0e6;
 inline constexpr double kMaxSampleRate_hz = 2.0e8;
-
-/// Filter-guided reacquisition: with an outside filter that predicts the satellites the
-/// receiver does not track (ChannelAiding::predict_untracked), each is searched in a narrow
-/// window with long integrations (GuidedSearch) and a channel started where it is found,
-/// its bit edges and time taken from the prediction, so the filter steers it at once.
-struct GuidedReacquisitionConfig {
-  bool enabled = true;
-  GuidedSearchConfig search;
-  double interval_s = 1.0;          ///< how often the filter is asked for predictions
-  double retry_after_s = 4.0;       ///< a satellite not found, or dropped, is searched again after this
-  /// A guided channel that the filter's lock criterion (SignalLockReport) has not confirmed
-  /// within this is dropped: the detection was noise or another satellite's code.
-  double confirm_within_s = 8.0;
-  int max_searches = 3;             ///< at once (each costs about as much as 2-3 tracking channels)
-  /// A detection this far (dB) below a tracked satellite whose Doppler lies within two
-  /// Doppler steps of it, modulo the code's 1 kHz lines, may be that satellite's
-  /// cross-correlation and is rejected (the FFT acquisition's rule, for one candidate).
-  double cross_correlation_margin_db = 18.0;
-};
-
-/// One guided search, as products and diagnostics report it.
-struct GuidedSearchRecord {
-  enum class Outcome { not_found, cross_correlation, confirmed, dropped };
-  int prn = 0;
-  double started_s = 0.0;   ///< sample time the search began
-  double ended_s = 0.0;     ///< when its outcome was known (for a found signal: confirmed or dropped)
-  double elevation_deg = 0.0;
-  Outcome outcome = Outcome::not_found;
-  std::optional<GuidedDetection> detection;
-};
-const char* to_string(GuidedSearchRecord::Outcome outcome);
 
 struct ReceiverConfig {
   int channels = 12;
@@ -92,24 +61,6 @@ struct ReceiverConfig {
   AtmosphereModels atmosphere;
 };
 
-/// Length of the carrier-phase window an observation's Doppler is averaged over.
-inline constexpr double kDopplerWindow_s = 0.1;
-
-struct ChannelObservation {
-  int prn = 0;
-  double pseudorange_m = 0.0;
-  double doppler_hz = 0.0;
-  double carrier_phase_cycles = 0.0;
-  double cn0_dbhz = 0.0;
-  double lock_time_s = 0.0;
-  /// Samples were lost since the previous epoch: the channel coasted across the gap on its
-  /// NCOs, so the carrier phase may have slipped (RINEX loss-of-lock indicator).
-  bool after_gap = false;
-  /// The Doppler's time minus the epoch's: it is a mean over the last kDopplerWindow_s of
-  /// tracking, so it refers to the middle of that window (about -55 ms).
-  double doppler_offset_s = 0.0;
-};
-
 /// Everything the receiver knows at one observation epoch.
 struct ReceiverEpoch {
   std::int64_t sample_index = 0;
@@ -127,30 +78,11 @@ inline std::map<int, double> cn0_by_prn(const ReceiverEpoch& epoch) {
   return cn0;
 }
 
-struct ChannelSnapshot {
-  int prn;
-  ChannelState state;
-  double cn0_dbhz;  ///< the channel's estimate, or the outside filter's (SignalLockReport) for a channel it steers
-  bool has_ephemeris;
-  /// Steered by an outside filter that judges the signal itself: its lock criterion
-  /// (none: the channel's own loss rule applies).
-  std::optional<bool> aided_lock;
-};
-
-/// What a channel's navigation data decoding achieved (for products and diagnostics).
-struct NavigationStatus {
-  int prn = 0;
-  double tracked_s = 0.0;
-  int subframes_decoded = 0;
-  int parity_failures = 0;    ///< preamble candidates whose words failed parity
-  bool ephemeris = false;     ///< decoded from the signal (not assisted)
-};
-
-class ScalarReceiver {
+class GnssReceiver {
  public:
-  ScalarReceiver(ReceiverConfig config, SampleSource& source);
-  ~ScalarReceiver();
-  /// Runs to the end of the source; `on_epoch` sees every observation epoch, `on_epochs`
+  GnssReceiver(ReceiverConfig config, SampleSource& source);
+  ~GnssReceiver();
+  /// Runs to the end of the source; `on_epoch` sees every observation epoch, `on_correlation`
   /// (optional) every correlator epoch of every channel.
   void run(const std::function<void(const ReceiverEpoch&)>& on_epoch,
            const std::function<void(const CorrelatorEpoch&, const ChannelSnapshot&)>& on_correlation = {},

@@ -1,0 +1,425 @@
+#include "receiver/gnss_receiver.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <thread>
+
+#include "receiver/acquisition/acquisition_schedule.hpp"
+#include "receiver/navdata/broadcast_navigation.hpp"
+#include "receiver/receiver_clock.hpp"
+#include "receiver/tracking/correlator.hpp"
+#include "receiver/worker_threads.hpp"
+#include "signals/gps_constants.hpp"
+
+namespace deepnav {
+namespace {
+
+/// The configuration checked against the source, with the source's sample rate and IF.
+ReceiverConfig checked(ReceiverConfig cfg, const SampleSource& src) {
+  const double fs = src.sample_rate_hz();
+  const double if_hz = src.intermediate_frequency_hz();
+  cfg.acquisition.sample_rate_hz = fs;
+  cfg.acquisition.if_hz = if_hz;
+  cfg.tracking.sample_rate_hz = fs;
+  cfg.tracking.if_hz = if_hz;
+  if (!(fs >= kMinSampleRate_hz && fs <= kMaxSampleRate_hz))
+    throw std::invalid_argument(fmt::format("sample rate {} Hz is outside the receiver's [{:g}, {:g}] Hz", fs,
+                                            kMinSampleRate_hz, kMaxSampleRate_hz));
+  if (!(std::abs(if_hz) < fs / 2))
+    throw std::invalid_argument(
+        fmt::format("intermediate frequency {} Hz is not below half the sample rate ({} Hz)", if_hz, fs / 2));
+  if (!(cfg.observation_rate_hz >= 0.01 && cfg.observation_rate_hz <= 50.0))
+    throw std::invalid_argument(fmt::format("observation rate {} Hz is outside [0.01, 50] Hz", cfg.observation_rate_hz));
+  if (cfg.channels < 1 || cfg.channels > gps::kMaxPrn)
+    throw std::invalid_argument(fmt::format("{} tracking channels: expected 1 to {}", cfg.channels, gps::kMaxPrn));
+  return cfg;
+}
+
+/// The workers that track channels besides the calling thread, which takes one share of
+/// the channels itself: `threads` - 1 of them (none for one thread).
+std::unique_ptr<WorkerThreads> channel_workers(unsigned threads) {
+  if (threads > kMaxReceiverThreads)
+    throw std::invalid_argument(fmt::format("{} channel threads asked for: at most {} (0: one per core)", threads,
+                                            kMaxReceiverThreads));
+  const unsigned n = threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : threads;
+  return n > 1 ? std::make_unique<WorkerThreads>(n - 1, "channel worker") : nullptr;
+}
+
+/// The observation epochs: every `step` samples from the run's first sample on. No epoch
+/// lies inside a gap in the samples (it has none): the grid resumes at its first point at
+/// or after the samples come back, one step however long the gap.
+class EpochGrid {
+ public:
+  explicit EpochGrid(std::int64_t step) : step_(step) {}
+  void start(std::int64_t first_sample) { next_ = first_sample + step_; }
+  void resume_at(std::int64_t sample) {
+    if (next_ >= 0 && next_ < sample) next_ += (sample - next_ + step_ - 1) / step_ * step_;
+  }
+  /// The next epoch, when it lies at or before `end`; the grid then moves past it.
+  std::optional<std::int64_t> next_until(std::int64_t end) {
+    if (next_ < 0 || next_ > end) return std::nullopt;
+    const std::int64_t epoch = next_;
+    next_ += step_;
+    return epoch;
+  }
+
+ private:
+  std::int64_t step_;
+  std::int64_t next_ = -1;
+};
+
+}  // namespace
+
+struct GnssReceiver::Impl {
+  ReceiverConfig cfg;
+  SampleSource& src;
+  double fs;
+  ChannelLoopSettings loops;
+  ReceiverClock clock;
+  std::unique_ptr<WorkerThreads> workers;  ///< channel workers (ReceiverConfig::threads > 1)
+  AcquisitionSchedule acquisition;
+  GuidedReacquisition guided;
+  BroadcastNavigation navigation;
+  PvtSolver pvt;
+  ChannelAiding* aiding = nullptr;  ///< an outside filter driving channels, or none
+  std::vector<ReceiverChannel> channels;
+  std::vector<std::vector<ChannelEpochRecord>> records;  ///< per channel, for the block being tracked
+  std::vector<int> tracked_prns;  ///< channels of the block just tracked, lost ones included
+  std::vector<int> acquired;
+  std::map<int, NavigationStatus> finished_status;  ///< of channels already released
+  std::int64_t first_index = -1, end_index = -1;    ///< span of the samples read so far
+  bool gap_since_epoch = false;                     ///< samples lost since the last observation epoch
+
+  Impl(ReceiverConfig c, SampleSource& s)
+      : cfg(checked(std::move(c), s)),
+        src(s),
+        fs(s.sample_rate_hz()),
+        loops{cfg.tracking, cfg.pll_order, cfg.pull_in, cfg.tracking_loops},
+        clock(fs, cfg.reference_week, cfg.reference_week_origin),
+        workers(channel_workers(cfg.threads)),
+        acquisition(cfg.acquisition, cfg.reacquire_interval_s),
+        guided(cfg.guided, fs, cfg.tracking.if_hz),
+        pvt(cfg.pvt, cfg.atmosphere) {}
+
+  int free_channels() const { return cfg.channels - static_cast<int>(channels.size()); }
+  bool channel_free() const { return free_channels() > 0; }
+  bool tracked(int prn) const {
+    return std::any_of(channels.begin(), channels.end(), [&](const ReceiverChannel& ch) { return ch.prn() == prn; });
+  }
+
+  ReceiverChannel& start_channel(const ChannelStart& start) {
+    acquired.push_back(start.prn);
+    return channels.emplace_back(loops, start, aiding ? aiding->controller_for(start.prn) : nullptr,
+                                 clock.resolution_week());
+  }
+
+  /// Whatever the channel leaves behind when it is released.
+  void end_channel(const ReceiverChannel& ch) {
+    ch.add_to(finished_status[ch.prn()]);
+    if (ch.steered()) ch.steered()->channel_ended();
+  }
+
+  /// Searches `samples` (starting at absolute index `first`) for satellites neither tracked
+  /// nor under a guided search, and starts a channel on each found, strongest first.
+  void acquire(const std::vector<Sample>& samples, std::int64_t first) {
+    if (!channel_free()) return;
+    std::vector<int> prns;
+    for (int prn = 1; prn <= gps::kMaxPrn; ++prn)
+      if (!tracked(prn) && !guided.searching(prn) && acquisition.searchable(prn)) prns.push_back(prn);
+    if (prns.empty()) return;
+    for (const AcquisitionResult& r : acquisition.search(samples, prns)) {
+      if (!channel_free()) break;
+      spdlog::debug("PRN {:2d} acquired: {:.1f} Hz, {:.2f} chips, {:.1f} dB-Hz", r.prn, r.doppler_hz, r.code_phase_chips,
+                    r.cn0_dbhz);
+      start_channel(ChannelStart{r.prn, r.doppler_hz, r.code_phase_chips, first, 0, std::nullopt});
+    }
+  }
+
+  /// The run's first samples: a cold start.
+  void cold_start(const SampleBlock& block) {
+    if (const std::string problem = if_sample_problem(block.samples, src.is_real()); !problem.empty())
+      spdlog::warn("the first {} samples: {}", block.samples.size(), problem);
+    acquire(block.samples, block.first_sample_index);
+  }
+
+  /// Samples were lost before this block (a stream gap): the channels carry their NCOs
+  /// across it, the re-acquisition window restarts after it and the next observables are
+  /// flagged.
+  void after_gap(std::int64_t first_after) {
+    acquisition.restart_window();
+    gap_since_epoch = true;
+    if (src.gap_sizes_exact() || channels.empty()) return;
+    // A gap known only roughly leaves every code phase off by its error: start over from
+    // acquisition as soon as the window after the gap is full.
+    spdlog::info("a gap of estimated size at sample {}: every channel re-acquires", first_after);
+    for (const ReceiverChannel& ch : channels) end_channel(ch);
+    channels.clear();
+    guided.abandon();
+    acquisition.search_when_full();
+  }
+
+  /// What the outside filter published for its channels since they last tracked.
+  void collect_published() {
+    for (ReceiverChannel& ch : channels) ch.collect_published(navigation.ephemeris(ch.prn()), clock.is_set());
+  }
+
+  /// Every channel over one block (in parallel on the worker threads: channels are
+  /// independent within a block, an outside filter's controllers included), then what
+  /// concerns the whole receiver: ephemerides decoded, correlator epochs reported, guided
+  /// channels settled, lost channels released.
+  void track(const SampleBlock& block,
+             const std::function<void(const CorrelatorEpoch&, const ChannelSnapshot&)>& on_correlation) {
+    records.resize(channels.size());
+    for (auto& r : records) r.clear();
+    tracked_prns.clear();
+    for (const ReceiverChannel& ch : channels) tracked_prns.push_back(ch.prn());
+    const bool clock_set = clock.is_set();
+    run_in_shares(workers.get(), channels.size(), [&](std::size_t i) {
+      channels[i].track(block, navigation.ephemeris(channels[i].prn()), clock_set, records[i]);
+    });
+    for (std::size_t i = 0; i < channels.size(); ++i) {
+      for (const ChannelEpochRecord& r : records[i]) {
+        if (r.new_ephemeris) navigation.take_decoded(channels[i].prn(), channels[i].decoder());
+        if (on_correlation) on_correlation(r.epoch, r.snapshot);
+      }
+    }
+    settle_guided_channels(static_cast<double>(block_end(block)) / fs);
+    release_lost_channels();
+  }
+
+  static std::int64_t block_end(const SampleBlock& block) {
+    return block.first_sample_index + static_cast<std::int64_t>(block.samples.size());
+  }
+
+  /// Confirms the guided channels the filter's lock criterion now holds; marks for release
+  /// those it has not held in time.
+  void settle_guided_channels(double t_s) {
+    for (ReceiverChannel& ch : channels) {
+      const bool locked = ch.take_aided_lock();
+      if (guided.settle(ch.prn(), locked, ch.tracking().state() == ChannelState::lost, t_s)) ch.release();
+    }
+  }
+
+  void release_lost_channels() {
+    const auto gone = [](const ReceiverChannel& ch) { return ch.tracking().state() == ChannelState::lost || ch.released(); };
+    for (const ReceiverChannel& ch : channels) {
+      if (!gone(ch)) continue;
+      if (!ch.released()) spdlog::info("PRN {:2d}: loss of lock", ch.prn());
+      end_channel(ch);
+    }
+    std::erase_if(channels, gone);
+  }
+
+  /// The week from the first subframe 1 any channel decoded.
+  void take_signal_week(std::int64_t now) {
+    if (clock.signal_week()) return;
+    for (const ReceiverChannel& ch : channels) {
+      if (const auto& wn = ch.decoder().week_number()) {
+        clock.take_broadcast_week(ch.prn(), wn->wn10, wn->subframe_start_sow, now);
+        return;
+      }
+    }
+  }
+
+  /// The channels as the outside filter sees them after a block ending at `end`.
+  BlockSnapshot snapshot(std::int64_t end) const {
+    BlockSnapshot s;
+    s.end_sample = end;
+    s.sample_rate_hz = fs;
+    s.clock = clock.reference();
+    s.iono = navigation.iono();
+    s.tracked_prns = tracked_prns;
+    for (const ReceiverChannel& ch : channels) {
+      ChannelStatus c;
+      c.prn = ch.prn();
+      c.state = ch.tracking().state();
+      c.bit_synced = ch.tracking().bit_edge_period().has_value();
+      c.decoder_synchronised = ch.decoder().synchronised();
+      c.cn0_dbhz = ch.tracking().cn0_dbhz();
+      c.replica_transmit_sow = ch.transmit_time_sow(end);
+      if (const Ephemeris* e = navigation.ephemeris(c.prn)) c.ephemeris = *e;
+      s.channels.push_back(std::move(c));
+    }
+    return s;
+  }
+
+  /// Filter-guided reacquisition after the block ending at snap.end_sample: the searches
+  /// under way take the block, those ended start a channel or are recorded, and new ones
+  /// are scheduled.
+  void guide(const SampleBlock& block, const BlockSnapshot& snap) {
+    for (const GuidedSearchTask& ended : guided.advance(block)) {
+      if (const auto start = guided.conclude(ended, snap.end_sample, free_channels(), tracked_signals()))
+        start_guided_channel(*start);
+    }
+    guided.schedule(snap, free_channels(), [&](const GpsTime& now) { return untracked_satellites(now); }, *aiding);
+  }
+
+  std::vector<TrackedSignal> tracked_signals() const {
+    std::vector<TrackedSignal> out;
+    for (const ReceiverChannel& ch : channels) out.push_back({ch.last_doppler_hz(), ch.tracking().cn0_dbhz()});
+    return out;
+  }
+
+  /// The satellites the acquisition may search that no channel tracks, with the ephemeris
+  /// in use for each (decoded, else assisted at `now`); those without one are left out.
+  std::vector<UntrackedSatellite> untracked_satellites(const GpsTime& now) const {
+    std::vector<UntrackedSatellite> out;
+    for (int prn = 1; prn <= gps::kMaxPrn; ++prn) {
+      if (tracked(prn) || !acquisition.searchable(prn)) continue;
+      if (auto e = navigation.available(prn, now)) out.push_back({prn, std::move(*e)});
+    }
+    return out;
+  }
+
+  void start_guided_channel(const GuidedChannelStart& s) {
+    // The channel's view carries the ephemeris the prediction used (as for any channel with
+    // a transmit time).
+    navigation.adopt(s.start.channel.prn, s.ephemeris);
+    start_channel(s.start.channel).seed_transmit_time(s.start.period0_transmit_sow);
+  }
+
+  /// A channel observable at an epoch: its transmit time known, and its own (not a guided
+  /// channel's prediction awaiting the filter's confirmation), and a signal behind it (not a
+  /// replica an outside filter holds open through a fade).
+  bool observable(const ReceiverChannel& ch) const {
+    if (!ch.decoder().synchronised() || guided.awaiting_confirmation(ch.prn())) return false;
+    return !(ch.tracking().lock_detector().ready() && ch.tracking().cn0_dbhz() < cfg.tracking.lost_cn0_dbhz);
+  }
+
+  /// Observables and PVT at sample `s`, common to all channels.
+  ReceiverEpoch observe(std::int64_t s) {
+    ReceiverEpoch ep;
+    ep.sample_index = s;
+    ep.t_s = static_cast<double>(s) / fs;
+    std::vector<const ReceiverChannel*> sent;
+    std::vector<double> transmit_sow;
+    for (const ReceiverChannel& ch : channels) {
+      if (ch.tracking().state() == ChannelState::tracking) ++ep.channels_tracking;
+      if (!observable(ch)) continue;
+      if (const auto t = ch.transmit_time_sow(s)) {
+        sent.push_back(&ch);
+        transmit_sow.push_back(*t);
+      }
+    }
+    clock.set_from_transmit_times(transmit_sow, s);
+    ep.t_rx = clock.at(s);
+    if (!ep.t_rx) return ep;
+    for (const ReceiverChannel* ch : sent) navigation.adopt_assisted(ch->prn(), *ep.t_rx);
+    std::vector<PseudorangeObservation> ranging;
+    for (std::size_t k = 0; k < sent.size(); ++k) {
+      const ChannelObservation o = sent[k]->observe(*ep.t_rx, transmit_sow[k], s, fs, gap_since_epoch);
+      ep.observations.push_back(o);
+      if (navigation.ephemeris(o.prn)) ranging.push_back({o.prn, o.pseudorange_m, o.doppler_hz, o.cn0_dbhz});
+    }
+    ep.pvt = pvt.solve(*ep.t_rx, ranging, navigation.in_use(), navigation.iono());
+    // Steer the receiver clock so that pseudoranges stay near the geometric ranges.
+    if (ep.pvt.valid) clock.steer(ep.pvt.clock_bias_m);
+    return ep;
+  }
+};
+
+GnssReceiver::GnssReceiver(ReceiverConfig config, SampleSource& source)
+    : impl_(std::make_unique<Impl>(std::move(config), source)) {}
+GnssReceiver::~GnssReceiver() = default;
+
+void GnssReceiver::run(const std::function<void(const ReceiverEpoch&)>& on_epoch,
+                      const std::function<void(const CorrelatorEpoch&, const ChannelSnapshot&)>& on_correlation,
+                      const std::function<void(double)>& progress) {
+  Impl& m = *impl_;
+  const auto block_samples = static_cast<std::size_t>(std::llround(m.fs / 100.0));  // 10 ms blocks
+  EpochGrid epochs(static_cast<std::int64_t>(std::llround(m.fs / m.cfg.observation_rate_hz)));
+  SampleBlock block;
+  bool first = true;
+  // The first read is one acquisition window: searched, then tracked like any block.
+  while (m.src.read_block(block, first ? m.acquisition.window_samples() : block_samples)) {
+    if (m.end_index >= 0 && block.first_sample_index != m.end_index) {
+      m.after_gap(block.first_sample_index);
+      epochs.resume_at(block.first_sample_index);
+    }
+    const std::int64_t end = Impl::block_end(block);
+    if (m.first_index < 0) m.first_index = block.first_sample_index;
+    m.end_index = end;
+    prepare_for_correlation(block);
+    if (first) {
+      m.cold_start(block);
+      epochs.start(block.first_sample_index);
+      first = false;
+    }
+    if (m.aiding) {
+      m.aiding->before_block();
+      m.collect_published();
+    }
+    m.track(block, on_correlation);
+    m.take_signal_week(end);
+    if (m.aiding) {
+      const BlockSnapshot snap = m.snapshot(end);
+      m.aiding->after_block(snap);
+      m.collect_published();
+      if (m.cfg.guided.enabled) m.guide(block, snap);
+    }
+    m.acquisition.keep(block, m.channel_free());
+    while (const auto epoch = epochs.next_until(end)) {
+      on_epoch(m.observe(*epoch));
+      m.gap_since_epoch = false;
+    }
+    const double t = static_cast<double>(end) / m.fs;
+    // New channels start at the window's first sample, already processed: they begin with
+    // the next block, carried across by their NCOs.
+    if (m.acquisition.reacquisition_due(t, m.channel_free()))
+      m.acquire(m.acquisition.window().in_order(), m.acquisition.window().first_index());
+    if (progress) progress(t);
+  }
+  for (const ReceiverChannel& ch : m.channels) {
+    spdlog::debug("PRN {:2d}: {} subframes decoded, {} preamble candidates failed parity, ephemeris {}", ch.prn(),
+                  ch.decoder().subframes_decoded(), ch.decoder().parity_failures(),
+                  ch.decoder().ephemeris() ? "yes" : "no");
+  }
+}
+
+void GnssReceiver::set_assisted_iono(const IonoParameters& iono) { impl_->navigation.set_assisted_iono(iono); }
+
+void GnssReceiver::set_assisted_ephemerides(const NavData& nav) {
+  impl_->navigation.set_assisted(nav);
+  impl_->clock.use_assisted_ephemerides(nav);
+}
+
+const Ephemeris* GnssReceiver::ephemeris(int prn) const { return impl_->navigation.ephemeris(prn); }
+
+void GnssReceiver::set_channel_aiding(ChannelAiding* aiding) {
+  impl_->aiding = aiding;
+  for (ReceiverChannel& ch : impl_->channels) ch.set_steered(aiding ? aiding->controller_for(ch.prn()) : nullptr);
+}
+
+std::optional<GpsTime> GnssReceiver::receiver_time(std::int64_t sample_index) const {
+  return impl_->clock.at(sample_index);
+}
+
+double GnssReceiver::sample_rate_hz() const { return impl_->fs; }
+double GnssReceiver::processed_s() const {
+  return impl_->first_index < 0 ? 0.0 : static_cast<double>(impl_->end_index - impl_->first_index) / impl_->fs;
+}
+double GnssReceiver::clock_steps_s() const { return impl_->clock.steps_s(); }
+
+std::map<int, Ephemeris> GnssReceiver::ephemerides() const { return impl_->navigation.in_use(); }
+std::map<int, Ephemeris> GnssReceiver::decoded_ephemerides() const { return impl_->navigation.decoded(); }
+IonoParameters GnssReceiver::iono() const { return impl_->navigation.iono(); }
+const AtmosphereModels& GnssReceiver::atmosphere() const { return impl_->cfg.atmosphere; }
+UtcParameters GnssReceiver::utc() const { return impl_->navigation.utc(); }
+std::vector<int> GnssReceiver::acquired_prns() const { return impl_->acquired; }
+std::optional<int> GnssReceiver::signal_week() const { return impl_->clock.signal_week(); }
+
+const std::vector<GuidedSearchRecord>& GnssReceiver::guided_searches() const { return impl_->guided.records(); }
+
+std::vector<NavigationStatus> GnssReceiver::navigation_status() const {
+  std::map<int, NavigationStatus> all = impl_->finished_status;
+  for (const ReceiverChannel& ch : impl_->channels) ch.add_to(all[ch.prn()]);
+  std::vector<NavigationStatus> out;
+  for (const auto& [prn, s] : all) out.push_back(s);
+  return out;
+}
+
+}  // namespace deepnav

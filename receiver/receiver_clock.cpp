@@ -1,0 +1,106 @@
+#include "receiver/receiver_clock.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "receiver/build_date.hpp"
+#include "signals/gps_constants.hpp"
+#include "signals/lnav_message.hpp"
+
+namespace deepnav {
+
+ReceiverClock::ReceiverClock(double sample_rate_hz, int reference_week, std::string reference_week_origin)
+    : fs_(sample_rate_hz), reference_week_(reference_week), reference_week_origin_(std::move(reference_week_origin)) {
+  if (reference_week_ < 0)
+    throw std::invalid_argument(fmt::format("{} {} is negative", reference_week_origin_, reference_week_));
+}
+
+void ReceiverClock::use_assisted_ephemerides(const NavData& nav) {
+  assisted_epoch_.reset();
+  if (!nav.ephemerides.empty()) {
+    const Ephemeris& e = nav.ephemerides.front();
+    assisted_epoch_ = GpsTime{e.week, e.toe_s};
+  }
+  assisted_source_ = nav.source.empty() ? "assistance" : nav.source;
+}
+
+std::optional<GpsTime> ReceiverClock::reference_epoch() const {
+  if (reference_week_ > 0) return GpsTime{reference_week_, kSecondsPerWeek / 2};
+  return assisted_epoch_;
+}
+
+std::string ReceiverClock::reference_origin() const {
+  if (reference_week_ > 0) return fmt::format("{} {}", reference_week_origin_, reference_week_);
+  if (assisted_epoch_)
+    return fmt::format("the assisted ephemerides ({}, week {})", assisted_source_, assisted_epoch_->week);
+  return fmt::format("the build date (week {})", build_time().week);
+}
+
+int ReceiverClock::resolution_week() const {
+  const auto r = reference_epoch();
+  return r ? r->week : build_time().week;
+}
+
+void ReceiverClock::take_broadcast_week(int prn, int wn10, double subframe_start_sow, std::int64_t now) {
+  if (signal_week_) return;
+  const int week = lnav::resolve_week(wn10, resolution_week());
+  signal_week_ = SignalWeek{week, subframe_start_sow};
+  spdlog::info("GPS week {} (PRN {:2d} broadcasts week number {} modulo 1024; resolved against {})", week, prn, wn10,
+               reference_origin());
+  const auto contradiction = [&](double off_s) {
+    return fmt::format("the GPS week of {} contradicts the signal: PRN {} broadcasts week number {} (modulo 1024), "
+                       "i.e. week {} ({:.1f} days off){}",
+                       reference_origin(), prn, wn10, week, off_s / 86400.0,
+                       reference_week_ > 0
+                           ? fmt::format(": give {} {} or leave it out", reference_week_origin_, week)
+                           : std::string(": a navigation file of another day?"));
+  };
+  // A week either side is the data crossing a week boundary, not a contradiction.
+  if (reference_week_ > 0 && std::abs(week - reference_week_) > 1)
+    throw std::runtime_error(contradiction((week - reference_week_) * kSecondsPerWeek));
+  if (reference_) {
+    // The clock set from the reference, now: some seconds after the subframe was sent.
+    const double off_s = reference_->at(now).seconds_since(GpsTime{week, subframe_start_sow});
+    if (std::abs(off_s) > kSecondsPerWeek / 2) throw std::runtime_error(contradiction(off_s));
+  }
+}
+
+std::optional<int> ReceiverClock::signal_week() const {
+  if (!signal_week_) return std::nullopt;
+  return signal_week_->week;
+}
+
+void ReceiverClock::set_from_transmit_times(const std::vector<double>& transmit_sow, std::int64_t sample) {
+  if (reference_ || transmit_sow.size() < kTransmitTimesToSetClock) return;
+  // The clock needs the week: the signal's own, else a reference near the data (never a
+  // guess that would put a product years off).
+  const std::optional<GpsTime> near =
+      signal_week_ ? std::optional<GpsTime>(GpsTime{signal_week_->week, signal_week_->subframe_start_sow})
+                   : reference_epoch();
+  if (!near) return;
+  const double latest = *std::max_element(transmit_sow.begin(), transmit_sow.end());
+  // The week of `near` or a neighbour, whichever puts the time closest to it.
+  GpsTime t = GpsTime::normalized(near->week, latest + kInitialTravelTime_s);
+  const double off_s = t.seconds_since(*near);
+  if (off_s > kSecondsPerWeek / 2) t.week -= 1;
+  if (off_s < -kSecondsPerWeek / 2) t.week += 1;
+  reference_ = ReceiverClockReference{t, sample, fs_};
+}
+
+void ReceiverClock::steer(double clock_bias_m) {
+  if (!reference_ || !(std::abs(clock_bias_m) > kClockSteerAbove_m)) return;
+  const double step_s = -clock_bias_m / gps::kSpeedOfLight_mps;
+  reference_->reference = reference_->reference.plus_seconds(step_s);
+  steps_s_ += step_s;
+}
+
+std::optional<GpsTime> ReceiverClock::at(std::int64_t sample) const {
+  if (!reference_) return std::nullopt;
+  return reference_->at(sample);
+}
+
+}  // namespace deepnav

@@ -1,0 +1,94 @@
+#pragma once
+// The receiver clock and the GPS week it runs in.
+//
+// The clock: once four channels carry a transmit time, it is set at that sample to the
+// latest transmit time plus 68 ms (a typical travel time from a satellite, so that the first
+// pseudoranges are near the ranges), and then advances with the sample count:
+// t_rx(s) = reference + (s - reference_sample) / fs. After a fix it is steered by the
+// estimated bias, so that pseudoranges keep near the geometric ranges.
+//
+// The week: the signal broadcasts it modulo 1024 (LNAV's 10-bit WN, in subframe 1), so a
+// week near the data resolves it: the reference week given (ReceiverConfig::reference_week),
+// else the epoch of the assisted ephemerides, else the build date (data within about ten
+// years of it). With a reference given or assisted, the clock is set as soon as four
+// transmit times exist and checked against the first subframe 1 decoded; from the build
+// date alone it waits for that subframe, so that no product carries a guessed week.
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ins/gps_time.hpp"
+#include "receiver/tracking/channel_controller.hpp"
+#include "signals/rinex_nav.hpp"
+
+namespace deepnav {
+
+/// Travel time of the signal the clock is set with (about 20,000 km).
+inline constexpr double kInitialTravelTime_s = 0.068;
+/// A fix's clock bias beyond this (3.3 us) steers the clock; a smaller one is left to the
+/// solution's clock estimate.
+inline constexpr double kClockSteerAbove_m = 1e3;
+/// Transmit times (channels) the clock is set with.
+inline constexpr std::size_t kTransmitTimesToSetClock = 4;
+
+class ReceiverClock {
+ public:
+  /// `reference_week`: a GPS week near the data (0: none), named `reference_week_origin` in
+  /// messages; a negative one is std::invalid_argument.
+  ReceiverClock(double sample_rate_hz, int reference_week, std::string reference_week_origin);
+
+  /// Assisted ephemerides: without a reference week, the first one's epoch is the week
+  /// near the data (replacing what an earlier call gave).
+  void use_assisted_ephemerides(const NavData& nav);
+  /// The week LNAV's 10-bit week numbers are resolved against.
+  int resolution_week() const;
+
+  /// The first subframe 1 decoded: `prn` broadcast week number `wn10` in the subframe that
+  /// began at `subframe_start_sow`, decoded by sample `now`. Resolves the full week and
+  /// checks it against the reference week and against the clock when that was set before;
+  /// a contradiction is std::runtime_error naming the reference's origin. Later calls are
+  /// ignored: the first subframe 1 decides.
+  void take_broadcast_week(int prn, int wn10, double subframe_start_sow, std::int64_t now);
+  /// The full week the signal broadcast, once take_broadcast_week() has run.
+  std::optional<int> signal_week() const;
+
+  /// Sets the clock at `sample` from the channels' transmit times (seconds of week) there,
+  /// once there are four and a week near the data is known (the signal's, else the
+  /// reference); does nothing when the clock is already set.
+  void set_from_transmit_times(const std::vector<double>& transmit_sow, std::int64_t sample);
+  /// After a fix: steps the clock by the bias it estimated (m), when that exceeds
+  /// kClockSteerAbove_m.
+  void steer(double clock_bias_m);
+
+  bool is_set() const { return reference_.has_value(); }
+  /// Receiver time at an absolute sample index, once the clock is set.
+  std::optional<GpsTime> at(std::int64_t sample) const;
+  /// The clock's reference, once set.
+  const std::optional<ReceiverClockReference>& reference() const { return reference_; }
+  /// Sum of the steps the clock has been steered by since it was set (s).
+  double steps_s() const { return steps_s_; }
+
+ private:
+  /// A GPS time near the data that may set the clock before the signal's week is decoded.
+  std::optional<GpsTime> reference_epoch() const;
+  /// What the reference week came from, for messages.
+  std::string reference_origin() const;
+
+  struct SignalWeek {
+    int week = 0;                  ///< resolved full week
+    double subframe_start_sow = 0.0;  ///< start of the subframe 1 it came from
+  };
+
+  double fs_;
+  int reference_week_;
+  std::string reference_week_origin_;
+  std::optional<GpsTime> assisted_epoch_;  ///< the first assisted ephemeris's week and toe
+  std::string assisted_source_;
+  std::optional<SignalWeek> signal_week_;
+  std::optional<ReceiverClockReference> reference_;
+  double steps_s_ = 0.0;
+};
+
+}  // namespace deepnav
