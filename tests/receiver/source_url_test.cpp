@@ -19,50 +19,33 @@ std::string rejection(const std::string& input) {
   return {};
 }
 
+/// Checks that `input` parses to exactly `expected`.
+void expect_parsed(const std::string& input, const SourceUrl& expected) {
+  SCOPED_TRACE(input);
+  const std::optional<SourceUrl> url = parse_source_url(input);
+  ASSERT_TRUE(url);
+  EXPECT_EQ(url->scheme, expected.scheme);
+  EXPECT_EQ(url->host, expected.host);
+  EXPECT_EQ(url->port, expected.port);
+  EXPECT_EQ(url->listen, expected.listen);
+}
+
 TEST(SourceUrl, ParsesEveryScheme) {
-  const auto tcp = parse_source_url("tcp://localhost:5000");
-  ASSERT_TRUE(tcp);
-  EXPECT_EQ(tcp->scheme, StreamScheme::tcp);
-  EXPECT_EQ(tcp->host, "localhost");
-  EXPECT_EQ(tcp->port, 5000);
-  EXPECT_FALSE(tcp->listen);
-
-  const auto udp = parse_source_url("udp://192.168.1.20:1234");
-  ASSERT_TRUE(udp);
-  EXPECT_EQ(udp->scheme, StreamScheme::udp);
-  EXPECT_EQ(udp->host, "192.168.1.20");
-  EXPECT_EQ(udp->port, 1234);
-  EXPECT_FALSE(udp->listen);
-
-  const auto rtl = parse_source_url("rtltcp://sdr.local:1234");
-  ASSERT_TRUE(rtl);
-  EXPECT_EQ(rtl->scheme, StreamScheme::rtltcp);
-  EXPECT_EQ(rtl->host, "sdr.local");
-  EXPECT_EQ(rtl->port, 1234);
+  expect_parsed("tcp://localhost:5000", {StreamScheme::tcp, "localhost", 5000, false});
+  expect_parsed("udp://192.168.1.20:1234", {StreamScheme::udp, "192.168.1.20", 1234, false});
+  expect_parsed("rtltcp://sdr.local:1234", {StreamScheme::rtltcp, "sdr.local", 1234, false});
 }
 
 TEST(SourceUrl, SchemeNamesRoundTrip) {
-  for (const StreamScheme s : {StreamScheme::tcp, StreamScheme::udp, StreamScheme::rtltcp}) {
-    const auto url = parse_source_url(std::string(to_string(s)) + "://h:1");
-    ASSERT_TRUE(url) << to_string(s);
-    EXPECT_EQ(url->scheme, s);
-  }
+  for (const StreamScheme s : {StreamScheme::tcp, StreamScheme::udp, StreamScheme::rtltcp})
+    expect_parsed(std::string(to_string(s)) + "://h:1", {s, "h", 1, false});
   EXPECT_EQ(to_string(StreamScheme::rtltcp), "rtltcp");
 }
 
 TEST(SourceUrl, ListenFormBindsAndMayOmitHostAndPort) {
-  const auto on_host = parse_source_url("udp://@127.0.0.1:4000");
-  ASSERT_TRUE(on_host);
-  EXPECT_TRUE(on_host->listen);
-  EXPECT_EQ(on_host->host, "127.0.0.1");
-  EXPECT_EQ(on_host->port, 4000);
-
+  expect_parsed("udp://@127.0.0.1:4000", {StreamScheme::udp, "127.0.0.1", 4000, true});
   // No host: every interface; port 0: any free one (a listener only).
-  const auto anywhere = parse_source_url("udp://@:0");
-  ASSERT_TRUE(anywhere);
-  EXPECT_TRUE(anywhere->listen);
-  EXPECT_EQ(anywhere->host, "0.0.0.0");
-  EXPECT_EQ(anywhere->port, 0);
+  expect_parsed("udp://@:0", {StreamScheme::udp, "0.0.0.0", 0, true});
 }
 
 TEST(SourceUrl, FilePathsAreNotStreams) {
@@ -75,26 +58,17 @@ TEST(SourceUrl, FilePathsAreNotStreams) {
 
 TEST(SourceUrl, Ipv6AddressesNeedNoBrackets) {
   // The port follows the last ':', so the address keeps its own colons.
-  const auto url = parse_source_url("tcp://::1:5000");
-  ASSERT_TRUE(url);
-  EXPECT_EQ(url->host, "::1");
-  EXPECT_EQ(url->port, 5000);
-  const auto listen = parse_source_url("udp://@fe80::2:7000");
-  ASSERT_TRUE(listen);
-  EXPECT_EQ(listen->host, "fe80::2");
-  EXPECT_EQ(listen->port, 7000);
+  expect_parsed("tcp://::1:5000", {StreamScheme::tcp, "::1", 5000, false});
+  expect_parsed("udp://@fe80::2:7000", {StreamScheme::udp, "fe80::2", 7000, true});
 }
 
 TEST(SourceUrl, PortsOutsideOneTo65535AreRefused) {
-  EXPECT_EQ(rejection("tcp://host:0"), "--input 'tcp://host:0': port '0' is not a number in 1..65535");
-  EXPECT_EQ(rejection("tcp://host:65536"), "--input 'tcp://host:65536': port '65536' is not a number in 1..65535");
-  EXPECT_EQ(rejection("udp://host:-1"), "--input 'udp://host:-1': port '-1' is not a number in 1..65535");
-  EXPECT_EQ(rejection("tcp://host:50x"), "--input 'tcp://host:50x': port '50x' is not a number in 1..65535");
-  EXPECT_EQ(rejection("tcp://host:"), "--input 'tcp://host:': port '' is not a number in 1..65535");
-  EXPECT_EQ(rejection("rtltcp://host:99999999999999999999"),
-            "--input 'rtltcp://host:99999999999999999999': port '99999999999999999999' is not a number in 1..65535");
-  EXPECT_EQ(parse_source_url("tcp://host:65535")->port, 65535);
-  EXPECT_EQ(parse_source_url("tcp://host:1")->port, 1);
+  for (const std::string port : {"0", "65536", "-1", "+80", " 80", "50x", "", "99999999999999999999"}) {
+    const std::string input = "tcp://host:" + port;
+    EXPECT_EQ(rejection(input), "--input '" + input + "': port '" + port + "' is not a number in 1..65535");
+  }
+  expect_parsed("tcp://host:65535", {StreamScheme::tcp, "host", 65535, false});
+  expect_parsed("tcp://host:1", {StreamScheme::tcp, "host", 1, false});
 }
 
 TEST(SourceUrl, MissingPartsAreNamed) {
