@@ -6,14 +6,15 @@
 #include <cmath>
 #include <filesystem>
 
+#include "ins/input_error.hpp"
 #include "receiver/sources/file_sample_source.hpp"
-#include "signals/if_metadata.hpp"
+#include "receiver/sources/source_url.hpp"
 #include "receiver/stream/rtltcp_sample_source.hpp"
 #include "receiver/stream/tcp_sample_source.hpp"
-#include "signals/gps_constants.hpp"
-#include "receiver/stream/udp_sample_source.hpp"
 #include "receiver/stream/thread_safe_logging.hpp"
-#include "ins/input_error.hpp"
+#include "receiver/stream/udp_sample_source.hpp"
+#include "signals/gps_constants.hpp"
+#include "signals/if_metadata.hpp"
 
 namespace deepnav {
 namespace {
@@ -43,39 +44,13 @@ class StoppableFileSource final : public SampleSource {
   bool interrupted_ = false;
 };
 
-struct ParsedUrl {
-  std::string scheme, host;
-  std::uint16_t port = 0;
-  bool listen = false;
-};
-
-std::optional<ParsedUrl> parse_url(const std::string& input) {
-  ParsedUrl u;
-  const auto sep = input.find("://");
-  if (sep == std::string::npos) return std::nullopt;
-  u.scheme = input.substr(0, sep);
-  if (u.scheme != "tcp" && u.scheme != "udp" && u.scheme != "rtltcp") return std::nullopt;
-  std::string rest = input.substr(sep + 3);
-  if (!rest.empty() && rest.front() == '@') {
-    if (u.scheme != "udp") throw InputError(fmt::format("--input '{}': '@' (listen) is for udp:// only", input));
-    u.listen = true;
-    rest.erase(0, 1);
+/// The --format flag's sample format; the message names the flag and the accepted names.
+SampleFormat format_flag(const std::string& text) {
+  try {
+    return parse_sample_format(text);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(std::string("--format: ") + e.what());
   }
-  const auto colon = rest.rfind(':');
-  if (colon == std::string::npos)
-    throw InputError(fmt::format("--input '{}': expected {}://HOST:PORT", input, u.scheme));
-  u.host = rest.substr(0, colon);
-  if (u.host.empty()) {
-    if (!u.listen) throw InputError(fmt::format("--input '{}': the host is missing", input));
-    u.host = "0.0.0.0";
-  }
-  const std::string port = rest.substr(colon + 1);
-  char* end = nullptr;
-  const long p = std::strtol(port.c_str(), &end, 10);
-  if (port.empty() || *end != '\0' || p < 0 || p > 65535 || (p == 0 && !u.listen))
-    throw InputError(fmt::format("--input '{}': port '{}' is not a number in 1..65535", input, port));
-  u.port = static_cast<std::uint16_t>(p);
-  return u;
 }
 
 nlohmann::json stats_json(const StreamSampleSource& s) {
@@ -117,7 +92,7 @@ nlohmann::json stats_json(const StreamSampleSource& s) {
 }
 
 /// An rtl_tcp dongle: cu8 at --fs (default 2.048 Msps), tuned so that L1 lands at --if.
-std::unique_ptr<StreamSampleSource> open_rtltcp(const SourceRequest& r, const ParsedUrl& url) {
+std::unique_ptr<StreamSampleSource> open_rtltcp(const SourceRequest& r, const SourceUrl& url) {
   if (r.raw) throw InputError("--raw does not apply to rtltcp:// (the stream is always bare cu8)");
   if (r.format_given && r.format != "cu8")
     throw InputError(fmt::format("--format {}: an rtl_tcp server sends cu8 (leave --format out)", r.format));
@@ -149,7 +124,7 @@ std::unique_ptr<StreamSampleSource> open_rtltcp(const SourceRequest& r, const Pa
   }
 }
 
-OpenedSource open_stream(const SourceRequest& r, const ParsedUrl& url) {
+OpenedSource open_stream(const SourceRequest& r, const SourceUrl& url) {
   use_thread_safe_logger();
   StreamSourceSettings st;
   st.host = url.host;
@@ -161,14 +136,10 @@ OpenedSource open_stream(const SourceRequest& r, const ParsedUrl& url) {
   st.stop = r.stop;
   if (r.skip_s != 0.0) throw InputError("--skip applies to files only, not to streams");
   std::unique_ptr<StreamSampleSource> source;
-  if (url.scheme == "rtltcp") {
+  if (url.scheme == StreamScheme::rtltcp) {
     source = open_rtltcp(r, url);
   } else if (r.raw) {
-    try {
-      st.raw_format = parse_sample_format(r.format);
-    } catch (const std::invalid_argument& e) {
-      throw InputError(std::string("--format: ") + e.what());
-    }
+    st.raw_format = format_flag(r.format);
     if (!stream::streamable(st.raw_format))
       throw InputError(fmt::format("--format {}: streams carry ibyte, ishort, gr_complex, byte or cu8 (packed formats "
                                   "are read from files)", to_string(st.raw_format)));
@@ -179,7 +150,7 @@ OpenedSource open_stream(const SourceRequest& r, const ParsedUrl& url) {
   try {
     if (source) {
       // rtltcp:// opened above
-    } else if (url.scheme == "tcp") {
+    } else if (url.scheme == StreamScheme::tcp) {
       source = std::make_unique<TcpSampleSource>(st);
     } else {
       auto udp = std::make_unique<UdpSampleSource>(st);
@@ -189,7 +160,7 @@ OpenedSource open_stream(const SourceRequest& r, const ParsedUrl& url) {
   } catch (const std::exception& e) {
     throw InputError(e.what());
   }
-  if (!r.raw && url.scheme != "rtltcp" && r.fs_hz > 0.0 && r.fs_hz != source->sample_rate_hz())
+  if (!r.raw && url.scheme != StreamScheme::rtltcp && r.fs_hz > 0.0 && r.fs_hz != source->sample_rate_hz())
     throw InputError(fmt::format("--fs {} Hz disagrees with the sample rate {} Hz of the stream {}", r.fs_hz,
                                 source->sample_rate_hz(), source->url()));
   const std::string url_text = source->url();
@@ -249,11 +220,7 @@ FileSampleSourceOptions file_source_options(const SourceRequest& r) {
     return given || !meta;
   };
   if (overrides(r.format_given, "--format", r.format, meta ? to_string(meta->format) : "")) {
-    try {
-      so.format = parse_sample_format(r.format);
-    } catch (const std::invalid_argument& e) {
-      throw InputError(std::string("--format: ") + e.what());
-    }
+    so.format = format_flag(r.format);
   }
   if (overrides(r.fs_given, "--fs", fmt::format("{}", r.fs_hz), meta ? fmt::format("{}", meta->sample_rate_hz) : ""))
     so.sample_rate_hz = r.fs_hz;
@@ -272,7 +239,7 @@ FileSampleSourceOptions file_source_options(const SourceRequest& r) {
 }
 
 OpenedSource open_sample_source(const SourceRequest& r) {
-  if (const auto url = parse_url(r.input)) {
+  if (const auto url = parse_source_url(r.input)) {
     if (!r.metadata.empty()) throw InputError("--metadata describes files; a stream says its own format");
     return open_stream(r, *url);
   }

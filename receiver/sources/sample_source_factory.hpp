@@ -1,8 +1,9 @@
 #pragma once
-// Where `deepnav run` gets its samples: an IF file path (with its metadata file, or flags),
-// tcp://HOST:PORT, udp://HOST:PORT (subscribe to a `deepnav serve`) or udp://@HOST:PORT
-// (listen for datagrams sent there), framed (deepnav protocol) or raw (bare samples), or
-// rtltcp://HOST:PORT (an rtl_tcp server with an RTL-SDR dongle).
+// Where `deepnav run` and `deepnav acquire` get their samples: an IF file path (with its
+// metadata file, or flags), tcp://HOST:PORT, udp://HOST:PORT (subscribe to a `deepnav serve`)
+// or udp://@HOST:PORT (listen for datagrams sent there), framed (deepnav protocol) or raw
+// (bare samples), or rtltcp://HOST:PORT (an rtl_tcp server with an RTL-SDR dongle). The
+// addresses' grammar is receiver/sources/source_url.hpp.
 #include <atomic>
 #include <functional>
 #include <memory>

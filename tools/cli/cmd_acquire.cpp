@@ -8,23 +8,16 @@
 #include <sstream>
 
 #include "receiver/acquisition/acquisition.hpp"
-#include "receiver/sources/file_sample_source.hpp"
+#include "receiver/sources/sample_source_factory.hpp"
 #include "tools/cli/cli_checks.hpp"
 #include "tools/cli/commands.hpp"
-#include "receiver/sources/sample_source_factory.hpp"
+#include "tools/cli/source_options.hpp"
 
 namespace deepnav::cli {
 namespace {
 
 struct AcquireOptions {
-  std::string input;
-  std::string format = "ibyte";
-  double fs_hz = 0.0;
-  double if_hz = 0.0;
-  double skip_s = 0.0;
-  bool inverted = false;
-  std::string metadata;
-  bool format_given = false, fs_given = false, if_given = false, inverted_given = false;
+  SourceRequest source;
   AcquisitionConfig acq;
   std::string prn_list;
   std::string json_path;
@@ -60,26 +53,13 @@ nlohmann::json to_json(const AcquisitionResult& r) {
 }
 
 void run_acquire(AcquireOptions o) {
-  SourceRequest request;
-  request.input = o.input;
-  request.format = o.format;
-  request.fs_hz = o.fs_hz;
-  request.if_hz = o.if_hz;
-  request.skip_s = o.skip_s;
-  request.inverted = o.inverted;
-  request.metadata = o.metadata;
-  request.format_given = o.format_given;
-  request.fs_given = o.fs_given;
-  request.if_given = o.if_given;
-  request.inverted_given = o.inverted_given;
-  const FileSampleSourceOptions src_opt = file_source_options(request);
-  o.acq.sample_rate_hz = src_opt.sample_rate_hz;
-  o.acq.if_hz = src_opt.intermediate_frequency_hz;
+  const OpenedSource opened = open_sample_source(o.source);
+  SampleSource& source = *opened.source;
+  o.acq.sample_rate_hz = source.sample_rate_hz();
+  o.acq.if_hz = source.intermediate_frequency_hz();
   if (!o.prn_list.empty()) o.acq.prns = parse_prns(o.prn_list);
   std::vector<AcquisitionResult> results;
   try {
-    FileSampleSource source(src_opt);
-    for (const auto& w : source.warnings()) spdlog::warn("{}", w);
     Acquisition acquisition(o.acq);
     std::vector<Sample> samples(static_cast<std::size_t>(acquisition.samples_needed()));
     std::size_t got = 0;
@@ -90,8 +70,9 @@ void run_acquire(AcquireOptions o) {
     }
     samples.resize(got);
     if (const std::string problem = if_sample_problem(samples, source.is_real()); !problem.empty())
-      throw UserError(fmt::format("{}: {}", o.input, problem));
-    if (got < samples.capacity()) spdlog::warn("{}: only {} samples available, the non-coherent sum is shorter", o.input, got);
+      throw UserError(fmt::format("{}: {}", opened.input, problem));
+    if (got < samples.capacity())
+      spdlog::warn("{}: only {} samples available, the non-coherent sum is shorter", opened.input, got);
     results = acquisition.search(samples);
   } catch (const std::invalid_argument& e) {
     throw UserError(e.what());
@@ -101,9 +82,9 @@ void run_acquire(AcquireOptions o) {
   if (!o.json_path.empty()) {
     nlohmann::json all = nlohmann::json::array();
     for (const auto& r : results) all.push_back(to_json(r));
-    const std::string text = nlohmann::json{{"input", src_opt.path.string()},
-                                            {"sample_rate_hz", src_opt.sample_rate_hz},
-                                            {"if_hz", src_opt.intermediate_frequency_hz},
+    const std::string text = nlohmann::json{{"input", opened.input},
+                                            {"sample_rate_hz", o.acq.sample_rate_hz},
+                                            {"if_hz", o.acq.if_hz},
                                             {"results", all}}.dump(2) + "\n";
     if (o.json_path == "-") {
       std::cout << text;
@@ -120,12 +101,13 @@ void run_acquire(AcquireOptions o) {
     for (const auto& r : results) {
       if (!r.detected) continue;
       fmt::print("{:>4} {:>11.1f} {:>13.2f} {:>12.3f} {:>9.1f} {:>10.1f} {:>10.1f}\n", r.prn, r.doppler_hz,
-                 r.delay_samples, r.delay_samples * 1.023e6 / src_opt.sample_rate_hz, r.cn0_dbhz, r.statistic, r.threshold);
+                 r.delay_samples, r.delay_samples * 1.023e6 / o.acq.sample_rate_hz, r.cn0_dbhz, r.statistic, r.threshold);
     }
   }
   if (detected == 0)
-    throw UserError(o.metadata.empty() ? "no satellite acquired: check --fs, --if, --format, --inverted-spectrum"
-                                       : "no satellite acquired: check the metadata file '" + o.metadata + "'",
+    throw UserError(o.source.metadata.empty()
+                        ? "no satellite acquired: check --fs, --if, --format, --inverted-spectrum"
+                        : "no satellite acquired: check the metadata file '" + o.source.metadata + "'",
                     3);
 }
 
@@ -134,21 +116,7 @@ void run_acquire(AcquireOptions o) {
 void add_acquire_command(CommandParents& parents) {
   auto o = std::make_shared<AcquireOptions>();
   CLI::App* cmd = parents.root.add_subcommand("acquire", "Cold-start FFT acquisition of an IF file: detected PRNs, Doppler, code delay");
-  cmd->add_option("--input", o->input, "IF sample file")->check(CLI::ExistingFile);
-  cmd->add_option("--metadata", o->metadata,
-                  "ION GNSS SDR metadata file (XML) describing the IF file (format, rate, IF, inversion; the file "
-                  "unless --input names it); flags given as well override it")
-      ->check(CLI::ExistingFile);
-  cmd->add_option("--format", o->format, sample_format_choices())->capture_default_str();
-  cmd->add_option("--fs", o->fs_hz, "Sample rate (Hz); required without --metadata")
-      ->check(finite_in(1.023e6, kMaxAcquisitionSampleRate_hz, "a sample rate in Hz"));
-  cmd->add_option("--if", o->if_hz, "Intermediate frequency (Hz), 0 for complex baseband")
-      ->check(finite_in(-kMaxAcquisitionSampleRate_hz / 2, kMaxAcquisitionSampleRate_hz / 2, "a frequency in Hz"))
-      ->capture_default_str();
-  cmd->add_option("--skip", o->skip_s, "Seconds skipped at the start of the file")
-      ->check(finite_in(0.0, 1e7, "seconds"))
-      ->capture_default_str();
-  cmd->add_flag("--inverted-spectrum", o->inverted, "The front end delivers I - jQ");
+  add_source_options(*cmd, o->source, SourceUse::acquisition);
   cmd->add_option("--doppler-max", o->acq.doppler_max_hz, "Doppler search half-width (Hz)")
       ->check(finite_in(0.0, 50000.0, "a Doppler in Hz"))
       ->capture_default_str();
@@ -167,10 +135,7 @@ void add_acquire_command(CommandParents& parents) {
   cmd->add_option("--prn", o->prn_list, "Only these PRNs, e.g. 1,5,31");
   cmd->add_option("--json", o->json_path, "Write every searched PRN as JSON to FILE ('-': stdout instead of the table)");
   cmd->callback([o, cmd] {
-    o->format_given = cmd->count("--format") > 0;
-    o->fs_given = cmd->count("--fs") > 0;
-    o->if_given = cmd->count("--if") > 0;
-    o->inverted_given = cmd->count("--inverted-spectrum") > 0;
+    note_given_source_options(*cmd, o->source);
     run_acquire(*o);
   });
 }

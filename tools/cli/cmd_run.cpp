@@ -21,9 +21,9 @@
 #include "tools/bench/process_usage.hpp"
 #include "tools/cli/progress.hpp"
 #include "receiver/sources/sample_source_factory.hpp"
+#include "tools/cli/source_options.hpp"
 #include "tools/cli/stop_signals.hpp"
 #include "tools/cli/yaml_config.hpp"
-#include "signals/sample_format.hpp"
 #include "aiding/navigation_session.hpp"
 #include "ins/imu_file.hpp"
 #include "ins/imu_model.hpp"
@@ -34,15 +34,8 @@ using namespace deepnav::bench;  // the engines this command drives
 namespace {
 
 struct RunOptions {
-  std::string input, format = "ibyte", out_dir, truth_path, assist_nav;
-  double fs_hz = 0.0, if_hz = 0.0, skip_s = 0.0;
-  bool inverted = false, raw = false;
-  std::string metadata;
-  bool format_given = false, fs_given = false, if_given = false, inverted_given = false;
-  std::string rtl_gain = "auto";
-  bool rtl_agc = false, rtl_bias_tee = false;
-  int rtl_ppm = 0;
-  double reconnect_timeout_s = 30.0;
+  SourceRequest source;
+  std::string out_dir, truth_path, assist_nav;
   std::string mitigation = "none";
   ReceiverConfig receiver;
   // INS aiding (--mode loose|tight|ultra).
@@ -260,26 +253,8 @@ void run_receiver(RunOptions o) {
   }
   // A file or a tcp:// / udp:// stream; Ctrl-C ends the source, so the products are still written.
   StopOnSignals stop_signals;
-  SourceRequest request;
-  request.input = o.input;
-  request.format = o.format;
-  request.fs_hz = o.fs_hz;
-  request.if_hz = o.if_hz;
-  request.skip_s = o.skip_s;
-  request.inverted = o.inverted;
-  request.raw = o.raw;
-  request.reconnect_timeout_s = o.reconnect_timeout_s;
-  request.stop = &stop_signals.flag();
-  request.metadata = o.metadata;
-  request.format_given = o.format_given;
-  request.fs_given = o.fs_given;
-  request.if_given = o.if_given;
-  request.inverted_given = o.inverted_given;
-  request.rtl_gain = o.rtl_gain;
-  request.rtl_agc = o.rtl_agc;
-  request.rtl_ppm = o.rtl_ppm;
-  request.rtl_bias_tee = o.rtl_bias_tee;
-  OpenedSource opened = open_sample_source(request);
+  o.source.stop = &stop_signals.flag();
+  OpenedSource opened = open_sample_source(o.source);
   std::error_code ec;
   std::filesystem::create_directories(o.out_dir, ec);
   if (ec) throw UserError("cannot create output folder '" + o.out_dir + "': " + ec.message());
@@ -327,32 +302,7 @@ void run_receiver(RunOptions o) {
 void add_run_command(CommandParents& parents) {
   auto o = std::make_shared<RunOptions>();
   CLI::App* cmd = parents.root.add_subcommand("run", "Run the receiver on an IF file: PVT and products in --out");
-  cmd->add_option("--input", o->input,
-                  "IF sample file, tcp://HOST:PORT, udp://HOST:PORT (subscribe), udp://@HOST:PORT (listen) or "
-                  "rtltcp://HOST:PORT (an rtl_tcp server: RTL-SDR, cu8 at --fs, default 2048000)");
-  cmd->add_option("--metadata", o->metadata,
-                  "ION GNSS SDR metadata file (XML) describing the IF file: its format, rate, IF and inversion, and "
-                  "the file itself unless --input names it; flags given as well override it")
-      ->check(CLI::ExistingFile);
-  cmd->add_option("--format", o->format, sample_format_choices())->capture_default_str();
-  cmd->add_option("--fs", o->fs_hz, "Sample rate (Hz); a framed stream's header carries it")
-      ->check(finite_in(kMinSampleRate_hz, kMaxSampleRate_hz, "a sample rate in Hz"));
-  cmd->add_flag("--raw", o->raw, "The stream is bare samples (no deepnav framing): needs --format and --fs");
-  cmd->add_option("--reconnect-timeout", o->reconnect_timeout_s, "Seconds a dropped stream is retried (with backoff)")
-      ->check(finite_in(0.0, 86400.0, "seconds"))
-      ->capture_default_str();
-  cmd->add_option("--if", o->if_hz, "Intermediate frequency (Hz); rtltcp://: the dongle is tuned to 1575.42 MHz minus it")
-      ->check(finite_in(-kMaxSampleRate_hz / 2, kMaxSampleRate_hz / 2, "a frequency in Hz, below half the sample rate"))
-      ->capture_default_str();
-  cmd->add_option("--rtl-gain", o->rtl_gain, "rtltcp://: tuner gain in dB (the nearest step), or auto (the tuner's AGC)")
-      ->capture_default_str();
-  cmd->add_flag("--rtl-agc", o->rtl_agc, "rtltcp://: switch on the RTL2832's digital AGC");
-  cmd->add_option("--rtl-ppm", o->rtl_ppm, "rtltcp://: crystal frequency correction (ppm)")->capture_default_str();
-  cmd->add_flag("--rtl-bias-tee", o->rtl_bias_tee, "rtltcp://: power an active antenna through the coax (bias tee)");
-  cmd->add_option("--skip", o->skip_s, "Seconds skipped at the start")
-      ->check(finite_in(0.0, 1e7, "seconds"))
-      ->capture_default_str();
-  cmd->add_flag("--inverted-spectrum", o->inverted, "The front end delivers I - jQ");
+  add_source_options(*cmd, o->source, SourceUse::receiver);
   cmd->add_option("--mitigation", o->mitigation, "Interference mitigation: none, notch, excision, blanking, auto (blanking then excision)")
       ->check(CLI::IsMember(mitigation_mode_names()))
       ->capture_default_str();
@@ -421,10 +371,7 @@ void add_run_command(CommandParents& parents) {
     if (o->print_config) return fmt::print("{}", effective_config(*cmd));
     if (cmd->get_option("--week")->count() > 0) check_week_option(o->receiver.reference_week);
     o->receiver.reference_week_origin = "--week";
-    o->format_given = cmd->count("--format") > 0;
-    o->fs_given = cmd->count("--fs") > 0;
-    o->if_given = cmd->count("--if") > 0;
-    o->inverted_given = cmd->count("--inverted-spectrum") > 0;
+    note_given_source_options(*cmd, o->source);
     run_receiver(*o);
   });
 }
