@@ -249,6 +249,8 @@ class FusionRun {
       epoch.satellites.push_back({o.prn, eph->second, fe.code.at(o.prn), o.cn0_dbhz.value_or(kMissingCn0_dbhz),
                                   o.doppler_hz, cfg_.doppler_time_offset_s, cfg_.doppler_sigma_mps});
     }
+    // Each epoch's row carries the range model's terms whole, whatever the epoch rate (the
+    // IF path shares them among the rows of a second); pseudorange_sigma_scale tunes it.
     const PseudorangeWeighting weighting{cfg_.pvt.range_errors, 1.0, cfg_.pseudorange_sigma_scale};
     const TightRows rows = tight_rows(*nav_filter_, epoch, cfg_.coupling.atmosphere, cfg_.pvt.elevation_mask_rad, weighting);
     for (const RangeMeasurement& m : rows.below_mask)
