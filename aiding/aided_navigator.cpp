@@ -150,6 +150,16 @@ KalmanUpdate AidedNavigator::update_zero_velocity(double sigma_mps) {
   return result;
 }
 
+double AidedNavigator::predicted_pseudorange_m(const RangeMeasurement& m) const {
+  return m.geometry.pseudorange_m(clock_bias_m() + clock_drift_mps() * m.time_offset_s) + residual_delay_m(m.geometry);
+}
+
+double AidedNavigator::predicted_rate_mps(const RangeMeasurement& m) const {
+  const RangePrediction& g = m.rate_at_own_time ? m.rate_geometry : m.geometry;
+  const double offset = m.rate_at_own_time ? m.rate_time_offset_s : m.time_offset_s;
+  return g.pseudorange_rate_mps(antenna_velocity_ecef_at(time_s() + offset), clock_drift_mps()) + residual_delay_rate_mps(g);
+}
+
 namespace {
 
 /// The rows one navigator update builds: per row its H, z, R and the satellite it came from
@@ -168,17 +178,13 @@ KalmanUpdate AidedNavigator::update_ranges(const std::vector<RangeMeasurement>& 
   const auto append = [&](const RangeMeasurement& m, RangeRows& rows) {
     if (m.pseudorange_m) {
       rows.h.push_back(pseudorange_row_of(m.geometry));
-      rows.z.push_back(m.geometry.pseudorange_m(clock_bias_m() + clock_drift_mps() * m.time_offset_s) +
-                       residual_delay_m(m.geometry) - *m.pseudorange_m);
+      rows.z.push_back(predicted_pseudorange_m(m) - *m.pseudorange_m);
       rows.r.push_back(m.pseudorange_sigma_m * m.pseudorange_sigma_m);
       rows.pseudorange_prn.push_back(m.prn);
     }
     if (m.rate_mps) {
-      const RangePrediction& g = m.rate_at_own_time ? m.rate_geometry : m.geometry;
-      const double offset = m.rate_at_own_time ? m.rate_time_offset_s : m.time_offset_s;
-      rows.h.push_back(pseudorange_rate_row_of(g));
-      rows.z.push_back(g.pseudorange_rate_mps(antenna_velocity_ecef_at(time_s() + offset), clock_drift_mps()) +
-                       residual_delay_rate_mps(g) - *m.rate_mps);
+      rows.h.push_back(pseudorange_rate_row_of(m.rate_at_own_time ? m.rate_geometry : m.geometry));
+      rows.z.push_back(predicted_rate_mps(m) - *m.rate_mps);
       rows.r.push_back(m.rate_sigma_mps * m.rate_sigma_mps);
       rows.pseudorange_prn.push_back(0);
     }

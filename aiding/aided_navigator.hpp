@@ -116,6 +116,11 @@ class AidedNavigator {
                              std::vector<SatelliteInnovation>* innovations = nullptr,
                              const std::vector<RangeMeasurement>& test_only = {});
 
+  /// What the filter predicts (its prior) for a measurement's pseudorange and for its rate,
+  /// each at the measurement's time: the rows of update_ranges are these minus the measured.
+  double predicted_pseudorange_m(const RangeMeasurement& m) const;
+  double predicted_rate_mps(const RangeMeasurement& m) const;
+
   /// Zero-velocity update: the IMU is at rest (a stationarity detector says so), its NED
   /// velocity is zero to within sigma_mps on each axis.
   KalmanUpdate update_zero_velocity(double sigma_mps);

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "aiding/gnss_coupling.hpp"
 #include "aiding/innovation_monitor.hpp"
 #include "aiding/ins_initializer.hpp"
 #include "aiding/measurement_models.hpp"
@@ -21,10 +22,24 @@ namespace {
 
 constexpr double kRecentPvt_s = 3.0;
 
+/// The coupling settings of an IF run: the receiver's atmosphere models with the filter's.
+CouplingSettings coupling_settings(const AidedReceiverConfig& c) {
+  CouplingSettings s;
+  s.imu = c.imu;
+  s.oscillator = c.oscillator;
+  s.lever_arm_imu_to_antenna_b_m = c.lever_arm_imu_to_antenna_b_m;
+  s.atmosphere = c.receiver.atmosphere;
+  s.troposphere = c.troposphere;
+  s.ionosphere = c.ionosphere;
+  s.pvt_position_sigma_scale_m = c.pvt_position_sigma_scale_m;
+  return s;
+}
+
 }  // namespace
 
 struct AidedReceiver::Impl : ChannelAiding {
   AidedReceiverConfig cfg;
+  CouplingSettings coupling;
   GnssReceiver rx;
   ImuLog imu;
   std::size_t next_imu = 0;
@@ -56,6 +71,7 @@ struct AidedReceiver::Impl : ChannelAiding {
 
   Impl(AidedReceiverConfig c, SampleSource& source, ImuLog log)
       : cfg(std::move(c)),
+        coupling(coupling_settings(cfg)),
         rx(cfg.receiver, source),
         imu(std::move(log)),
         init(cfg.imu, cfg.lever_arm_imu_to_antenna_b_m),
@@ -222,37 +238,22 @@ struct AidedReceiver::Impl : ChannelAiding {
   }
 
   void start_ins(const ReceiverEpoch& ep) {
-    GnssFix fix;
-    fix.t_s = ep.t_s;
-    fix.r_antenna_ecef_m = ep.pvt.r_ecef_m;
-    fix.v_antenna_ecef_mps = ep.pvt.v_ecef_mps;
-    fix.clock_bias_m = ep.pvt.clock_bias_m;
-    fix.clock_drift_mps = ep.pvt.clock_drift_mps;
-    fix.horizontal_sigma_m = std::max(1.0, ep.pvt.dops.hdop * cfg.pvt_position_sigma_scale_m);
-    fix.vertical_sigma_m = std::max(1.5, ep.pvt.dops.vdop * cfg.pvt_position_sigma_scale_m);
+    const GnssFix fix = alignment_fix(ep.pvt, ep.t_s, coupling.pvt_position_sigma_scale_m);
     const std::optional<InsStart> start = init.add_fix(fix);
     if (!start) return;
-    NavigatorConfig nc;
-    nc.noise = process_noise_from(cfg.imu, cfg.oscillator);
-    nc.lever_arm_imu_to_antenna_b_m = cfg.lever_arm_imu_to_antenna_b_m;
-    nc.troposphere = cfg.troposphere;
-    nc.ionosphere = cfg.ionosphere;
+    NavigatorConfig nc = navigator_config(coupling);
     // A restart keeps what was found.
     if (troposphere_watch.report.found_at_s) nc.troposphere.enabled = true;
-    const double dt = start->state.t_s - ep.t_s;
     // The fix's clock bias is against the receiver clock before this epoch's re-setting
     // (observe() steers it right after the fix, before the next block's follow): move it
     // onto the clock as it is now, and follow the steps from there.
     const double steps_s = rx.clock_steps_s();
-    const double bias = fix.clock_bias_m + fix.clock_drift_mps * dt + gps::kSpeedOfLight_mps * (steps_s - followed_clock_steps_s);
+    const double clock_step_m = gps::kSpeedOfLight_mps * (steps_s - followed_clock_steps_s);
     followed_clock_steps_s = steps_s;
-    nav.emplace(start->state, bias, fix.clock_drift_mps, nc, start->uncertainty);
+    nav.emplace(start_navigator(*start, fix, nc, clock_step_m, ep.t_s));
     if (ionosphere_watch.report.found_at_s && !nc.ionosphere.enabled)
       nav->enable_ionosphere_state(ionosphere_watch.report.fitted_error, 0.2);
     start_method = start->method;
-    const EulerAngles e = euler_from_quaternion(start->state.q_b_n);
-    spdlog::info("t = {:.2f} s: INS started ({}): roll {:.2f} pitch {:.2f} yaw {:.2f} deg", ep.t_s, start_method,
-                 e.roll_rad * 180.0 / M_PI, e.pitch_rad * 180.0 / M_PI, e.yaw_rad * 180.0 / M_PI);
   }
 
   void loose_update(const ReceiverEpoch& ep) {
@@ -267,44 +268,27 @@ struct AidedReceiver::Impl : ChannelAiding {
       ++dopplers;
     }
     if (dopplers > 0) doppler_offset_s /= dopplers;
-    const double dt = ep.t_s - nav->time_s();
     // Not watched by the innovation monitor: the PVT's own errors come in runs under high
     // dynamics (its velocity model), and the gate turning them away is the right answer.
-    nav->update_position_velocity(ep.pvt.r_ecef_m, ep.pvt.v_ecef_mps,
-                                  pvt_position_sigma_ned_m(ep.pvt.dops.hdop, ep.pvt.dops.vdop, cfg.pvt_position_sigma_scale_m),
-                                  Eigen::Vector3d::Constant(cfg.pvt_velocity_sigma_mps), dt, dt + doppler_offset_s);
+    aiding::loose_update(*nav, {ep.t_s, ep.pvt, doppler_offset_s, Eigen::Vector3d::Constant(cfg.pvt_velocity_sigma_mps)},
+                         coupling.pvt_position_sigma_scale_m);
   }
 
   void tight_update(const ReceiverEpoch& ep) {
     if (!ep.t_rx) return;
-    const IonoParameters iono = rx.iono();
-    const double dt = ep.t_s - nav->time_s();
-    const double bias = nav->clock_bias_m() + nav->clock_drift_mps() * dt;
-    std::vector<RangeMeasurement> ms, watched;
+    RangeEpoch epoch{ep.t_s, *ep.t_rx, rx.iono(), {}};
     for (const ChannelObservation& o : ep.observations) {
       const Ephemeris* eph = rx.ephemeris(o.prn);
       if (eph == nullptr || o.after_gap) continue;
-      RangeMeasurement m;
-      m.prn = o.prn;
-      m.time_offset_s = dt;
-      m.geometry = predict_range(*eph, *ep.t_rx, bias, nav->antenna_ecef_at(ep.t_s), nav->antenna_velocity_ecef_mps(), iono,
-                                 rx.atmosphere());
-      if (m.geometry.elevation_rad < cfg.receiver.pvt.elevation_mask_rad) continue;
-      m.pseudorange_m = o.pseudorange_m;
-      m.pseudorange_sigma_m = scalar_pseudorange_sigma_m(cfg.receiver.pvt.range_errors, m.geometry.elevation_rad, o.cn0_dbhz,
-                                                         1.0 / cfg.receiver.observation_rate_hz);
-      m.rate_mps = -gps::kL1Wavelength_m * o.doppler_hz;
-      m.rate_sigma_mps = scalar_rate_sigma_mps(o.cn0_dbhz, cfg.receiver.tracking_loops.pll_hz,
-                                               1e-3 * cfg.receiver.tracking.coherent_ms_after_bit_sync);
-      // The Doppler is the mean over the last window of tracking: predicted at its middle.
-      const double t_rate = ep.t_s + o.doppler_offset_s;
-      m.rate_at_own_time = true;
-      m.rate_time_offset_s = t_rate - nav->time_s();
-      m.rate_geometry = predict_range(*eph, ep.t_rx->plus_seconds(o.doppler_offset_s),
-                                      bias + nav->clock_drift_mps() * o.doppler_offset_s, nav->antenna_ecef_at(t_rate),
-                                      nav->antenna_velocity_ecef_at(t_rate), iono, rx.atmosphere());
-      (cfg.fault_exclusion && faults.excluded(o.prn) ? watched : ms).push_back(m);
+      epoch.satellites.push_back({o.prn, *eph, o.pseudorange_m, o.cn0_dbhz, o.doppler_hz, o.doppler_offset_s,
+                                  scalar_rate_sigma_mps(o.cn0_dbhz, cfg.receiver.tracking_loops.pll_hz,
+                                                        1e-3 * cfg.receiver.tracking.coherent_ms_after_bit_sync)});
     }
+    const PseudorangeWeighting weighting{cfg.receiver.pvt.range_errors, 1.0 / cfg.receiver.observation_rate_hz};
+    std::vector<RangeMeasurement> ms, watched;
+    for (const RangeMeasurement& m :
+         tight_rows(*nav, epoch, coupling.atmosphere, cfg.receiver.pvt.elevation_mask_rad, weighting).used)
+      (cfg.fault_exclusion && faults.excluded(m.prn) ? watched : ms).push_back(m);
     last_tight_satellites = static_cast<int>(ms.size());
     if (ms.empty()) return;
     std::vector<SatelliteInnovation> rows;

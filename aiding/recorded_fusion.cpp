@@ -2,62 +2,25 @@
 
 #include <spdlog/spdlog.h>
 
-#include <cmath>
 #include <algorithm>
-#include <deque>
+#include <cmath>
 #include <stdexcept>
 
 #include "aiding/ins_initializer.hpp"
-#include "aiding/measurement_models.hpp"
 #include "ins/frames.hpp"
-#include "ins/rotations.hpp"
 #include "ins/wgs84.hpp"
-#include "receiver/pvt/range_model.hpp"
 #include "signals/gps_constants.hpp"
 
 namespace deepnav::aiding {
 namespace {
 
-constexpr double kGpsToUnix_s = 315964800.0;  ///< 1980-01-06 minus 1970-01-01, in seconds
-
-/// The stationarity detector: over the last window the specific force and the angular rate
-/// each stay within a tolerance of their means (a bias does not matter), the mean specific
-/// force is gravity's magnitude and the mean angular rate is no more than the tolerance plus
-/// what the gyro's bias can be. The variation alone is not enough: a vehicle in a steady turn
-/// or at constant speed with a quiet IMU passes it (the land circle with a tactical IMU did
-/// at every epoch); the rate bound catches the turn, the GNSS speed (the caller's) the rest.
-class StationarityDetector {
- public:
-  StationarityDetector(const StationarityConfig& c, double gravity_mps2, double gyro_bias_radps)
-      : cfg_(c), gravity_mps2_(gravity_mps2), gyro_bias_radps_(gyro_bias_radps) {}
-  void add(const ImuSample& s, double dt) {
-    if (dt <= 0.0) return;
-    window_.push_back({s.t_s, s.dv_b_mps / dt, s.dtheta_b_rad / dt});
-    while (!window_.empty() && s.t_s - window_.front().t > cfg_.window_s) window_.pop_front();
-  }
-  bool stationary() const {
-    if (!cfg_.enabled || window_.size() < 5 || window_.back().t - window_.front().t < 0.8 * cfg_.window_s) return false;
-    Eigen::Vector3d mf = Eigen::Vector3d::Zero(), mw = Eigen::Vector3d::Zero();
-    for (const auto& e : window_) mf += e.f, mw += e.w;
-    mf /= static_cast<double>(window_.size());
-    mw /= static_cast<double>(window_.size());
-    if (std::abs(mf.norm() - gravity_mps2_) > cfg_.accel_tolerance_mps2 ||
-        mw.norm() > cfg_.gyro_tolerance_radps + gyro_bias_radps_)
-      return false;
-    for (const auto& e : window_)
-      if ((e.f - mf).norm() > cfg_.accel_tolerance_mps2 || (e.w - mw).norm() > cfg_.gyro_tolerance_radps) return false;
-    return true;
-  }
-
- private:
-  struct Entry {
-    double t;
-    Eigen::Vector3d f, w;
-  };
-  StationarityConfig cfg_;
-  double gravity_mps2_, gyro_bias_radps_;
-  std::deque<Entry> window_;
-};
+/// Below this GNSS speed (m/s) a fix does not start an INS that cannot gyrocompass: the
+/// moving start needs a direction of travel.
+constexpr double kMovingStartSpeed_mps = 0.2;
+/// The IMU must have reached this close to an epoch (s) for a fix there to start the INS.
+constexpr double kStartImuLag_s = 0.1;
+/// The C/N0 (dB-Hz) a pseudorange is weighed with when the recording has none.
+constexpr double kMissingCn0_dbhz = 40.0;
 
 /// The common offset of an epoch's pseudoranges from the filter when the gate turned every
 /// one of them (four or more) away and they agree with each other: their median, when it
@@ -89,6 +52,306 @@ std::optional<double> common_code_offset(const std::vector<RangeMeasurement>& ro
   return mid;
 }
 
+FusionSatelliteTrace& satellite_trace(FusionEpochTrace& trace, int prn) {
+  for (FusionSatelliteTrace& st : trace.satellites)
+    if (st.prn == prn) return st;
+  throw std::logic_error("no trace of PRN " + std::to_string(prn));
+}
+
+/// One epoch of the recording as the filter takes it.
+struct FusionEpoch {
+  const ObservationEpoch* recorded = nullptr;  ///< as read from the file
+  double t = 0.0;                          ///< fusion axis
+  ReceiverEpoch receiver;                  ///< t_s: since the first epoch; observables and PVT
+  std::map<int, Ephemeris> ephemerides;    ///< of the satellites with a pseudorange
+  std::map<int, double> code;              ///< the pseudoranges the PVT and the filter take (smoothed or raw)
+  bool dopplers = true;                    ///< every satellite offered to the PVT has a Doppler
+  FusionEpochTrace trace;
+};
+
+/// One run over a recording: the IMU fed up to each epoch, the epoch's PVT, the INS start
+/// or the filter's updates through the shared coupling steps, and the published solution.
+class FusionRun {
+ public:
+  FusionRun(const RecordedFusionConfig& cfg, const ObservationFile& obs, const NavData& nav, const ImuLog& imu,
+            RecordedFusionReport& report)
+      : cfg_(cfg),
+        obs_(obs),
+        nav_(nav),
+        imu_(imu),
+        report_(report),
+        t_first_(fusion_time_s(obs, obs.epochs.front().t)),
+        solver_(cfg.pvt, cfg.coupling.atmosphere),
+        iono_(cfg.iono ? *cfg.iono : nav.iono),
+        site_(obs.report.approx_position_ecef_m ? wgs84::ecef_to_llh(*obs.report.approx_position_ecef_m)
+                                                : wgs84::Llh{0.7, 0.0, 0.0}),
+        init_(cfg.coupling.imu, cfg.coupling.lever_arm_imu_to_antenna_b_m),
+        // At rest the mean rate is the gyro's bias: up to three of its sigmas.
+        still_(cfg.stationarity, wgs84::normal_gravity_mps2(site_.lat_rad, site_.height_m), 3.0 * gyro_bias_sigma_radps(cfg)),
+        // A start at rest gyrocompasses: it needs a gyro whose bias is small against the
+        // Earth's rate (the initializer's heading sigma reaches its 0.5 rad cap beyond
+        // this). A consumer MEMS gyro (hundreds of deg/h) waits for the moving start
+        // (heading from the track).
+        rest_start_(gyro_bias_sigma_radps(cfg) < 0.5 * wgs84::kEarthRate_radps * std::cos(site_.lat_rad)),
+        leap_(nav.leap_seconds_valid ? nav.utc.delta_t_ls : 18),
+        interval_s_(obs.report.nominal_interval_s > 0.0 ? obs.report.nominal_interval_s : 1.0) {
+    if (cfg.carrier_smoothing) smoother_.emplace(cfg.smoothing, interval_s_, gps::kL1Wavelength_m);
+  }
+
+  void epoch(const ObservationEpoch& e, const std::vector<ProductSink*>& sinks,
+             const std::function<void(const FusionEpochTrace&)>& trace) {
+    const double t = fusion_time_s(obs_, e.t);
+    feed_imu_until(t);
+    ++report_.epochs;
+    FusionEpoch fe = read(e, t);
+    if (nav_filter_ && e.clock_jump_m != 0.0) {
+      nav_filter_->shift_clock_bias(e.clock_jump_m);
+      ++report_.clock_jumps_followed;
+      spdlog::info("t = {:.2f} s: receiver clock re-set by {:.3f} us: filter clock follows", fe.receiver.t_s,
+                   e.clock_jump_m / gps::kSpeedOfLight_mps * 1e6);
+    }
+    int filter_satellites = 0;
+    if (!nav_filter_ && fe.receiver.pvt.valid && fe.dopplers && last_imu_t_ > t - kStartImuLag_s) {
+      try_start(fe);
+    } else if (nav_filter_) {
+      filter_satellites = update(fe);
+    }
+    if (nav_filter_) fe.trace.position_sigma_ned_m = nav_filter_->position_sigma_ned_m();
+    fe.trace.filter = nav_filter_.has_value();
+    if (trace) trace(fe.trace);
+    publish(fe, filter_satellites, sinks);
+  }
+
+  void finish() {
+    if (!smoother_) return;
+    report_.smoothing_restarts = smoother_->restarts();
+    report_.smoothing_slips = smoother_->slips();
+    report_.smoothing_doppler_steps = smoother_->doppler_steps();
+  }
+
+ private:
+  /// The gyro's bias (rad/s, 1 sigma): its turn-on bias and instability.
+  static double gyro_bias_sigma_radps(const RecordedFusionConfig& c) {
+    return c.coupling.imu.gyro.bias_sigma + c.coupling.imu.gyro.bias_instability_sigma;
+  }
+
+  void feed_imu_until(double t) {
+    while (next_imu_ < imu_.samples.size() && imu_.samples[next_imu_].t_s <= t + 1e-9) {
+      const ImuSample& s = imu_.samples[next_imu_++];
+      still_.add(s, s.t_s - last_imu_t_);
+      last_imu_t_ = s.t_s;
+      if (!nav_filter_) init_.add_imu(s);
+      else if (s.t_s > nav_filter_->time_s()) nav_filter_->propagate(s);
+    }
+  }
+
+  /// The epoch's observables (carrier-smoothed code), ephemerides and PVT, and its trace.
+  FusionEpoch read(const ObservationEpoch& e, double t) {
+    FusionEpoch fe;
+    fe.recorded = &e;
+    fe.t = t;
+    ReceiverEpoch& re = fe.receiver;
+    re.t_s = t - t_first_;
+    re.t_rx = e.t;
+    fe.trace.t_s = re.t_s;
+    fe.trace.clock_jump_m = e.clock_jump_m;
+    std::vector<PseudorangeObservation> pvt_obs;
+    for (const GpsL1Observation& o : e.gps) {
+      ChannelObservation c;
+      c.prn = o.prn;
+      c.pseudorange_m = o.pseudorange_m.value_or(0.0);
+      c.doppler_hz = o.doppler_hz.value_or(0.0);
+      c.doppler_offset_s = cfg_.doppler_time_offset_s;
+      c.carrier_phase_cycles = -o.carrier_phase_cycles.value_or(0.0);  // ours: accumulated Doppler
+      c.cn0_dbhz = o.cn0_dbhz.value_or(0.0);
+      c.after_gap = o.loss_of_lock;
+      if (o.pseudorange_m) re.observations.push_back(c);
+      FusionSatelliteTrace st;
+      st.prn = o.prn;
+      st.cn0_dbhz = o.cn0_dbhz.value_or(0.0);
+      if (o.pseudorange_m) {
+        fe.code[o.prn] = *o.pseudorange_m;
+        if (smoother_) {
+          const CarrierSmoother::Result r = smoother_->add(o.prn, t, *o.pseudorange_m, o.carrier_phase_cycles,
+                                                           o.doppler_hz, o.loss_of_lock, e.clock_jump_m);
+          fe.code[o.prn] = r.pseudorange_m;
+          st.smoothing_epochs = r.epochs;
+        }
+      }
+      fe.trace.satellites.push_back(st);
+      const Ephemeris* eph = nav_.select(o.prn, e.t);
+      if (eph == nullptr || !o.pseudorange_m) continue;
+      fe.ephemerides[o.prn] = *eph;
+      pvt_obs.push_back({o.prn, fe.code[o.prn], o.doppler_hz.value_or(0.0), o.cn0_dbhz.value_or(kMissingCn0_dbhz)});
+      fe.dopplers = fe.dopplers && o.doppler_hz.has_value();
+    }
+    re.channels_tracking = static_cast<int>(e.gps.size());
+    re.pvt = solver_.solve(e.t, pvt_obs, fe.ephemerides, iono_);
+    if (re.pvt.valid) ++report_.fixes;
+    fe.trace.pvt_valid = re.pvt.valid;
+    fe.trace.pvt_satellites = static_cast<int>(re.pvt.used_prns.size());
+    for (const auto& [prn, el] : re.pvt.elevation_rad) satellite_trace(fe.trace, prn).elevation_deg = el * 180.0 / M_PI;
+    return fe;
+  }
+
+  /// The GNSS speed (m/s) of the epoch's PVT.
+  static double pvt_speed_mps(const PvtSolution& pvt) { return ecef_to_ned_vector(pvt.llh, pvt.v_ecef_mps).norm(); }
+
+  void try_start(const FusionEpoch& fe) {
+    const GnssFix fix = alignment_fix(fe.receiver.pvt, fe.t, cfg_.coupling.pvt_position_sigma_scale_m);
+    if (!rest_start_ && pvt_speed_mps(fe.receiver.pvt) < kMovingStartSpeed_mps) return;
+    const std::optional<InsStart> start = init_.add_fix(fix);
+    if (!start) return;
+    nav_filter_.emplace(start_navigator(*start, fix, navigator_config(cfg_.coupling), 0.0, fe.receiver.t_s));
+    report_.ins_start = start->method;
+    report_.ins_start_t_s = fe.receiver.t_s;
+  }
+
+  /// The epoch's updates in the run's mode, a zero-velocity update when at rest, and a
+  /// restart of a failed filter. Returns the satellites the coupling took.
+  int update(FusionEpoch& fe) {
+    int filter_satellites = 0;
+    if (cfg_.mode == NavMode::loose && fe.receiver.pvt.valid) filter_satellites = loose(fe);
+    if (cfg_.mode == NavMode::tight) filter_satellites = tight(fe);
+    zero_velocity(fe);
+    if (!nav_filter_->healthy()) {
+      spdlog::error("t = {:.2f} s: navigation filter failed ({}); INS restarted from the next fix", fe.receiver.t_s,
+                    nav_filter_->health_reason());
+      nav_filter_.reset();
+      init_ = InsInitializer(cfg_.coupling.imu, cfg_.coupling.lever_arm_imu_to_antenna_b_m);
+      ++report_.filter_restarts;
+    }
+    return filter_satellites;
+  }
+
+  void count_rows(FusionEpoch& fe, const KalmanUpdate& r) {
+    report_.rows_rejected += r.rejected;
+    fe.trace.rows += r.rows;
+    fe.trace.rows_rejected += r.rejected;
+  }
+
+  int loose(FusionEpoch& fe) {
+    const PvtSolution& pvt = fe.receiver.pvt;
+    // The velocity from the Dopplers weighs as their sigma through the fix's geometry; a
+    // fix without them has a velocity that says nothing.
+    const double vh = fe.dopplers ? pvt.dops.hdop * cfg_.doppler_sigma_mps / std::sqrt(2.0) : 100.0;
+    const double vv = fe.dopplers ? pvt.dops.vdop * cfg_.doppler_sigma_mps : 100.0;
+    const LooseFix fix{fe.t, pvt, cfg_.doppler_time_offset_s, Eigen::Vector3d(vh, vh, vv)};
+    count_rows(fe, loose_update(*nav_filter_, fix, cfg_.coupling.pvt_position_sigma_scale_m));
+    return static_cast<int>(pvt.used_prns.size());
+  }
+
+  int tight(FusionEpoch& fe) {
+    RangeEpoch epoch{fe.t, *fe.receiver.t_rx, iono_, {}};
+    for (const GpsL1Observation& o : fe.recorded->gps) {
+      const auto eph = fe.ephemerides.find(o.prn);
+      if (eph == fe.ephemerides.end()) continue;
+      epoch.satellites.push_back({o.prn, eph->second, fe.code.at(o.prn), o.cn0_dbhz.value_or(kMissingCn0_dbhz),
+                                  o.doppler_hz, cfg_.doppler_time_offset_s, cfg_.doppler_sigma_mps});
+    }
+    // Each epoch's row carries the range model's terms whole, whatever the epoch rate (the
+    // IF path shares them among the rows of a second); pseudorange_sigma_scale tunes it.
+    const PseudorangeWeighting weighting{cfg_.pvt.range_errors, 1.0, cfg_.pseudorange_sigma_scale};
+    const TightRows rows = tight_rows(*nav_filter_, epoch, cfg_.coupling.atmosphere, cfg_.pvt.elevation_mask_rad, weighting);
+    for (const RangeMeasurement& m : rows.below_mask)
+      satellite_trace(fe.trace, m.prn).elevation_deg = m.geometry.elevation_rad * 180.0 / M_PI;
+    for (const RangeMeasurement& m : rows.used) {
+      FusionSatelliteTrace& st = satellite_trace(fe.trace, m.prn);
+      st.elevation_deg = m.geometry.elevation_rad * 180.0 / M_PI;
+      st.code_residual_m = *m.pseudorange_m - nav_filter_->predicted_pseudorange_m(m);
+      if (m.rate_mps) st.rate_residual_mps = *m.rate_mps - nav_filter_->predicted_rate_mps(m);
+    }
+    if (!rows.used.empty()) apply_ranges(fe, rows.used);
+    return static_cast<int>(rows.used.size());
+  }
+
+  void apply_ranges(FusionEpoch& fe, const std::vector<RangeMeasurement>& rows) {
+    KalmanUpdate r = nav_filter_->update_ranges(rows);
+    // Every pseudorange turned away, all by about the same amount: the receiver clock
+    // stepped by less than the reader looks for (rinex_obs_reader.hpp), or the filter's
+    // clock ran off. A common offset is a clock error, not four faulty satellites: the
+    // clock takes it and the rows are offered again.
+    if (const std::optional<double> step = common_code_offset(rows, r, fe.trace); step) {
+      nav_filter_->shift_clock_bias(*step);
+      ++report_.clock_steps_absorbed;
+      spdlog::info("t = {:.2f} s: every pseudorange {:.1f} m off the filter: its clock takes the step", fe.receiver.t_s,
+                   *step);
+      for (FusionSatelliteTrace& st : fe.trace.satellites)
+        if (st.code_residual_m) *st.code_residual_m -= *step;
+      r = nav_filter_->update_ranges(rows);
+    }
+    count_rows(fe, r);
+    // The rows in order: each measurement's pseudorange row, then its rate row.
+    std::size_t k = 0;
+    for (const RangeMeasurement& m : rows) {
+      FusionSatelliteTrace& st = satellite_trace(fe.trace, m.prn);
+      if (m.pseudorange_m && k < r.normalized_innovations.size()) {
+        st.code_normalized = -r.normalized_innovations[k];
+        st.code_rejected = r.row_rejected[k];
+        ++k;
+      }
+      if (m.rate_mps && k < r.row_rejected.size()) st.rate_rejected = r.row_rejected[k++];
+    }
+  }
+
+  void zero_velocity(FusionEpoch& fe) {
+    // Not while the Dopplers say the antenna moves (a fix without Dopplers says nothing).
+    const PvtSolution& pvt = fe.receiver.pvt;
+    const bool gnss_still = !pvt.valid || !fe.dopplers || pvt_speed_mps(pvt) <= cfg_.stationarity.max_gnss_speed_mps;
+    if (!gnss_still || !still_.stationary()) return;
+    const KalmanUpdate r = nav_filter_->update_zero_velocity(cfg_.stationarity.velocity_sigma_mps);
+    if (r.applied) {
+      ++report_.zero_velocity_updates;
+      fe.trace.zero_velocity = true;
+    } else {
+      ++report_.zero_velocity_rejected;
+    }
+  }
+
+  /// The filter's solution where it runs, else the PVT's, to every sink.
+  void publish(const FusionEpoch& fe, int filter_satellites, const std::vector<ProductSink*>& sinks) {
+    const ReceiverEpoch& re = fe.receiver;
+    PvtSolution solution = re.pvt;
+    const bool from_filter = nav_filter_.has_value();
+    if (from_filter) {
+      solution.valid = true;
+      solution.t = fe.recorded->t;
+      solution.r_ecef_m = nav_filter_->antenna_ecef_at(fe.t);
+      solution.v_ecef_mps = nav_filter_->antenna_velocity_ecef_mps();
+      solution.llh = wgs84::ecef_to_llh(solution.r_ecef_m);
+      solution.clock_bias_m = nav_filter_->clock_bias_m();
+      solution.clock_drift_mps = nav_filter_->clock_drift_mps();
+      ++report_.filter_epochs;
+    }
+    const std::string mode_name = from_filter ? to_string(cfg_.mode) : "scalar";
+    report_.seconds_in_mode[mode_name] += interval_s_;
+    const int pvt_satellites = static_cast<int>(re.pvt.used_prns.size());
+    const int measurements = from_filter && cfg_.mode == NavMode::tight ? filter_satellites : pvt_satellites;
+    const NavigationEpoch ne{re, solution, from_filter, mode_name, from_filter ? filter_satellites : pvt_satellites,
+                             measurements, leap_};
+    for (ProductSink* s : sinks) s->on_epoch(ne);
+  }
+
+  const RecordedFusionConfig& cfg_;
+  const ObservationFile& obs_;
+  const NavData& nav_;
+  const ImuLog& imu_;
+  RecordedFusionReport& report_;
+  double t_first_;
+  PvtSolver solver_;
+  IonoParameters iono_;
+  wgs84::Llh site_;
+  InsInitializer init_;
+  std::optional<AidedNavigator> nav_filter_;
+  StationarityDetector still_;
+  bool rest_start_;
+  int leap_;
+  double interval_s_;
+  std::optional<CarrierSmoother> smoother_;
+  std::size_t next_imu_ = 0;
+  double last_imu_t_ = -1e300;
+};
+
 }  // namespace
 
 nlohmann::json RecordedFusionReport::json() const {
@@ -109,34 +372,6 @@ nlohmann::json RecordedFusionReport::json() const {
           {"seconds_in_mode", seconds_in_mode}};
 }
 
-double fusion_time_s(const ObservationFile& obs, const GpsTime& t) {
-  return t.seconds_since(GpsTime{obs.epochs.front().t.week, 0.0});
-}
-
-ImuTimeBase parse_imu_time_base(const std::string& name) {
-  if (name == "week-seconds") return ImuTimeBase::week_seconds;
-  if (name == "gps") return ImuTimeBase::gps_seconds;
-  if (name == "unix-gps") return ImuTimeBase::unix_gps;
-  throw std::invalid_argument("IMU time base '" + name + "' is not one of week-seconds, gps, unix-gps");
-}
-
-void to_fusion_axis(ImuLog& imu, ImuTimeBase base, const ObservationFile& obs) {
-  const double week_start_gps_s = obs.epochs.front().t.week * kSecondsPerWeek;
-  const double first_sow = obs.epochs.front().t.sow;
-  const auto convert = [&](double t) {
-    switch (base) {
-      case ImuTimeBase::gps_seconds: return t - week_start_gps_s;
-      case ImuTimeBase::unix_gps: return t - kGpsToUnix_s - week_start_gps_s;
-      case ImuTimeBase::week_seconds:
-        // Seconds of week: the week of the first epoch, or the next one across a rollover.
-        return t < first_sow - kSecondsPerWeek / 2 ? t + kSecondsPerWeek : t;
-    }
-    return t;
-  };
-  for (ImuSample& s : imu.samples) s.t_s = convert(s.t_s);
-  for (ImuGap& g : imu.gaps) g.t_before_s = convert(g.t_before_s), g.t_after_s = convert(g.t_after_s);
-}
-
 RecordedFusion::RecordedFusion(RecordedFusionConfig config, const ObservationFile& obs, const NavData& nav, ImuLog imu)
     : cfg_(std::move(config)), obs_(obs), nav_(nav), imu_(std::move(imu)) {
   if (cfg_.mode != NavMode::loose && cfg_.mode != NavMode::tight)
@@ -153,242 +388,9 @@ RecordedFusion::RecordedFusion(RecordedFusionConfig config, const ObservationFil
 }
 
 void RecordedFusion::run(const std::vector<ProductSink*>& sinks) {
-  const NavMode mode = cfg_.mode;
-  const double t_first = fusion_time_s(obs_, obs_.epochs.front().t);
-  PvtSolver solver(cfg_.pvt, cfg_.atmosphere);
-  const IonoParameters iono = cfg_.iono ? *cfg_.iono : nav_.iono;
-  InsInitializer init(cfg_.imu, cfg_.lever_arm_imu_to_antenna_b_m);
-  std::optional<AidedNavigator> nav;
-  const wgs84::Llh site = obs_.report.approx_position_ecef_m ? wgs84::ecef_to_llh(*obs_.report.approx_position_ecef_m)
-                                                              : wgs84::Llh{0.7, 0.0, 0.0};
-  StationarityDetector still(cfg_.stationarity, wgs84::normal_gravity_mps2(site.lat_rad, site.height_m),
-                             3.0 * (cfg_.imu.gyro.bias_sigma + cfg_.imu.gyro.bias_instability_sigma));
-  std::size_t next_imu = 0;
-  double last_imu_t = -1e300;
-  // A start at rest gyrocompasses: it needs a gyro whose bias is small against the Earth's
-  // rate (the initializer's heading sigma reaches its 0.5 rad cap beyond this). A consumer
-  // MEMS gyro (hundreds of deg/h) waits for the moving start (heading from the track).
-  const double lat = obs_.report.approx_position_ecef_m ? wgs84::ecef_to_llh(*obs_.report.approx_position_ecef_m).lat_rad : 0.7;
-  const bool rest_start =
-      (cfg_.imu.gyro.bias_sigma + cfg_.imu.gyro.bias_instability_sigma) < 0.5 * wgs84::kEarthRate_radps * std::cos(lat);
-  const int leap = nav_.leap_seconds_valid ? nav_.utc.delta_t_ls : 18;
-  const double interval = obs_.report.nominal_interval_s > 0.0 ? obs_.report.nominal_interval_s : 1.0;
-  std::optional<CarrierSmoother> smoother;
-  if (cfg_.carrier_smoothing) smoother.emplace(cfg_.smoothing, interval, gps::kL1Wavelength_m);
-
-  for (const ObservationEpoch& e : obs_.epochs) {
-    const double t = fusion_time_s(obs_, e.t);
-    while (next_imu < imu_.samples.size() && imu_.samples[next_imu].t_s <= t + 1e-9) {
-      const ImuSample& s = imu_.samples[next_imu++];
-      still.add(s, s.t_s - last_imu_t);
-      last_imu_t = s.t_s;
-      if (!nav) init.add_imu(s);
-      else if (s.t_s > nav->time_s()) nav->propagate(s);
-    }
-    ++report_.epochs;
-    ReceiverEpoch re;
-    re.t_s = t - t_first;
-    re.t_rx = e.t;
-    FusionEpochTrace trace;
-    trace.t_s = re.t_s;
-    trace.clock_jump_m = e.clock_jump_m;
-    std::map<int, Ephemeris> ephemerides;
-    std::map<int, double> code;  // the pseudoranges the PVT and the filter take (smoothed or raw)
-    std::vector<PseudorangeObservation> pvt_obs;
-    bool dopplers = true;
-    for (const GpsL1Observation& o : e.gps) {
-      ChannelObservation c;
-      c.prn = o.prn;
-      c.pseudorange_m = o.pseudorange_m.value_or(0.0);
-      c.doppler_hz = o.doppler_hz.value_or(0.0);
-      c.carrier_phase_cycles = -o.carrier_phase_cycles.value_or(0.0);  // ours: accumulated Doppler
-      c.cn0_dbhz = o.cn0_dbhz.value_or(0.0);
-      c.after_gap = o.loss_of_lock;
-      if (o.pseudorange_m) re.observations.push_back(c);
-      FusionSatelliteTrace st;
-      st.prn = o.prn;
-      st.cn0_dbhz = o.cn0_dbhz.value_or(0.0);
-      if (o.pseudorange_m) {
-        code[o.prn] = *o.pseudorange_m;
-        if (smoother) {
-          const CarrierSmoother::Result r = smoother->add(o.prn, t, *o.pseudorange_m, o.carrier_phase_cycles,
-                                                          o.doppler_hz, o.loss_of_lock, e.clock_jump_m);
-          code[o.prn] = r.pseudorange_m;
-          st.smoothing_epochs = r.epochs;
-        }
-      }
-      trace.satellites.push_back(st);
-      const Ephemeris* eph = nav_.select(o.prn, e.t);
-      if (eph == nullptr || !o.pseudorange_m) continue;
-      ephemerides[o.prn] = *eph;
-      pvt_obs.push_back({o.prn, code[o.prn], o.doppler_hz.value_or(0.0), o.cn0_dbhz.value_or(40.0)});
-      dopplers = dopplers && o.doppler_hz.has_value();
-    }
-    re.channels_tracking = static_cast<int>(e.gps.size());
-    re.pvt = solver.solve(e.t, pvt_obs, ephemerides, iono);
-    if (re.pvt.valid) ++report_.fixes;
-    trace.pvt_valid = re.pvt.valid;
-    trace.pvt_satellites = static_cast<int>(re.pvt.used_prns.size());
-    const auto satellite_trace = [&](int prn) -> FusionSatelliteTrace& {
-      for (FusionSatelliteTrace& st : trace.satellites)
-        if (st.prn == prn) return st;
-      throw std::logic_error("no trace of PRN " + std::to_string(prn));
-    };
-    for (const auto& [prn, el] : re.pvt.elevation_rad) satellite_trace(prn).elevation_deg = el * 180.0 / M_PI;
-
-    if (nav && e.clock_jump_m != 0.0) {
-      nav->shift_clock_bias(e.clock_jump_m);
-      ++report_.clock_jumps_followed;
-      spdlog::info("t = {:.2f} s: receiver clock re-set by {:.3f} us: filter clock follows", re.t_s,
-                   e.clock_jump_m / gps::kSpeedOfLight_mps * 1e6);
-    }
-    int filter_satellites = 0;
-    if (!nav && re.pvt.valid && dopplers && last_imu_t > t - 0.1) {
-      GnssFix fix;
-      fix.t_s = t;
-      fix.r_antenna_ecef_m = re.pvt.r_ecef_m;
-      fix.v_antenna_ecef_mps = re.pvt.v_ecef_mps;
-      fix.clock_bias_m = re.pvt.clock_bias_m;
-      fix.clock_drift_mps = re.pvt.clock_drift_mps;
-      fix.horizontal_sigma_m = std::max(1.0, re.pvt.dops.hdop * cfg_.pvt_position_sigma_scale_m);
-      fix.vertical_sigma_m = std::max(1.5, re.pvt.dops.vdop * cfg_.pvt_position_sigma_scale_m);
-      const double speed = ecef_to_ned_vector(re.pvt.llh, re.pvt.v_ecef_mps).norm();
-      std::optional<InsStart> start;
-      if (rest_start || speed >= 0.2) start = init.add_fix(fix);
-      if (start) {
-        NavigatorConfig nc;
-        nc.noise = process_noise_from(cfg_.imu, cfg_.oscillator);
-        nc.lever_arm_imu_to_antenna_b_m = cfg_.lever_arm_imu_to_antenna_b_m;
-        nc.gate_sigma = cfg_.gate_sigma;
-        const double dt = start->state.t_s - t;
-        nav.emplace(start->state, fix.clock_bias_m + fix.clock_drift_mps * dt, fix.clock_drift_mps, nc, start->uncertainty);
-        report_.ins_start = start->method;
-        report_.ins_start_t_s = re.t_s;
-        const EulerAngles a = euler_from_quaternion(start->state.q_b_n);
-        spdlog::info("t = {:.2f} s: INS started ({}): roll {:.1f} pitch {:.1f} yaw {:.1f} deg", re.t_s, start->method,
-                     a.roll_rad * 180 / M_PI, a.pitch_rad * 180 / M_PI, a.yaw_rad * 180 / M_PI);
-      }
-    } else if (nav) {
-      const double dt = t - nav->time_s();
-      if (mode == NavMode::loose && re.pvt.valid) {
-        const double vh = dopplers ? re.pvt.dops.hdop * cfg_.doppler_sigma_mps / std::sqrt(2.0) : 100.0;
-        const double vv = dopplers ? re.pvt.dops.vdop * cfg_.doppler_sigma_mps : 100.0;
-        const KalmanUpdate r = nav->update_position_velocity(
-            re.pvt.r_ecef_m, re.pvt.v_ecef_mps,
-            pvt_position_sigma_ned_m(re.pvt.dops.hdop, re.pvt.dops.vdop, cfg_.pvt_position_sigma_scale_m),
-            Eigen::Vector3d(vh, vh, vv), dt, dt);
-        report_.rows_rejected += r.rejected;
-        trace.rows += r.rows;
-        trace.rows_rejected += r.rejected;
-        filter_satellites = static_cast<int>(re.pvt.used_prns.size());
-      }
-      if (mode == NavMode::tight) {
-        const double bias = nav->clock_bias_m() + nav->clock_drift_mps() * dt;
-        std::vector<RangeMeasurement> rows;
-        for (const GpsL1Observation& o : e.gps) {
-          const auto eph = ephemerides.find(o.prn);
-          if (eph == ephemerides.end()) continue;
-          RangeMeasurement m;
-          m.prn = o.prn;
-          m.time_offset_s = dt;
-          m.geometry = predict_range(eph->second, e.t, bias, nav->antenna_ecef_at(t), nav->antenna_velocity_ecef_mps(), iono,
-                                     cfg_.atmosphere);
-          FusionSatelliteTrace& st = satellite_trace(o.prn);
-          st.elevation_deg = m.geometry.elevation_rad * 180.0 / M_PI;
-          if (m.geometry.elevation_rad < cfg_.pvt.elevation_mask_rad) continue;
-          m.pseudorange_m = code.at(o.prn);
-          m.pseudorange_sigma_m = cfg_.pseudorange_sigma_scale *
-                                  std::sqrt(cfg_.pvt.range_errors.pseudorange_variance_m2(m.geometry.elevation_rad,
-                                                                                          o.cn0_dbhz.value_or(40.0)));
-          st.code_residual_m = *m.pseudorange_m - m.geometry.pseudorange_m(bias);
-          if (o.doppler_hz) {
-            m.rate_mps = -gps::kL1Wavelength_m * *o.doppler_hz;
-            m.rate_sigma_mps = cfg_.doppler_sigma_mps;
-            st.rate_residual_mps = *m.rate_mps - m.geometry.pseudorange_rate_mps(nav->antenna_velocity_ecef_mps(),
-                                                                                  nav->clock_drift_mps());
-          }
-          rows.push_back(m);
-        }
-        if (!rows.empty()) {
-          KalmanUpdate r = nav->update_ranges(rows);
-          // Every pseudorange turned away, all by about the same amount: the receiver clock
-          // stepped by less than the reader looks for (rinex_obs_reader.hpp), or the filter's
-          // clock ran off. A common offset is a clock error, not four faulty satellites: the
-          // clock takes it and the rows are offered again.
-          if (const std::optional<double> step = common_code_offset(rows, r, trace); step) {
-            nav->shift_clock_bias(*step);
-            ++report_.clock_steps_absorbed;
-            spdlog::info("t = {:.2f} s: every pseudorange {:.1f} m off the filter: its clock takes the step", re.t_s, *step);
-            for (FusionSatelliteTrace& st : trace.satellites)
-              if (st.code_residual_m) *st.code_residual_m -= *step;
-            r = nav->update_ranges(rows);
-          }
-          report_.rows_rejected += r.rejected;
-          trace.rows += r.rows;
-          trace.rows_rejected += r.rejected;
-          // The rows in order: each measurement's pseudorange row, then its rate row.
-          std::size_t k = 0;
-          for (const RangeMeasurement& m : rows) {
-            FusionSatelliteTrace& st = satellite_trace(m.prn);
-            if (m.pseudorange_m && k < r.normalized_innovations.size()) {
-              st.code_normalized = -r.normalized_innovations[k];
-              st.code_rejected = r.row_rejected[k];
-              ++k;
-            }
-            if (m.rate_mps && k < r.row_rejected.size()) st.rate_rejected = r.row_rejected[k++];
-          }
-        }
-        filter_satellites = static_cast<int>(rows.size());
-      }
-      // Not while the Dopplers say the antenna moves (a fix without Dopplers says nothing).
-      const bool gnss_still = !re.pvt.valid || !dopplers ||
-                              ecef_to_ned_vector(re.pvt.llh, re.pvt.v_ecef_mps).norm() <= cfg_.stationarity.max_gnss_speed_mps;
-      if (gnss_still && still.stationary()) {
-        const KalmanUpdate r = nav->update_zero_velocity(cfg_.stationarity.velocity_sigma_mps);
-        if (r.applied) {
-          ++report_.zero_velocity_updates;
-          trace.zero_velocity = true;
-        } else {
-          ++report_.zero_velocity_rejected;
-        }
-      }
-      if (!nav->healthy()) {
-        spdlog::error("t = {:.2f} s: navigation filter failed ({}); INS restarted from the next fix", re.t_s,
-                      nav->health_reason());
-        nav.reset();
-        init = InsInitializer(cfg_.imu, cfg_.lever_arm_imu_to_antenna_b_m);
-        ++report_.filter_restarts;
-      }
-    }
-    if (nav) trace.position_sigma_ned_m = nav->position_sigma_ned_m();
-    trace.filter = nav.has_value();
-    if (trace_) trace_(trace);
-
-    PvtSolution solution = re.pvt;
-    const bool from_filter = nav.has_value();
-    if (from_filter) {
-      solution.valid = true;
-      solution.t = e.t;
-      solution.r_ecef_m = nav->antenna_ecef_at(t);
-      solution.v_ecef_mps = nav->antenna_velocity_ecef_mps();
-      solution.llh = wgs84::ecef_to_llh(solution.r_ecef_m);
-      solution.clock_bias_m = nav->clock_bias_m();
-      solution.clock_drift_mps = nav->clock_drift_mps();
-      ++report_.filter_epochs;
-    }
-    const std::string mode_name = from_filter ? to_string(mode) : "scalar";
-    report_.seconds_in_mode[mode_name] += interval;
-    const int measurements = from_filter ? (mode == NavMode::tight ? filter_satellites : static_cast<int>(re.pvt.used_prns.size()))
-                                         : static_cast<int>(re.pvt.used_prns.size());
-    const NavigationEpoch ne{re, solution, from_filter, mode_name,
-                             from_filter ? filter_satellites : static_cast<int>(re.pvt.used_prns.size()), measurements, leap};
-    for (ProductSink* s : sinks) s->on_epoch(ne);
-  }
-  if (smoother) {
-    report_.smoothing_restarts = smoother->restarts();
-    report_.smoothing_slips = smoother->slips();
-    report_.smoothing_doppler_steps = smoother->doppler_steps();
-  }
+  FusionRun fusion(cfg_, obs_, nav_, imu_, report_);
+  for (const ObservationEpoch& e : obs_.epochs) fusion.epoch(e, sinks, trace_);
+  fusion.finish();
   for (ProductSink* s : sinks) s->finish(nav_);
 }
 

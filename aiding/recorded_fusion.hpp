@@ -2,24 +2,29 @@
 // The aided navigator fed from recordings instead of the IF receiver: GPS L1 C/A
 // observations read from RINEX, broadcast ephemerides from a RINEX navigation file and an
 // IMU log, coupled loosely (a PVT from the pseudoranges and Dopplers, by the receiver's PVT
-// solver) or tightly (pseudorange and Doppler rows), with the same filter, INS start,
-// lever arm and products as `deepnav run`.
+// solver) or tightly (pseudorange and Doppler rows), through the same coupling steps as
+// `deepnav run` (gnss_coupling.hpp: INS start, loose and tight update), with the same
+// filter, lever arm and products.
 //
-// Time: one axis, GPS seconds from the start of the week of the first observation epoch.
-// The observations' receiver time tags and the IMU log's times (already on GPS time, see
-// ins/imu_log_reader.hpp) are both put on it.
+// Time: the fusion axis (fusion_time_axis.hpp), GPS seconds of the first epoch's week.
+// RINEX gives every observable of an epoch one time, the epoch's tag (the receiver's time
+// of measurement): a recorded Doppler is taken at the tag, its offset 0, unless the
+// receiver is known to write a mean over a window before the tag (doppler_time_offset_s;
+// the IF receiver's own obs.rnx carries its 100 ms means, about -55 ms).
 //
 // What recorded data need beyond the IF receiver's:
 //  - a receiver clock re-set between epochs (rinex_obs_reader.hpp finds it) moves the
 //    filter's clock bias by the same step; one too small for the reader, which the gate
 //    meets as every pseudorange off by the same amount, is taken by the clock too;
 //  - zero-velocity updates whenever a stationarity detector on the IMU fires (a walker
-//    stops): over the last window the specific force and the angular rate each stay within
-//    a tolerance of their window means, the mean specific force is gravity's magnitude, the
-//    mean rate within the tolerance plus the gyro's possible bias, and the PVT's Doppler
-//    speed (when there is one) is low;
+//    stops; stationarity_detector.hpp) and the PVT's Doppler speed (when there is one) is
+//    low;
 //  - a satellite flagged with loss of lock keeps its pseudorange (code does not slip);
 //    a satellite without Doppler gives a pseudorange row only.
+// What it does not have: the IF path's watch for atmosphere models the signal does not
+// match (TroposphereResidualConfig::enable_on_mismatch and the ionosphere's are not read
+// here: a residual state is estimated from the start when enabled, else never), its
+// per-satellite fault exclusion and innovation monitor.
 #include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -27,10 +32,11 @@
 #include <string>
 #include <vector>
 
-#include "aiding/aided_navigator.hpp"
+#include "aiding/fusion_time_axis.hpp"
+#include "aiding/gnss_coupling.hpp"
 #include "aiding/mode_manager.hpp"
+#include "aiding/stationarity_detector.hpp"
 #include "ins/imu_file.hpp"
-#include "ins/imu_model.hpp"
 #include "receiver/observations/carrier_smoothing.hpp"
 #include "receiver/observations/rinex_obs_reader.hpp"
 #include "receiver/products/product_sink.hpp"
@@ -39,33 +45,24 @@
 
 namespace deepnav::aiding {
 
-struct StationarityConfig {
-  bool enabled = true;
-  double window_s = 0.5;
-  double accel_tolerance_mps2 = 0.25;   ///< |f - mean f| within this over the window
-  double gyro_tolerance_radps = 0.25 * M_PI / 180.0;
-  double velocity_sigma_mps = 0.02;     ///< of the zero-velocity update
-  /// No update while the PVT's Doppler velocity is faster than this (m/s).
-  double max_gnss_speed_mps = 0.5;
-};
-
 struct RecordedFusionConfig {
   NavMode mode = NavMode::tight;        ///< loose or tight
-  ImuErrorModel imu;                    ///< the IMU's grade: process noise and start limits
-  OscillatorNoise oscillator;
-  Eigen::Vector3d lever_arm_imu_to_antenna_b_m = Eigen::Vector3d::Zero();
+  /// The IMU, lever arm, gate and atmosphere (the PVT solver's models and the filter's
+  /// residual states): the settings `deepnav run` couples with.
+  CouplingSettings coupling;
   PvtConfig pvt;
-  AtmosphereModels atmosphere;
-  double pvt_position_sigma_scale_m = 2.0;  ///< loose: position sigma = DOP x this
   double pseudorange_sigma_scale = 1.0;     ///< tight: times the shared range weight model's sigma
   /// Sigma of one pseudorange rate from a recorded Doppler: a tight row's, and in loose
   /// coupling the PVT velocity's per axis times its DOP (HDOP / sqrt 2 east and north, VDOP
   /// up), the same satellites' Dopplers through the same geometry.
   double doppler_sigma_mps = 0.1;
+  /// The recorded Dopplers' time minus their epoch's time tag: 0 as RINEX defines them;
+  /// negative for a receiver that writes a mean over a window ending at the tag (minus half
+  /// the window).
+  double doppler_time_offset_s = 0.0;
   /// Carrier smoothing of the pseudoranges (both modes and the PVT); off: raw code.
   bool carrier_smoothing = true;
   CarrierSmoothingConfig smoothing;
-  double gate_sigma = 5.0;
   StationarityConfig stationarity;
   /// Before the first fix's ionosphere parameters (a navigation file without ION ALPHA/BETA):
   /// none are applied.
@@ -131,14 +128,5 @@ class RecordedFusion {
   RecordedFusionReport report_;
   std::function<void(const FusionEpochTrace&)> trace_;
 };
-
-/// The fusion axis: GPS seconds from the start of the first epoch's week.
-double fusion_time_s(const ObservationFile& obs, const GpsTime& t);
-
-enum class ImuTimeBase { week_seconds, gps_seconds, unix_gps };
-/// "week-seconds", "gps", "unix-gps" (throws std::invalid_argument otherwise).
-ImuTimeBase parse_imu_time_base(const std::string& name);
-/// Moves every IMU time from `base` onto the fusion axis of `obs`.
-void to_fusion_axis(ImuLog& imu, ImuTimeBase base, const ObservationFile& obs);
 
 }  // namespace deepnav::aiding

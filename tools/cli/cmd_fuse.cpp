@@ -118,14 +118,14 @@ void run_fuse(CLI::App& root, FuseOptions o) {
     apply_mounting(imu.log, mounting);
     aiding::to_fusion_axis(imu.log, base, obs);
     c.mode = aiding::parse_nav_mode(o.mode);
-    c.imu = load_imu_grade(resolve_path(o.imu_grades_file, ".", DEEPNAV_SOURCE_DIR), o.imu_grade).model;
-    c.lever_arm_imu_to_antenna_b_m = mounting.lever_arm_imu_to_antenna_b_m();
+    c.coupling.imu = load_imu_grade(resolve_path(o.imu_grades_file, ".", DEEPNAV_SOURCE_DIR), o.imu_grade).model;
+    c.coupling.lever_arm_imu_to_antenna_b_m = mounting.lever_arm_imu_to_antenna_b_m();
     if (!o.reference.empty()) reference = read_rtklib_pos(o.reference);
     if (!o.compare.empty()) baseline = read_rtklib_pos(o.compare);
   } catch (const std::exception& e) {
     throw UserError(e.what());
   }
-  c.atmosphere = o.atmosphere;
+  c.coupling.atmosphere = o.atmosphere;
   c.pvt.elevation_mask_rad = o.elevation_mask_deg * M_PI / 180.0;
   c.pseudorange_sigma_scale = o.pseudorange_sigma_scale;
   c.doppler_sigma_mps = o.doppler_sigma_mps;

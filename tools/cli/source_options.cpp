@@ -1,7 +1,7 @@
 #include "tools/cli/source_options.hpp"
 
 #include "receiver/acquisition/acquisition.hpp"
-#include "receiver/scalar_receiver.hpp"
+#include "receiver/gnss_receiver.hpp"
 #include "signals/gps_constants.hpp"
 #include "signals/sample_format.hpp"
 #include "tools/cli/cli_checks.hpp"
