@@ -33,6 +33,18 @@ struct StreamRun {
   int max_tracking = 0;
 };
 
+/// The server's thread, stopped and joined however the run ends: a thread left joinable
+/// would end the process without a word about what failed.
+struct ServingThread {
+  std::atomic<bool> stop{false};
+  std::thread thread;
+  void finish() {
+    stop = true;
+    if (thread.joinable()) thread.join();
+  }
+  ~ServingThread() { finish(); }
+};
+
 /// Serves `if_path` over TCP loopback at `pace` (0: as fast as read) for `seconds` of
 /// signal and runs the receiver on it in this thread.
 StreamRun run_over_tcp(const Scenario& sc, const std::string& if_path, double pace, double seconds) {
@@ -67,8 +79,8 @@ StreamRun run_over_tcp(const Scenario& sc, const std::string& if_path, double pa
     return std::unique_ptr<IfByteStream>(new Cut(fo, limit));
   };
   StreamServer server(so);
-  std::atomic<bool> stop{false};
-  std::thread serving([&] { server.run(stop, 1); });
+  ServingThread serving;
+  serving.thread = std::thread([&] { server.run(serving.stop, 1); });
   StreamRun r;
   const double cpu0 = thread_cpu_s(), process0 = process_cpu_s();
   const auto t0 = std::chrono::steady_clock::now();
@@ -77,6 +89,7 @@ StreamRun run_over_tcp(const Scenario& sc, const std::string& if_path, double pa
     st.port = server.tcp_port();
     TcpSampleSource source(st);
     aiding::NavigationSessionConfig cfg;
+    cfg.navigator.mode = aiding::NavMode::scalar;  // the receiver alone (the config's default is ultra)
     cfg.navigator.receiver.reference_week = sc.start_time.week;
     CallbackSink counter(
         [&](const NavigationEpoch& e) { r.max_tracking = std::max(r.max_tracking, e.receiver.channels_tracking); });
@@ -87,8 +100,7 @@ StreamRun run_over_tcp(const Scenario& sc, const std::string& if_path, double pa
   }
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.receiver_cpu_s = thread_cpu_s() - cpu0;
-  stop = true;
-  serving.join();
+  serving.finish();
   r.process_cpu_s = process_cpu_s() - process0;
   return r;
 }
