@@ -42,6 +42,8 @@ std::string source_relative(const std::string& path) {
   return path.rfind(root, 0) == 0 ? path.substr(root.size()) : path;
 }
 
+std::string source_tree_path(const std::string& relative) { return std::string(DEEPNAV_SOURCE_DIR) + "/" + relative; }
+
 void BenchReport::add_note(const std::string& key, nlohmann::json value) { notes_[key] = std::move(value); }
 
 std::string BenchReport::format_cell(std::size_t column, const Cell& cell) const {
@@ -94,6 +96,23 @@ void BenchReport::emit(const std::string& json_path) const {
   if (!out) throw InputError("cannot write JSON report to '" + json_path + "'");
   out << to_json().dump(2) << '\n';
   if (!out.flush()) throw InputError("failed while writing JSON report to '" + json_path + "'");
+}
+
+void write_json_file(const std::string& path, const nlohmann::json& value) {
+  std::ofstream out(path);
+  if (!out) throw InputError("cannot write '" + path + "'");
+  out << value.dump(1) << '\n';
+  if (!out.flush()) throw InputError("failed while writing '" + path + "'");
+}
+
+void emit_reports(const std::string& benchmark, const std::vector<BenchReport>& reports, const std::string& json_path) {
+  nlohmann::json tables = nlohmann::json::array();
+  for (std::size_t i = 0; i < reports.size(); ++i) {
+    std::cout << (i ? "\n" : "") << reports[i].to_text();
+    tables.push_back(reports[i].to_json());
+  }
+  std::cout << std::flush;
+  if (!json_path.empty()) write_json_file(json_path, {{"benchmark", benchmark}, {"reports", tables}});
 }
 
 }  // namespace deepnav::bench

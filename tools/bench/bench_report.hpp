@@ -11,6 +11,9 @@ namespace deepnav::bench {
 /// A path as written from the repository's root when it lies inside the source tree
 /// (so that recorded figures do not carry one checkout's location), else unchanged.
 std::string source_relative(const std::string& path);
+/// A file of the source tree (`relative` from the repository's root) as an absolute path:
+/// the benchmarks' default scenarios.
+std::string source_tree_path(const std::string& relative);
 
 /// Where a benchmark writes its scratch files (synthesized IF), deleted when it is done: a
 /// folder of this process's own (deepnav_<name>_<pid>) inside `given` when set, else inside
@@ -43,5 +46,13 @@ class BenchReport {
   std::vector<std::vector<Cell>> rows_;
   nlohmann::json notes_ = nlohmann::json::object();
 };
+
+/// Writes `value` as JSON (one space an indent level) to `path`; throws InputError naming
+/// the path when it cannot be written.
+void write_json_file(const std::string& path, const nlohmann::json& value);
+
+/// A benchmark of several tables: prints them, a blank line apart, and, when json_path is
+/// not empty, writes {"benchmark": name, "reports": [each table's JSON]} there.
+void emit_reports(const std::string& benchmark, const std::vector<BenchReport>& reports, const std::string& json_path);
 
 }  // namespace deepnav::bench

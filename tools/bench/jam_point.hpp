@@ -7,8 +7,9 @@
 #include <string>
 
 #include "aiding/long_integrator.hpp"
-
 #include "signals/sim/jammer.hpp"
+#include "signals/sim/scenario.hpp"
+#include "tools/bench/run_configuration.hpp"
 
 namespace deepnav::bench {
 
@@ -35,20 +36,27 @@ std::string point_dir(const std::string& out_dir, const JamPoint& p);
 /// True when the point's point.json exists (the point finished before).
 bool point_done(const std::string& out_dir, const JamPoint& p);
 
-/// Thresholds that make a point a failure: the solution leaves 10 m (horizontal or
-/// vertical, any solution, an aided mode's INS coast included), GNSS fixes (not in INS
-/// coast, at least four satellites tracked) are missing for more than 5 % of the jammed
-/// epochs, or the channels are tracked for less than half of the jammed time on average.
-struct FailureCriteria {
-  double max_error_m = 10.0;
-  double min_fix_availability = 0.95;
-  double min_tracked_fraction = 0.5;
+/// The point's scenario: its seed, and the benchmark jammer from the onset to the end.
+/// Throws InputError for an onset outside the scenario, an aided mode on a scenario without
+/// an IMU, or a scenario that does not load.
+Scenario jam_point_scenario(const JamPoint& p);
+
+/// Where the synthesizer wrote the point's signal and truth.
+struct JamPointFiles {
+  std::string if_path, truth_path, imu_path;
+  std::string run_dir;  ///< where a rerun by hand writes its products
 };
 
-/// Synthesizes, runs the receiver in-process (NavigationSession, every mode with the
-/// broadcast ephemerides of the scenario's navigation file as assistance, so the first fix
-/// comes at about 11 s) and writes point.json (its `command` is the equivalent `deepnav
-/// run`); the IF file is deleted. Returns the figures.
+/// The `deepnav run` of the point: its IF file, week, the broadcast ephemerides and
+/// ionosphere of the scenario's navigation file as assistance (every mode, so the first fix
+/// comes at about 11 s), its mitigation, long integration, mode and the scenario's IMU.
+RunConfiguration jam_point_run(const JamPoint& p, const Scenario& scenario, const JamPointFiles& files);
+
+/// Synthesizes, runs jam_point_run in-process and writes point.json (its `command` is that
+/// run's `deepnav run`); the IF file is deleted. Returns the figures.
 nlohmann::json run_jam_point(const JamPoint& p, const std::string& out_dir);
+
+/// One line for the terminal: the point's id, its main figures and its verdict.
+std::string jam_point_summary(const nlohmann::json& figures);
 
 }  // namespace deepnav::bench

@@ -6,19 +6,17 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <limits>
 #include <map>
 #include <tuple>
 
-#include "signals/text_output_file.hpp"
 #include "ins/input_error.hpp"
-#include "tools/bench/jam_point.hpp"
+#include "signals/text_output_file.hpp"
+#include "tools/bench/jam_judge.hpp"
 
 namespace deepnav::bench {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr double kNoFailure = std::numeric_limits<double>::infinity();
 
 std::string cell(const nlohmann::json& v, int decimals) {
   if (v.is_null()) return "";
@@ -60,14 +58,36 @@ void write_runs_csv(const std::vector<nlohmann::json>& points, const std::string
 
 using SeriesKey = std::tuple<std::string, std::string, std::string, std::string>;  // scenario, jammer, mode, mitigation
 
+/// One series' points, J/S by J/S.
 struct Series {
   double js_min = 1e300, js_max = -1e300;
-  std::map<std::uint64_t, double> first_failure;  ///< per seed; kNoFailure when every J/S passed
+  std::map<std::uint64_t, double> first_failure;  ///< per seed; kNoJamFailure when every J/S passed
   std::map<std::uint64_t, std::string> reason;
   /// per seed: first J/S at which the satellites see their signal (C/N0 at least 15
-  /// dB-Hz) less than half of the time; kNoFailure when never
+  /// dB-Hz) less than half of the time; kNoJamFailure when never
   std::map<std::uint64_t, double> first_signal_loss;
 };
+
+std::map<SeriesKey, Series> series_of(const std::vector<nlohmann::json>& points) {
+  std::map<SeriesKey, Series> series;
+  for (const auto& p : points) {  // sorted by J/S within a series: the first failure comes first
+    Series& s = series[{p["scenario"], p["jammer"], p["mode"], p["mitigation"]}];
+    const double js = p["js_db"].get<double>();
+    const auto seed = p["seed"].get<std::uint64_t>();
+    s.js_min = std::min(s.js_min, js);
+    s.js_max = std::max(s.js_max, js);
+    auto [it, inserted] = s.first_failure.try_emplace(seed, kNoJamFailure);
+    if (p["failed"].get<bool>() && std::isinf(it->second)) {
+      it->second = js;
+      s.reason[seed] = p["failure"].get<std::string>();
+    }
+    auto [sig, sig_inserted] = s.first_signal_loss.try_emplace(seed, kNoJamFailure);
+    if (p.contains("signal_fraction_mean") &&
+        p["signal_fraction_mean"].get<double>() < FailureCriteria{}.min_tracked_fraction && std::isinf(sig->second))
+      sig->second = js;
+  }
+  return series;
+}
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -75,9 +95,48 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-std::string threshold_text(double t, double js_max) {
-  return std::isinf(t) ? fmt::format("> {:.1f}", js_max) : fmt::format("{:.1f}", t);
+/// Over the seeds both series ran, so a mitigation is compared with the same noise and jammer.
+std::string gain_over_none(const Series& mitigated, const Series& none) {
+  std::vector<double> bv, tv;
+  for (const auto& [seed, b] : none.first_failure)
+    if (mitigated.first_failure.count(seed)) {
+      bv.push_back(b);
+      tv.push_back(mitigated.first_failure.at(seed));
+    }
+  const double b = bv.empty() ? kNoJamFailure : median(bv);
+  const double m = tv.empty() ? kNoJamFailure : median(tv);
+  if (bv.empty()) return "n/a (no common seed)";
+  if (std::isinf(b)) return "n/a (none never failed)";
+  if (std::isinf(m)) return fmt::format("> {:.1f}", mitigated.js_max - b);
+  return fmt::format("{:.1f}", m - b);
 }
+
+std::string per_run_text(const JamThreshold& t) {
+  std::string text;
+  for (double v : t.first_failure_db) {
+    if (!text.empty()) text += ' ';
+    text += threshold_text(v, t.js_max_db);
+  }
+  return text;
+}
+
+std::string tested_text(const JamThreshold& t) { return fmt::format("{:g}..{:g}", t.js_min_db, t.js_max_db); }
+
+constexpr const char* kThresholdsExplained =
+    "\nA point fails when, from the jammer onset to the end, a solution is more than 10 m off the truth "
+    "(horizontal or vertical; an aided mode's INS coast included), more than 5 % of the epochs have no GNSS "
+    "fix (a solution not in INS coast with at least four satellites tracked), or the satellites are tracked "
+    "less than half of the time on average. A satellite is tracked while its channel is in the tracking "
+    "state, its carrier is within 10 Hz of the true Doppler and its C/N0 estimate has not been below 22 "
+    "dB-Hz for 1 s (the scalar receiver's loss rule, applied to the channels of scalar, loose and tight); a "
+    "channel the ultra-tight filter steers, by the aided lock criterion: one of its integrations within the last "
+    "second had its signal detected and code discriminator noise no worse than at 18 dB-Hz over 10 ms (its long, "
+    "data-wiped integrations measure well below 22 dB-Hz). Every mode starts with the "
+    "broadcast ephemerides of the scenario's navigation file. \"> X\": no failure up to the highest J/S "
+    "tested. \"Signal lost\": the first J/S at which the satellites' channels follow them (tracking state, "
+    "carrier within 10 Hz) with a C/N0 estimate averaging at least 15 dB-Hz over the last second (about 10 dB "
+    "above that average without signal) less than half of the time: how far the channels still see their "
+    "signal, whatever the solution does.\n";
 
 }  // namespace
 
@@ -106,25 +165,35 @@ std::vector<nlohmann::json> load_jam_points(const std::string& out_dir) {
   return points;
 }
 
+std::vector<JamThreshold> jam_thresholds(const std::vector<nlohmann::json>& points) {
+  const std::map<SeriesKey, Series> series = series_of(points);
+  std::vector<JamThreshold> out;
+  for (const auto& [key, s] : series) {
+    JamThreshold& t = out.emplace_back();
+    std::tie(t.scenario, t.jammer, t.mode, t.mitigation) = key;
+    t.js_min_db = s.js_min;
+    t.js_max_db = s.js_max;
+    for (const auto& [seed, first] : s.first_failure) {
+      t.first_failure_db.push_back(first);
+      if (s.reason.count(seed) && t.failure.find(s.reason.at(seed)) == std::string::npos)
+        t.failure += (t.failure.empty() ? "" : "; ") + s.reason.at(seed);
+    }
+    t.median_first_failure_db = median(t.first_failure_db);
+    const auto none = series.find({t.scenario, t.jammer, t.mode, "none"});
+    if (t.mitigation != "none" && none != series.end()) t.gain_over_none = gain_over_none(s, none->second);
+    std::vector<double> signal_lost;
+    for (const auto& [seed, v] : s.first_signal_loss) signal_lost.push_back(v);
+    t.median_signal_lost_db = median(signal_lost);
+  }
+  return out;
+}
+
+std::string threshold_text(double t, double js_max) {
+  return std::isinf(t) ? fmt::format("> {:.1f}", js_max) : fmt::format("{:.1f}", t);
+}
+
 BenchReport write_jam_report(const std::vector<nlohmann::json>& points, const std::string& out_dir) {
   write_runs_csv(points, out_dir);
-  std::map<SeriesKey, Series> series;
-  for (const auto& p : points) {  // sorted by J/S within a series: the first failure comes first
-    Series& s = series[{p["scenario"], p["jammer"], p["mode"], p["mitigation"]}];
-    const double js = p["js_db"].get<double>();
-    const auto seed = p["seed"].get<std::uint64_t>();
-    s.js_min = std::min(s.js_min, js);
-    s.js_max = std::max(s.js_max, js);
-    auto [it, inserted] = s.first_failure.try_emplace(seed, kNoFailure);
-    if (p["failed"].get<bool>() && std::isinf(it->second)) {
-      it->second = js;
-      s.reason[seed] = p["failure"].get<std::string>();
-    }
-    auto [sig, sig_inserted] = s.first_signal_loss.try_emplace(seed, kNoFailure);
-    if (p.contains("signal_fraction_mean") && p["signal_fraction_mean"].get<double>() < FailureCriteria{}.min_tracked_fraction &&
-        std::isinf(sig->second))
-      sig->second = js;
-  }
   BenchReport report("Jamming thresholds: first J/S (dB) at which the solution leaves 10 m or tracking is lost",
                      {"scenario", "jammer", "mode", "mitigation", "js_tested_db", "runs", "first_failure_db",
                       "per_run_db", "gain_over_none_db", "failure", "signal_lost_db"});
@@ -132,62 +201,16 @@ BenchReport write_jam_report(const std::vector<nlohmann::json>& points, const st
       "| scenario | jammer | mode | mitigation | J/S tested (dB) | runs | first failing J/S (dB, median) | per run | "
       "gain over none (dB, same seeds) | failure at threshold | signal lost at J/S (dB, median) |\n"
       "|---|---|---|---|---|---|---|---|---|---|---|\n";
-  for (const auto& [key, s] : series) {
-    const auto& [scenario, jammer, mode, mitigation] = key;
-    std::vector<double> values;
-    std::string per_run, reasons;
-    for (const auto& [seed, t] : s.first_failure) {
-      values.push_back(t);
-      per_run += (per_run.empty() ? "" : " ") + threshold_text(t, s.js_max);
-      if (s.reason.count(seed) && reasons.find(s.reason.at(seed)) == std::string::npos)
-        reasons += (reasons.empty() ? "" : "; ") + s.reason.at(seed);
-    }
-    const double t = median(values);
-    std::string gain = "";
-    const auto base = series.find({scenario, jammer, mode, "none"});
-    if (mitigation != "none" && base != series.end()) {
-      // Over the seeds both series ran, so a mitigation is compared with the same noise and jammer.
-      std::vector<double> bv, tv;
-      for (const auto& [seed, b] : base->second.first_failure)
-        if (s.first_failure.count(seed)) {
-          bv.push_back(b);
-          tv.push_back(s.first_failure.at(seed));
-        }
-      const double b = bv.empty() ? kNoFailure : median(bv);
-      const double m = tv.empty() ? kNoFailure : median(tv);
-      if (bv.empty())
-        gain = "n/a (no common seed)";
-      else if (std::isinf(b))
-        gain = "n/a (none never failed)";
-      else if (std::isinf(m))
-        gain = fmt::format("> {:.1f}", s.js_max - b);
-      else
-        gain = fmt::format("{:.1f}", m - b);
-    }
-    std::vector<double> signal_values;
-    for (const auto& [seed, v] : s.first_signal_loss) signal_values.push_back(v);
-    const std::string signal_lost = threshold_text(median(signal_values), s.js_max);
-    const std::string tested = fmt::format("{:g}..{:g}", s.js_min, s.js_max);
-    const std::string text = threshold_text(t, s.js_max);
-    report.add_row({scenario, jammer, mode, mitigation, tested, static_cast<long long>(values.size()), text, per_run,
-                    gain, reasons, signal_lost});
-    md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", scenario, jammer, mode, mitigation,
-                      tested, values.size(), text, per_run, gain, reasons, signal_lost);
+  for (const JamThreshold& t : jam_thresholds(points)) {
+    const std::string tested = tested_text(t), first = threshold_text(t.median_first_failure_db, t.js_max_db),
+                      per_run = per_run_text(t), signal_lost = threshold_text(t.median_signal_lost_db, t.js_max_db);
+    report.add_row({t.scenario, t.jammer, t.mode, t.mitigation, tested, static_cast<long long>(t.first_failure_db.size()),
+                    first, per_run, t.gain_over_none, t.failure, signal_lost});
+    md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", t.scenario, t.jammer, t.mode,
+                      t.mitigation, tested, t.first_failure_db.size(), first, per_run, t.gain_over_none, t.failure,
+                      signal_lost);
   }
-  md += "\nA point fails when, from the jammer onset to the end, a solution is more than 10 m off the truth "
-        "(horizontal or vertical; an aided mode's INS coast included), more than 5 % of the epochs have no GNSS "
-        "fix (a solution not in INS coast with at least four satellites tracked), or the satellites are tracked "
-        "less than half of the time on average. A satellite is tracked while its channel is in the tracking "
-        "state, its carrier is within 10 Hz of the true Doppler and its C/N0 estimate has not been below 22 "
-        "dB-Hz for 1 s (the scalar receiver's loss rule, applied to the channels of scalar, loose and tight); a "
-        "channel the ultra-tight filter steers, by the aided lock criterion: one of its integrations within the last "
-        "second had its signal detected and code discriminator noise no worse than at 18 dB-Hz over 10 ms (its long, "
-        "data-wiped integrations measure well below 22 dB-Hz). Every mode starts with the "
-        "broadcast ephemerides of the scenario's navigation file. \"> X\": no failure up to the highest J/S "
-        "tested. \"Signal lost\": the first J/S at which the satellites' channels follow them (tracking state, "
-        "carrier within 10 Hz) with a C/N0 estimate averaging at least 15 dB-Hz over the last second (about 10 dB "
-        "above that average without signal) less than half of the time: how far the channels still see their "
-        "signal, whatever the solution does.\n";
+  md += kThresholdsExplained;
   TextOutputFile file((fs::path(out_dir) / "thresholds.md").string());
   file.write(md);
   file.commit();

@@ -5,6 +5,8 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "ins/input_error.hpp"
+
 namespace deepnav::bench {
 namespace {
 
@@ -39,6 +41,12 @@ bool run_plot_script(const std::string& script, const std::string& plots_dir) {
     return false;
   }
   return true;
+}
+
+void make_plots_dir(const std::string& plots_dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(plots_dir, ec);
+  if (ec) throw InputError("cannot create plots directory '" + plots_dir + "': " + ec.message());
 }
 
 }  // namespace deepnav::bench

@@ -11,4 +11,8 @@ namespace deepnav::bench {
 /// or the script fails.
 bool run_plot_script(const std::string& script, const std::string& plots_dir);
 
+/// Creates the folder a benchmark writes its plots and their data into; throws InputError
+/// naming it when it cannot be made.
+void make_plots_dir(const std::string& plots_dir);
+
 }  // namespace deepnav::bench

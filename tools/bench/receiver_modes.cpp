@@ -39,12 +39,9 @@ const ReceiverMode& find_receiver_mode(const std::string& name) {
   throw InputError(fmt::format("unknown receiver mode '{}' (available: {})", name, fmt::join(names, ", ")));
 }
 
-std::vector<std::string> receiver_mode_run_arguments(const ReceiverMode& mode, const RunImu& imu,
-                                                     const std::string& scenario) {
+std::vector<std::string> receiver_mode_run_arguments(const ReceiverMode& mode, const RunImu& imu) {
   if (mode.needs_imu && imu.path.empty())
-    throw InputError(fmt::format("receiver mode '{}' needs an IMU, but scenario '{}' has no imu: section "
-                                "(e.g. imu: {{grade: tactical, rate_hz: 100}})",
-                                mode.name, scenario));
+    throw InputError(fmt::format("receiver mode '{}' needs an IMU file (--imu), and the run names none", mode.name));
   std::vector<std::string> args;
   for (const auto& a : mode.run_arguments) {
     if (a == "{imu}")

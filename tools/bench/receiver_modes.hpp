@@ -29,8 +29,7 @@ const std::vector<ReceiverMode>& receiver_modes();
 /// The mode of that name; throws InputError "unknown receiver mode 'X' (available: ...)".
 const ReceiverMode& find_receiver_mode(const std::string& name);
 /// `deepnav run` arguments for a mode with the placeholders filled in from `imu`; throws
-/// InputError when the mode needs an IMU and the run has none (`scenario` names it).
-std::vector<std::string> receiver_mode_run_arguments(const ReceiverMode& mode, const RunImu& imu,
-                                                     const std::string& scenario);
+/// InputError when the mode needs an IMU and the run has no IMU file.
+std::vector<std::string> receiver_mode_run_arguments(const ReceiverMode& mode, const RunImu& imu);
 
 }  // namespace deepnav::bench
