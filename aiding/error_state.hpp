@@ -1,5 +1,5 @@
 #pragma once
-// The error states of the GNSS/INS filter: paper 003's 17, in this order:
+// The error states of the GNSS/INS filter: paper 003's [docs/references.md] 17, in this order:
 //   position error (north, east, down metres), velocity error (NED m/s), attitude
 //   (tilt) error (NED rad), residual accelerometer bias (body m/s^2), residual gyro
 //   bias (body rad/s), receiver clock bias (m) and drift (m/s);

@@ -25,7 +25,7 @@ namespace deepnav::aiding {
 /// h0 = 2e-19, h-2 = 2e-20), louder than the synthesizer's "tcxo" preset (h0 = 2e-21) so
 /// that a receiver's real clock is not held too stiff. With the clock steps followed
 /// exactly (AidedReceiver), the quieter figure gives the same coupling errors within
-/// 0.005 m on paper 003's paths.
+/// 0.005 m on paper 003's [docs/references.md] paths.
 struct OscillatorNoise {
   double h0 = 2e-19;   ///< white frequency noise coefficient
   double hm2 = 2e-20;  ///< random-walk frequency noise coefficient

@@ -1,7 +1,7 @@
 #pragma once
 // Starting the INS from the receiver's own data (never from a truth file):
 //  - at rest (GNSS speed below 0.2 m/s and the IMU passes the rest check over the last
-//    seconds): paper 000's two-step coarse alignment (levelling, then gyrocompassing);
+//    seconds): paper 000's [docs/references.md] two-step coarse alignment (levelling, then gyrocompassing);
 //  - moving: attitude from two vector pairs (TRIAD): the specific force, whose navigation-
 //    frame value a_n - g_n comes from the GNSS velocity change over about a second (the
 //    IMU's mean over the same interval gives the body-frame value), and the direction of

@@ -2,7 +2,7 @@
 // C/N0 of a steered channel from integrations of any length, coherent or not: the estimate
 // the aided modes judge weak signals by.
 //
-// The channel's own estimate (receiver/lock_detectors) averages a fixed number of its
+// The channel's own estimate (receiver/tracking/lock_detectors) averages a fixed number of its
 // 10 ms integrations; at 12 dB-Hz their post-integration SNR is 0.16 and a 0.2 s window of
 // them reads 0 most of the time. Here every integration, whatever it was (a 10 ms channel
 // integration, a 200 ms one with the data wiped off, or K 20 ms bits summed in power),

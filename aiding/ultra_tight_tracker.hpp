@@ -9,7 +9,7 @@
 // phase over adjoining 100 ms windows (a delta range per window, at 10 Hz); otherwise the
 // cross/dot frequency discriminator of consecutive prompts added to the NCO Doppler.
 // Variances come from the channel's C/N0. Why discriminators rather
-// than paper 003's E[I], E[Q] model: the I/Q model needs the signal amplitude and the
+// than paper 003's [docs/references.md] E[I], E[Q] model: the I/Q model needs the signal amplitude and the
 // carrier phase as extra states per channel and is linear only within a small fraction of
 // a cycle, while the discriminators are amplitude-free, insensitive to data bits, linear
 // over +-0.5 chip and +-25 Hz (10 ms), and enter the filter through the same pseudorange

@@ -1,5 +1,5 @@
 #pragma once
-// `deepnav bench align`: paper 000's coarse-alignment error analysis (simulated tilt
+// `deepnav bench align`: paper 000's [docs/references.md] coarse-alignment error analysis (simulated tilt
 // errors beside the analytic Table 1 formulas, sweeps like its Figs. 2-4), the
 // stationarity check on moving data, and the fine-alignment convergence time.
 #include <cstdint>

@@ -1,5 +1,5 @@
 #pragma once
-// One point of the coupling benchmark (paper 003): one trajectory, synthesized with an IMU
+// One point of the coupling benchmark (paper 003 [docs/references.md]): one trajectory, synthesized with an IMU
 // of the paper's figures in a chosen error world with one run's seed, then run through the
 // receiver in each mode asked for; the errors are the solutions' own against the
 // synthesizer's truth. A point is kept as <out>/points/<trajectory>_r<run>.json, so a sweep

@@ -1,5 +1,5 @@
 #pragma once
-// `deepnav bench coupling`: paper 003 reproduced, in a chosen error world. Each trajectory
+// `deepnav bench coupling`: paper 003 [docs/references.md] reproduced, in a chosen error world. Each trajectory
 // is synthesized with an IMU of the paper's figures and run in loose, tight and ultra-tight
 // mode, over Monte Carlo runs with fixed seeds (coupling_point.hpp). The sweep runs the
 // points not yet in its folder (or lists their commands), then reports per trajectory and

@@ -25,7 +25,7 @@ struct JamPoint {
   aiding::LongIntegrationConfig long_integration;
 };
 
-/// The benchmark's jammer of each type at this J/S (see README, "Jamming benchmark"):
+/// The benchmark's jammer of each type at this J/S (see docs/jamming.md, "The sweep"):
 /// CW 151.7 kHz off L1; chirp sweeping 2 MHz every 1 ms; wideband noise over 2.046 MHz;
 /// pulsed noise bursts over 2.046 MHz, 10 % duty at 3 kHz.
 JammerConfig benchmark_jammer(const std::string& type, double js_db, double onset_s);

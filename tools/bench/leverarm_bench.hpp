@@ -1,5 +1,5 @@
 #pragma once
-// `deepnav bench leverarm`: paper 004's Table 1 (maximum roll error 10-12 s, conventional
+// `deepnav bench leverarm`: paper 004's [docs/references.md] Table 1 (maximum roll error 10-12 s, conventional
 // attitude filter vs the filter with the vertical lever-arm state) from Monte Carlo runs
 // beside the paper's numbers, the 18 cm rate-table case, and the 3-D lever-arm estimate
 // with its observability verdict.

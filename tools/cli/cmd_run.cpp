@@ -333,7 +333,7 @@ void add_run_command(CommandParents& parents) {
   cmd->add_option("--mode", o->mode, "scalar, or INS-aided: loose (PVT), tight (pseudorange/rate), ultra (filter steers the channels)")
       ->check(CLI::IsMember({"scalar", "loose", "tight", "ultra"}))
       ->capture_default_str();
-  cmd->add_option("--imu", o->imu_path, "IMU CSV file (increments or rates, see README) for the aided modes")->check(CLI::ExistingFile);
+  cmd->add_option("--imu", o->imu_path, "IMU CSV file (increments or rates, see docs/formats.md) for the aided modes")->check(CLI::ExistingFile);
   cmd->add_option("--imu-grade", o->imu_grade, "The IMU's grade in --imu-grades-file (its noise and bias figures)")->capture_default_str();
   cmd->add_option("--imu-grades-file", o->imu_grades_file, "IMU grades YAML file (relative: from here, else the project's data/)")->capture_default_str();
   cmd->add_flag("--filter-troposphere,!--no-filter-troposphere", o->filter_troposphere,

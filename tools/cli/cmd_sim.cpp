@@ -103,7 +103,7 @@ void run_sim(const SimOptions& o) {
 void add_sim_command(CommandParents& parents) {
   auto opts = std::make_shared<SimOptions>();
   CLI::App* cmd = parents.root.add_subcommand("sim", "Synthesize a GPS L1 C/A IF file and its truth from a scenario");
-  cmd->add_option("--scenario", opts->scenario_path, "Scenario file (YAML or JSON; schema in README.md)")
+  cmd->add_option("--scenario", opts->scenario_path, "Scenario file (YAML or JSON; schema in docs/scenarios.md)")
       ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("--out", opts->out_dir, "Output folder (created if missing)")->required();
