@@ -13,8 +13,8 @@ sim_imu imu "$work/sim"
 run_on_sim "$work/sim" "$work/if" --mode tight "${imu[@]}" "${assisted[@]}" --truth "$work/sim/truth.csv"
 # The IMU's time is the IF file's sample time; the receiver's time tags are that plus a
 # constant: the offset from the IF run's own pvt.csv.
-offset=$("$python" -m checks.fuse_consistency offset "$work/if")
-read -r grade lever_x lever_y lever_z <<< "$("$python" -m query imu "$work/sim/scenario.yaml")"
+offset=$(py -m checks.fuse_consistency offset "$work/if")
+read -r grade lever_x lever_y lever_z <<< "$(py -m query imu "$work/sim/scenario.yaml")"
 fuse() {  # fuse OUT [options]
   local out=$1
   shift

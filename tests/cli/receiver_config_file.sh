@@ -9,7 +9,7 @@
 source "$(dirname "$0")/lib/harness.sh" "$@"
 cd "$work"
 sim_scenario "$src/data/scenarios/land_circle_aided_90s.yaml" sim --duration 24
-read -r _ lever_x lever_y lever_z <<< "$("$python" -m query imu sim/scenario.yaml)"
+read -r _ lever_x lever_y lever_z <<< "$(py -m query imu sim/scenario.yaml)"
 flags=(--input sim/if_ibyte.bin --fs "$(sample_rate_of sim)" --mode ultra --imu sim/imu.csv
        --imu-lever-arm "$lever_x" "$lever_y" "$lever_z" "${assisted[@]}" --week "$(week_of sim)" --truth sim/truth.csv)
 run_receiver flags "${flags[@]}"

@@ -12,7 +12,7 @@ derive_scenario "$src/data/scenarios/static_120s.yaml" "$work/s.yaml" 'duration_
   'format: cu8' 'adc: {bits: 8, agc: true}'
 sim_scenario "$work/s.yaml" "$work/sim"
 fs=$(sample_rate_of "$work/sim")
-start_background server "$python" "$peers/rtltcp_server.py" "$work/sim/if_cu8.bin" --rate "$fs" --port-file "$work/port" \
+start_background server "$python" -S "$peers/rtltcp_server.py" "$work/sim/if_cu8.bin" --rate "$fs" --port-file "$work/port" \
   --commands "$work/commands.txt" --drop-at 17 --drop-seconds 0.25 2> "$work/server.log"
 port=$(port_from "$work/port")
 "$deepnav" run --input "rtltcp://127.0.0.1:$port" --rtl-gain 40.2 --rtl-ppm -3 --rtl-agc --rtl-bias-tee \
@@ -24,7 +24,7 @@ echo "server: $(tail -1 "$work/server.log")"
 grep -E "R820T|missing|lost" "$work/run.log" | head -4 || true
 check_py "the rtl_tcp session" -m checks.rtltcp_session "$work/run" "$work/commands.txt" "${dropped:-0}" "$fs"
 
-start_background server "$python" "$peers/not_rtltcp_server.py" "$work/port2"
+start_background server "$python" -S "$peers/not_rtltcp_server.py" "$work/port2"
 expect_failure "not an rtl_tcp server" 'magic is "HTTP", expected "RTL0"' -- \
   "$deepnav" -q run --input "rtltcp://127.0.0.1:$(port_from "$work/port2")" --out "$work/bad"
 reap $server || true

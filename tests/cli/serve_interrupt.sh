@@ -10,8 +10,8 @@ start_background server "$deepnav" serve --file "$work/if.bin" --format ibyte --
   --port-file "$work/ports" 2> "$work/serve.log"
 tcp_port=$(port_from "$work/ports" tcp)
 udp_port=$(port_from "$work/ports" udp)
-start_background tcp_client "$python" "$peers/stream_client.py" tcp "$tcp_port" "$work/tcp_ready" > "$work/tcp.out" 2>&1
-start_background udp_client "$python" "$peers/stream_client.py" udp "$udp_port" "$work/udp_ready" > "$work/udp.out" 2>&1
+start_background tcp_client "$python" -S "$peers/stream_client.py" tcp "$tcp_port" "$work/tcp_ready" > "$work/tcp.out" 2>&1
+start_background udp_client "$python" -S "$peers/stream_client.py" udp "$udp_port" "$work/udp_ready" > "$work/udp.out" 2>&1
 for _ in $(seq 150); do [[ -e $work/tcp_ready && -e $work/udp_ready ]] && break; sleep 0.1; done
 [[ -e $work/tcp_ready && -e $work/udp_ready ]] || abort "the clients got no frames: $(cat "$work/serve.log")"
 

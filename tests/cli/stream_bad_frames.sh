@@ -21,8 +21,8 @@ ended_naming() {
 }
 
 for mode in seqjump idxjump; do
-  port=$("$python" "$stream" free-udp-port)
-  start_background sender "$python" "$stream" udp $mode "$port"
+  port=$(py "$stream" free-udp-port)
+  start_background sender "$python" -S "$stream" udp $mode "$port"
   if [[ $mode == seqjump ]]; then
     fragment="sequence number 9223372036854775808 is beyond what its first sample index 1000000 allows"
   else
@@ -34,7 +34,7 @@ for mode in seqjump idxjump; do
   reap $sender || true
 done
 
-start_background sender "$python" "$stream" tcp idxjump "$work/port"
+start_background sender "$python" -S "$stream" tcp idxjump "$work/port"
 ended_naming tcp_idxjump "$work/tcp_idxjump" "first sample index 1000000000819200 is beyond what its sequence number allows" -- \
   "$deepnav" -q run --input "tcp://127.0.0.1:$(port_from "$work/port")" --week 2190 --reconnect-timeout 1 \
   --out "$work/tcp_idxjump"

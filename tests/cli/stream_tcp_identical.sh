@@ -23,7 +23,7 @@ for f in track.kml track.gpx; do
 done
 check "tracking.csv has over 1000 rows" '[[ $(wc -l < "$work/file/tracking.csv") -gt 1000 ]]'
 check "summary.json identical but for the input, the resources and the stream" \
-  '"$python" -m query same "$work/file/summary.json" "$work/tcp/summary.json" --ignore input resources stream'
+  'py -m query same "$work/file/summary.json" "$work/tcp/summary.json" --ignore input resources stream'
 check_json "tcp: the stream's summary has no lost sample" "$work/tcp/summary.json" stream.lost_samples '==' 0
 check_json "tcp: no gap" "$work/tcp/summary.json" stream.gaps '==' '[]'
 check_json "tcp: the stream did not fail" "$work/tcp/summary.json" stream.failed '==' false

@@ -14,7 +14,7 @@ relay_py=$peers/udp_impair.py
 start_background server "$deepnav" -q serve --scenario "$src/data/scenarios/default.yaml" --duration 3 --udp 0 --pace 4 \
   --sessions 1 --udp-frame-bytes 8192 --port-file "$work/server_port"
 server_port=$(port_from "$work/server_port" udp)
-start_background relay "$python" "$relay_py" relay --server "127.0.0.1:$server_port" --port-file "$work/relay_port" \
+start_background relay "$python" -S "$relay_py" relay --server "127.0.0.1:$server_port" --port-file "$work/relay_port" \
   --report "$work/relay.json" --seed 20 --drop 5,6,7,100,1000,2997 --duplicate 40,41,200 \
   --reorder 300:1,400:5,500:63,700:64,1001:63 --drop-fraction 0.003 --duplicate-fraction 0.003 \
   --reorder-fraction 0.003 --reorder-depth 8 --idle-timeout 15

@@ -19,9 +19,11 @@ trap 'echo "FAIL ${BASH_SOURCE[0]##*/}:$LINENO: \`$BASH_COMMAND\` exited $?" >&2
 deepnav=$(realpath "$1")
 src=$(realpath "${2:-.}")
 cli_tests=$src/tests/cli
-# The interpreter PATH names, resolved once: a version manager's shim costs a process of
-# its own at every call.
+# py ARGUMENTS: the Python of tests/cli/pylib (standard library only) on the interpreter
+# PATH names, resolved once (a version manager's shim costs a process at every call), and
+# without site's start-up (a .pth there may import packages, tens of ms at every call).
 python=$(python3 -c 'import sys; print(sys.executable)')
+py() { "$python" -S "$@"; }
 export PYTHONPATH="$cli_tests/pylib${PYTHONPATH:+:$PYTHONPATH}"
 export PYTHONDONTWRITEBYTECODE=1
 # The bundled broadcast file and IMU grades (assisted starts, the aided modes).
@@ -56,7 +58,7 @@ check() {  # check NAME CONDITION
 check_py() {
   local name=$1
   shift
-  if "$python" "$@"; then pass "$name"; else fail "$name"; fi
+  if py "$@"; then pass "$name"; else fail "$name"; fi
 }
 
 # check_json NAME FILE PATH OP VALUE: one value of a JSON product against a bound, e.g.
@@ -66,10 +68,10 @@ check_json() {
   local name=$1
   shift
   local shown
-  if shown=$("$python" -m query check "$@" 2>&1); then pass "$name: $shown"; else fail "$name: $shown"; fi
+  if shown=$(py -m query check "$@" 2>&1); then pass "$name: $shown"; else fail "$name: $shown"; fi
 }
 
-json_value() { "$python" -m query get "$@"; }  # json_value FILE PATH: the value, JSON for containers
+json_value() { py -m query get "$@"; }  # json_value FILE PATH: the value, JSON for containers
 
 finish() {  # the verdict of every check so far
   if [[ $harness_failures -eq 0 ]]; then echo "PASS ${0##*/}"; exit 0; fi
@@ -123,7 +125,7 @@ expect_failure() {
 
 # derive_scenario BASE OUT 'key: value'... [--append 'key: value'...]: BASE with those
 # top-level keys replaced (each must be there) and the --append ones added.
-derive_scenario() { "$python" -m scenario_edit "$@"; }
+derive_scenario() { py -m scenario_edit "$@"; }
 
 # sim_scenario SCENARIO OUT [sim options]: synthesizes into OUT (log in OUT.log); a failed
 # synthesis ends the test with its log.
@@ -142,14 +144,14 @@ scenario_value() {
   echo "$value"
 }
 
-sample_rate_of() { "$python" -m query get "$1/synthesis.json" sample_rate_hz --integer; }  # SIM_DIR
-week_of() { "$python" -m query get "$1/synthesis.json" start_gps_week; }  # SIM_DIR: the GPS week it starts in
+sample_rate_of() { py -m query get "$1/synthesis.json" sample_rate_hz --integer; }  # SIM_DIR
+week_of() { py -m query get "$1/synthesis.json" start_gps_week; }  # SIM_DIR: the GPS week it starts in
 
 # sim_source VAR SIM_DIR: VAR becomes the receiver's source options for the sim's IF file
 # (--input, --format, --fs and --week, all from its synthesis.json).
 sim_source() {
   local -n source_options_=$1
-  mapfile -t source_options_ < <("$python" -m query source "$2")
+  mapfile -t source_options_ < <(py -m query source "$2")
   [[ ${#source_options_[@]} -eq 8 ]] || abort "no source options from $2/synthesis.json"
 }
 
@@ -158,7 +160,7 @@ sim_source() {
 sim_imu() {
   local -n imu_options_=$1
   local sim_=$2 imu_line_ grade_ x_ y_ z_
-  imu_line_=$("$python" -m query imu "$sim_/scenario.yaml")
+  imu_line_=$(py -m query imu "$sim_/scenario.yaml")
   read -r grade_ x_ y_ z_ <<< "$imu_line_"
   imu_options_=(--imu "$sim_/imu.csv" --imu-grade "$grade_" --imu-grades-file "$imu_grades" \
     --imu-lever-arm "$x_" "$y_" "$z_")
@@ -187,7 +189,7 @@ run_on_sim() {
 # summary.json's `resources` (peak memory, CPU seconds: what the machine did).
 same_product() {
   if [[ ${1##*/} == summary.json ]]; then
-    "$python" -m query same "$1" "$2" --ignore resources > /dev/null
+    py -m query same "$1" "$2" --ignore resources > /dev/null
   else
     cmp -s "$1" "$2"
   fi
