@@ -17,8 +17,8 @@ duration=$(json_value "$work/sim/synthesis.json" duration_s)
 check "if_cu8.bin is 2 bytes a sample" \
   '[[ $(stat -c %s "$if_file") -eq $(awk "BEGIN { printf \"%d\", 2 * $duration * $fs }") ]]'
 run_on_sim "$work/sim" "$work/run" "${assisted[@]}" --truth "$work/sim/truth.csv"
-check_json "cu8: fixes >= 5" "$work/run/summary.json" fixes '>=' 5
-check_json "cu8: horizontal RMS <= 5 m" "$work/run/summary.json" horizontal_error_m.rms '<=' 5.0
+check_json_each "$work/run/summary.json" "cu8: fixes >= 5" fixes '>=' 5 \
+  "cu8: horizontal RMS <= 5 m" horizontal_error_m.rms '<=' 5.0
 run_receiver "$work/meta" --metadata "$work/sim/if_cu8.xml" --week "$week" "${assisted[@]}"
 check "cu8 from if_cu8.xml alone: pvt.csv identical to the flags run's" 'cmp -s "$work/run/pvt.csv" "$work/meta/pvt.csv"'
 start_background server "$deepnav" -q serve --file "$if_file" --format cu8 --fs "$fs" --tcp 0 --pace 0 --sessions 1 \

@@ -34,8 +34,8 @@ for layout in "${layouts[@]}"; do
       "${assisted[@]}" --truth "$sim/truth.csv"
     how="(metadata alone)"
   fi
-  check_json "$format $how: fixes >= 4" "$sim/run/summary.json" fixes '>=' 4
-  check_json "$format $how: horizontal RMS <= 6 m" "$sim/run/summary.json" horizontal_error_m.rms '<=' 6.0
+  check_json_each "$sim/run/summary.json" "$format $how: fixes >= 4" fixes '>=' 4 \
+    "$format $how: horizontal RMS <= 6 m" horizontal_error_m.rms '<=' 6.0
   [[ $format == packed2_iq ]] || rm -f "$sim"/if_*.bin
 done
 # The same bytes read in the wrong bit order are noise: no fix.

@@ -29,8 +29,8 @@ for layout in "ibyte 2048000 0 4" "ishort 2048000 0 12" "gr_complex 2048000 0 0"
   # From another folder: the metadata names its file relative to itself.
   (cd "$work" && run_receiver "$sim/run" --metadata "$xml" --week "$(week_of "$sim")" "${assisted[@]}" \
     --truth "$sim/truth.csv")
-  check_json "$format run --metadata alone: fixes >= 4" "$sim/run/summary.json" fixes '>=' 4
-  check_json "$format run --metadata alone: horizontal RMS <= 6 m" "$sim/run/summary.json" horizontal_error_m.rms '<=' 6.0
+  check_json_each "$sim/run/summary.json" "$format run --metadata alone: fixes >= 4" fixes '>=' 4 \
+    "$format run --metadata alone: horizontal RMS <= 6 m" horizontal_error_m.rms '<=' 6.0
   rm -f "$sim"/if_*.bin
 done
 

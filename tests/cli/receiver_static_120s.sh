@@ -9,9 +9,10 @@ sim_scenario "$src/data/scenarios/static_120s.yaml" "$work/sim"
 run_on_sim "$work/sim" "$work/run" --iono-from "$brdc" --truth "$work/sim/truth.csv"
 summary=$work/run/summary.json
 check_json "satellites synthesized >= 8" "$work/sim/synthesis.json" 'len(satellites)' '>=' 8
-check_json "time to first fix <= 40 s" "$summary" time_to_first_fix_s '<=' 40.0
-check_json "horizontal RMS <= 3 m" "$summary" horizontal_error_m.rms '<=' 3.0
-check_json "vertical RMS <= 5 m" "$summary" vertical_error_m.rms '<=' 5.0
-check_json "velocity RMS <= 0.05 m/s" "$summary" velocity_error_mps.rms '<=' 0.05
-check_json "a fix every epoch after the first 40" "$summary" fixes '>=' $(($(json_value "$summary" epochs) - 40))
+check_json_each "$summary" \
+  "time to first fix <= 40 s" time_to_first_fix_s '<=' 40.0 \
+  "horizontal RMS <= 3 m" horizontal_error_m.rms '<=' 3.0 \
+  "vertical RMS <= 5 m" vertical_error_m.rms '<=' 5.0 \
+  "velocity RMS <= 0.05 m/s" velocity_error_mps.rms '<=' 0.05 \
+  "a fix every epoch after the first 40" fixes '>=' $(($(json_value "$summary" epochs) - 40))
 finish

@@ -24,10 +24,12 @@ done
 check "tracking.csv has over 1000 rows" '[[ $(wc -l < "$work/file/tracking.csv") -gt 1000 ]]'
 check "summary.json identical but for the input, the resources and the stream" \
   'py -m query same "$work/file/summary.json" "$work/tcp/summary.json" --ignore input resources stream'
-check_json "tcp: the stream's summary has no lost sample" "$work/tcp/summary.json" stream.lost_samples '==' 0
-check_json "tcp: no gap" "$work/tcp/summary.json" stream.gaps '==' '[]'
-check_json "tcp: the stream did not fail" "$work/tcp/summary.json" stream.failed '==' false
-check_json "tcp: ended at the end of the stream" "$work/tcp/summary.json" stream.end '==' '"end of stream"'
-check_json "not interrupted" "$work/file/summary.json" interrupted '==' false
-check_json "the file run has no stream statistics" "$work/file/summary.json" . lacks '"stream"'
+check_json_each "$work/tcp/summary.json" \
+  "tcp: no lost sample" stream.lost_samples '==' 0 \
+  "tcp: no gap" stream.gaps '==' '[]' \
+  "tcp: the stream did not fail" stream.failed '==' false \
+  "tcp: ended at the end of the stream" stream.end '==' '"end of stream"'
+check_json_each "$work/file/summary.json" \
+  "not interrupted" interrupted '==' false \
+  "the file run has no stream statistics" . lacks '"stream"'
 finish

@@ -10,9 +10,9 @@ source "$(dirname "$0")/lib/harness.sh" "$@"
 ramp=(bench threshold --modes ultra --start 45 --ramp-start 25 --end 5 --rate 0.5 --work-dir "$work")
 "$deepnav" -q "${ramp[@]}" --json "$work/long.json" > "$work/long.txt" 2>&1 || abort "long run: $(cat "$work/long.txt")"
 expect_failure "--coherent-ms 50 rejected" "multiple of 20 ms" -- "$deepnav" "${ramp[@]}" --coherent-ms 50
-report=$work/long.json
-check_json "200 ms data-wiped: holds to 13 dB-Hz or below" "$report" rows.0.threshold_dbhz '<=' 13.0
-check_json "within 10 m while it holds" "$report" rows.0.max_h_error_before_m '<' 10.0
-check_json "the report names the coherent length" "$report" notes.coherent_ms '==' 200
-check_json "the report names the integration" "$report" notes.ultra_integration contains '"200 ms coherent"'
+check_json_each "$work/long.json" \
+  "200 ms data-wiped: holds to 13 dB-Hz or below" rows.0.threshold_dbhz '<=' 13.0 \
+  "within 10 m while it holds" rows.0.max_h_error_before_m '<' 10.0 \
+  "the report names the coherent length" notes.coherent_ms '==' 200 \
+  "the report names the integration" notes.ultra_integration contains '"200 ms coherent"'
 finish

@@ -1,8 +1,10 @@
 """Values of the JSON products for the shell tests (tests/cli/lib/harness.sh).
 
   python3 -m query get FILE PATH [--integer]     prints the value (JSON for containers)
-  python3 -m query check FILE PATH OP VALUE      prints "PATH = value" and exits 1 unless
-                                                 `value OP VALUE` holds
+  python3 -m query check-each FILE NAME PATH OP VALUE [NAME PATH OP VALUE]...
+                                                 prints "ok|FAIL NAME: PATH = value" for each
+                                                 group of four; exits 1 unless `value OP
+                                                 VALUE` held in all
   python3 -m query same A B [--ignore KEY...]    exits 1 unless the two JSON files are
                                                  equal without those top-level keys
   python3 -m query imu SCENARIO_YAML             prints "grade x y z" of a simulation's IMU
@@ -63,17 +65,40 @@ def get(args):
     return 0
 
 
-def check(args):
-    value = lookup(products.read_json(args.file), args.path, args.file)
-    expected = literal(args.value)
+def judge(doc, file, path, op, value_text):
+    """(holds, "PATH = value[, expected OP VALUE]") of one check on a read document."""
+    value = lookup(doc, path, file)
+    expected = literal(value_text)
     try:
-        holds = COMPARISONS[args.op](value, expected)
+        holds = COMPARISONS[op](value, expected)
     except TypeError:  # a null or a string where a number was expected fails the check
         holds = False
-    if args.op == "lacks" and isinstance(value, dict):  # the keys, not a whole document
+    if op == "lacks" and isinstance(value, dict):  # the keys, not a whole document
         value = sorted(value)
-    print(f"{args.path} = {shown(value)}" + ("" if holds else f", expected {args.op} {shown(expected)}"))
-    return 0 if holds else 1
+    return holds, f"{path} = {shown(value)}" + ("" if holds else f", expected {op} {shown(expected)}")
+
+
+def check_each(args):
+    """Several named checks on one file: an ok or FAIL line each; the exit status is 0
+    only when all held."""
+    if len(args.checks) % 4:
+        raise ValueError(f"check-each: {len(args.checks)} arguments, expected NAME PATH OP VALUE groups of 4")
+    try:
+        doc, error = products.read_json(args.file), None
+    except (OSError, ValueError) as e:
+        doc, error = None, str(e)
+    failed = 0
+    for i in range(0, len(args.checks), 4):
+        name, path, op, value_text = args.checks[i:i + 4]
+        if op not in COMPARISONS:
+            raise ValueError(f"check-each: '{op}' is not one of {sorted(COMPARISONS)}")
+        try:
+            holds, text = (False, error) if error else judge(doc, args.file, path, op, value_text)
+        except LookupError as e:
+            holds, text = False, str(e)
+        print(("ok   " if holds else "FAIL ") + f"{name}: {text}")
+        failed += not holds
+    return 1 if failed else 0
 
 
 def same(args):
@@ -112,12 +137,10 @@ def main():
     p.add_argument("path")
     p.add_argument("--integer", action="store_true", help="print a whole number without a decimal point")
     p.set_defaults(run=get)
-    p = sub.add_parser("check")
+    p = sub.add_parser("check-each")
     p.add_argument("file")
-    p.add_argument("path")
-    p.add_argument("op", choices=sorted(COMPARISONS))
-    p.add_argument("value")
-    p.set_defaults(run=check)
+    p.add_argument("checks", nargs="+", help="NAME PATH OP VALUE, repeated")
+    p.set_defaults(run=check_each)
     p = sub.add_parser("same")
     p.add_argument("a")
     p.add_argument("b")
