@@ -3,7 +3,7 @@
 #  (a) TCP at real time: scripts/stream_memory.sh (PACE=1) runs a short and a long stream;
 #      every sample must arrive (0 lost) and the long run's peak RSS must stay within
 #      10 % of the short run's.
-#  (b) UDP at real time through tests/cli/lib/udp_impair.py, which drops, duplicates and
+#  (b) UDP at real time through tests/cli/pylib/peers/udp_impair.py, which drops, duplicates and
 #      reorders a seeded fraction of the frame datagrams; the receiver's summary.json must
 #      report exactly what was injected (lost frames and samples, duplicates, reordered).
 # A table goes to stdout (and with --json FILE the same figures as JSON), progress to
@@ -17,7 +17,7 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 deepnav=${DEEPNAV:-$root/build/tools/deepnav}
 scenario=${SCENARIO:-$root/data/scenarios/static_120s.yaml}
-relay_py=$root/tests/cli/lib/udp_impair.py
+relay_py=$root/tests/cli/pylib/peers/udp_impair.py
 short_s=60 long_s=3600 udp_s=60 seed=1 loss=0.001 dup=0.001 reorder=0.001 json=
 RSS_RATIO_LIMIT=1.10  # issue 20: the long run's peak RSS within 10 % of the 60 s run's
 

@@ -6,54 +6,40 @@
 # Runs from a folder outside the project, in ultra-tight mode without --imu-grades-file:
 # the default IMU grades resolve from any working directory.
 #   usage: receiver_config_file.sh <deepnav binary> <source dir>
-set -uo pipefail
-source "$(dirname "$0")/lib/same_products.sh"
-deepnav=$1
-src=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work" || exit 1
-sed -e 's/duration_s: 90/duration_s: 24/' "$src/data/scenarios/land_circle_aided_90s.yaml" > s.yaml
-"$deepnav" -q sim --scenario s.yaml --out sim > /dev/null || { echo "FAIL sim"; exit 1; }
-flags=(--input sim/if_ibyte.bin --fs 2600000 --mode ultra --imu sim/imu.csv --imu-lever-arm 0.8 -0.3 0.4
-       --ephemeris-from "$src/data/brdc0010.22n" --iono-from "$src/data/brdc0010.22n" --week 2190 --truth sim/truth.csv)
-failures=0
-fail() { echo "FAIL $*"; failures=$((failures + 1)); }
-"$deepnav" -q run "${flags[@]}" --out flags > /dev/null || { echo "FAIL run with flags (ultra, default IMU grades)"; exit 1; }
-grep -q '"ultra"' flags/summary.json || fail "the flags' run did not reach ultra-tight mode"
-"$deepnav" -q run "${flags[@]}" --out from_file --print-config > run.yaml || fail "--print-config"
-[[ -e from_file ]] && fail "--print-config ran the receiver (it made the output folder)"
-grep -q '^imu-lever-arm: \[0.8, -0.3, 0.4\]$' run.yaml || fail "run.yaml lacks the lever arm: $(grep lever run.yaml)"
-grep -q '^mode: ultra$' run.yaml || fail "run.yaml lacks the mode"
-"$deepnav" -q run --config run.yaml > /dev/null || fail "run --config run.yaml"
-for f in flags/*; do
-  same_product "$f" "from_file/$(basename "$f")" || fail "--config run differs from the flags' run in $(basename "$f")"
-done
-[[ $(ls flags | wc -l) -eq $(ls from_file | wc -l) ]] || fail "the runs wrote different files"
+source "$(dirname "$0")/lib/harness.sh" "$@"
+cd "$work"
+sim_scenario "$src/data/scenarios/land_circle_aided_90s.yaml" sim --duration 24
+read -r _ lever_x lever_y lever_z <<< "$(py -m query imu sim/scenario.yaml)"
+flags=(--input sim/if_ibyte.bin --fs "$(sample_rate_of sim)" --mode ultra --imu sim/imu.csv
+       --imu-lever-arm "$lever_x" "$lever_y" "$lever_z" "${assisted[@]}" --week "$(week_of sim)" --truth sim/truth.csv)
+run_receiver flags "${flags[@]}"
+check "the flags' run reaches ultra-tight mode (ultra, default IMU grades)" 'grep -q "\"ultra\"" flags/summary.json'
+"$deepnav" -q run "${flags[@]}" --out from_file --print-config > run.yaml || abort "--print-config"
+check "--print-config does not run the receiver (no output folder)" '[[ ! -e from_file ]]'
+check "run.yaml has the lever arm" "grep -q '^imu-lever-arm: \[$lever_x, $lever_y, $lever_z\]$' run.yaml"
+check "run.yaml has the mode" "grep -q '^mode: ultra$' run.yaml"
+"$deepnav" -q run --config run.yaml > from_file.log 2>&1 || abort "run --config run.yaml: $(cat from_file.log)"
+check_same_products "--config run.yaml against the flags' run" flags from_file
 # A flag on the command line wins over the file.
-"$deepnav" -q run --config run.yaml --mode tight --out override > /dev/null || fail "run --config with --mode tight"
-grep -q '"mode": "tight"' override/summary.json || fail "--mode on the command line did not win over the file"
-expect_error() {  # expect_error FILE_CONTENT EXPECTED_MESSAGE_PART...
-  local content=$1 msg rc
+"$deepnav" -q run --config run.yaml --mode tight --out override > override.log 2>&1 ||
+  abort "run --config with --mode tight: $(cat override.log)"
+check "--mode on the command line wins over the file" 'grep -q "\"mode\": \"tight\"" override/summary.json'
+expect_config_error() {  # FILE_CONTENT EXPECTED_MESSAGE_PART...
+  local content=$1
   shift
   printf '%s\n' "$content" > bad.yaml
-  msg=$("$deepnav" -q run --config bad.yaml 2>&1)
-  rc=$?
-  for part in "$@"; do
-    if [[ $rc -eq 0 || $msg != *"$part"* ]]; then fail "bad.yaml ($content): exit $rc, message: $msg"; return; fi
-  done
-  echo "ok   $(head -1 <<< "$msg")"
+  expect_failure "bad.yaml ($content)" "$@" -- "$deepnav" -q run --config bad.yaml
 }
-expect_error $'input: sim/if_ibyte.bin\nout: bad\nfs: 2600000\nimu-leverarm: [1, 2, 3]' \
+expect_config_error $'input: sim/if_ibyte.bin\nout: bad\nfs: 2600000\nimu-leverarm: [1, 2, 3]' \
   "bad.yaml:4:" "unknown key 'imu-leverarm'" "did you mean 'imu-lever-arm'"
-expect_error $'input: sim/if_ibyte.bin\nout: bad\nfs: fast' "bad.yaml:3:" "'fs'" "not a number"
-expect_error $'input: sim/if_ibyte.bin\nout: bad\nmode: ultrax' "bad.yaml:3:" "'mode'" "ultra"
-expect_error $'input: sim/if_ibyte.bin\nout: bad\nimu-lever-arm: [1, 2]' "bad.yaml:3:" "expected 3"
-expect_error $'input: sim/if_ibyte.bin\nout: bad\npll-order: {value: 3}' "bad.yaml:3:" "'pll-order'"
+expect_config_error $'input: sim/if_ibyte.bin\nout: bad\nfs: fast' "bad.yaml:3:" "'fs'" "not a number"
+expect_config_error $'input: sim/if_ibyte.bin\nout: bad\nmode: ultrax' "bad.yaml:3:" "'mode'" "ultra"
+expect_config_error $'input: sim/if_ibyte.bin\nout: bad\nimu-lever-arm: [1, 2]' "bad.yaml:3:" "expected 3"
+expect_config_error $'input: sim/if_ibyte.bin\nout: bad\npll-order: {value: 3}' "bad.yaml:3:" "'pll-order'"
 # Keys that are not names (found by fuzzing: yaml-cpp's "bad conversion", no file or line).
-expect_error $'input: sim/if_ibyte.bin\n? [out, fs]\n: bad' "bad.yaml:2:" "expected an option name as the key" "list or a map"
-expect_error $'? :' "bad.yaml:1:" "expected an option name as the key" "list or a map"
-expect_error $'input: sim/if_ibyte.bin\n~: 3' "bad.yaml:2:" "expected an option name as the key" "null"
-[[ -e bad ]] && fail "a rejected configuration made the output folder"
-[[ $failures -eq 0 ]] && echo "ok   --config reproduces the flags' run; flags win; bad keys named"
-exit $((failures > 0))
+expect_config_error $'input: sim/if_ibyte.bin\n? [out, fs]\n: bad' "bad.yaml:2:" "expected an option name as the key" \
+  "list or a map"
+expect_config_error $'? :' "bad.yaml:1:" "expected an option name as the key" "list or a map"
+expect_config_error $'input: sim/if_ibyte.bin\n~: 3' "bad.yaml:2:" "expected an option name as the key" "null"
+check "no rejected configuration made the output folder" '[[ ! -e bad ]]'
+finish

@@ -6,33 +6,13 @@
 # report names the integration used; a coherent length that is not a multiple of a data
 # bit is rejected.
 #   usage: ultra_weak_signal.sh <deepnav binary> <source dir>
-set -uo pipefail
-deepnav=$1
-src=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-fail=0
-check() { if eval "$2"; then echo "ok   $1"; else echo "FAIL $1"; fail=1; fi; }
+source "$(dirname "$0")/lib/harness.sh" "$@"
 ramp=(bench threshold --modes ultra --start 45 --ramp-start 25 --end 5 --rate 0.5 --work-dir "$work")
-"$deepnav" -q "${ramp[@]}" --json "$work/long.json" > "$work/long.txt" || { cat "$work/long.txt"; echo "FAIL long run"; exit 1; }
-msg=$("$deepnav" "${ramp[@]}" --coherent-ms 50 2>&1); rc=$?
-check "--coherent-ms 50 rejected (exit $rc)" '[ $rc -ne 0 ] && grep -q "multiple of 20 ms" <<< "$msg"'
-python3 - "$work" <<'PY' || fail=1
-import json, sys
-work = sys.argv[1]
-def load(name):
-    j = json.load(open(f"{work}/{name}.json"))
-    return j["rows"][0], j["notes"]
-good = True
-def ok(name, cond, value):
-    global good
-    print(("ok   " if cond else "FAIL ") + name, value)
-    good &= cond
-long_row, long_notes = load("long")
-ok("200 ms data-wiped: holds to 13 dB-Hz or below", long_row["threshold_dbhz"] <= 13.0, long_row)
-ok("within 10 m while it holds", long_row["max_h_error_before_m"] < 10.0, long_row["max_h_error_before_m"])
-ok("the report names the coherent length", long_notes["coherent_ms"] == 200 and "200 ms coherent" in long_notes["ultra_integration"],
-   long_notes["ultra_integration"])
-sys.exit(0 if good else 1)
-PY
-exit $fail
+"$deepnav" -q "${ramp[@]}" --json "$work/long.json" > "$work/long.txt" 2>&1 || abort "long run: $(cat "$work/long.txt")"
+expect_failure "--coherent-ms 50 rejected" "multiple of 20 ms" -- "$deepnav" "${ramp[@]}" --coherent-ms 50
+check_json_each "$work/long.json" \
+  "200 ms data-wiped: holds to 13 dB-Hz or below" rows.0.threshold_dbhz '<=' 13.0 \
+  "within 10 m while it holds" rows.0.max_h_error_before_m '<' 10.0 \
+  "the report names the coherent length" notes.coherent_ms '==' 200 \
+  "the report names the integration" notes.ultra_integration contains '"200 ms coherent"'
+finish
