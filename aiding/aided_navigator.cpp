@@ -60,7 +60,8 @@ double AidedNavigator::residual_delay_m(const RangePrediction& p) const {
 }
 
 double AidedNavigator::residual_delay_rate_mps(const RangePrediction& p) const {
-  return troposphere_residual_m_ * p.troposphere_mapping_rate_per_s - ionosphere_scale_residual_ * p.ionosphere_rate_mps;
+  return troposphere_residual_m_ * p.troposphere_mapping_rate_per_s -
+         ionosphere_scale_residual_ * p.ionosphere_rate_mps;
 }
 
 void AidedNavigator::propagate(const ImuSample& sample) {
@@ -99,9 +100,7 @@ Eigen::Vector3d AidedNavigator::antenna_velocity_ecef_at(double t_s) const {
 
 wgs84::Llh AidedNavigator::antenna_llh() const { return wgs84::ecef_to_llh(antenna_ecef_m()); }
 
-Eigen::Vector3d AidedNavigator::position_sigma_ned_m() const {
-  return kf_.P().diagonal().segment<3>(kPos).cwiseSqrt();
-}
+Eigen::Vector3d AidedNavigator::position_sigma_ned_m() const { return kf_.P().diagonal().segment<3>(kPos).cwiseSqrt(); }
 
 StateRow AidedNavigator::pseudorange_row_of(const RangePrediction& g) const {
   return pseudorange_row(ecef_to_ned_vector(ins_.state().llh, g.los_ecef), lever_arm_ned_m(),
@@ -129,7 +128,8 @@ KalmanUpdate AidedNavigator::update_position_velocity(const Eigen::Vector3d& r_a
                                                       const Eigen::Vector3d& v_antenna_ecef_mps,
                                                       const Eigen::Vector3d& position_sigma_ned_m,
                                                       const Eigen::Vector3d& velocity_sigma_ned_mps,
-                                                      double time_offset_s, std::optional<double> velocity_time_offset_s) {
+                                                      double time_offset_s,
+                                                      std::optional<double> velocity_time_offset_s) {
   const wgs84::Llh& at = ins_.state().llh;
   Eigen::Matrix<double, 6, 1> z, r;
   z.head<3>() = ecef_to_ned_vector(at, antenna_ecef_at(time_s() + time_offset_s) - r_antenna_ecef_m);
@@ -137,7 +137,8 @@ KalmanUpdate AidedNavigator::update_position_velocity(const Eigen::Vector3d& r_a
                                                        : antenna_velocity_ecef_mps();
   z.tail<3>() = ecef_to_ned_vector(at, v_ins - v_antenna_ecef_mps);
   r << position_sigma_ned_m.cwiseAbs2(), velocity_sigma_ned_mps.cwiseAbs2();
-  const KalmanUpdate result = kf_.update(z, position_velocity_rows(lever_arm_ned_m()), r, {.row_sigma = cfg_.gate_sigma});
+  const KalmanUpdate result =
+      kf_.update(z, position_velocity_rows(lever_arm_ned_m()), r, {.row_sigma = cfg_.gate_sigma});
   if (result.applied) feed_back();
   return result;
 }
@@ -157,7 +158,8 @@ double AidedNavigator::predicted_pseudorange_m(const RangeMeasurement& m) const 
 double AidedNavigator::predicted_rate_mps(const RangeMeasurement& m) const {
   const RangePrediction& g = m.rate_at_own_time ? m.rate_geometry : m.geometry;
   const double offset = m.rate_at_own_time ? m.rate_time_offset_s : m.time_offset_s;
-  return g.pseudorange_rate_mps(antenna_velocity_ecef_at(time_s() + offset), clock_drift_mps()) + residual_delay_rate_mps(g);
+  return g.pseudorange_rate_mps(antenna_velocity_ecef_at(time_s() + offset), clock_drift_mps()) +
+         residual_delay_rate_mps(g);
 }
 
 namespace {
@@ -195,7 +197,8 @@ KalmanUpdate AidedNavigator::update_ranges(const std::vector<RangeMeasurement>& 
     for (const auto& m : test_only) append(m, watched);
     for (std::size_t i = 0; i < watched.z.size(); ++i)
       if (watched.pseudorange_prn[i] != 0)
-        innovations->push_back({watched.pseudorange_prn[i], kf_.normalized_innovation(watched.z[i], watched.h[i], watched.r[i]), false});
+        innovations->push_back(
+            {watched.pseudorange_prn[i], kf_.normalized_innovation(watched.z[i], watched.h[i], watched.r[i]), false});
   }
   RangeRows rows;
   for (const auto& m : measurements) append(m, rows);

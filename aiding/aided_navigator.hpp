@@ -69,7 +69,7 @@ struct IonosphereResidualConfig {
 struct NavigatorConfig {
   ProcessNoise noise;
   Eigen::Vector3d lever_arm_imu_to_antenna_b_m = Eigen::Vector3d::Zero();
-  double gate_sigma = 5.0;   ///< innovation gate of the GNSS updates (0: none)
+  double gate_sigma = 5.0;  ///< innovation gate of the GNSS updates (0: none)
   TroposphereResidualConfig troposphere;
   IonosphereResidualConfig ionosphere;
 };
@@ -77,10 +77,10 @@ struct NavigatorConfig {
 /// A satellite's measurement for a range update; either part may be absent.
 struct RangeMeasurement {
   int prn = 0;
-  RangePrediction geometry;              ///< satellite geometry at the antenna estimate
+  RangePrediction geometry;  ///< satellite geometry at the antenna estimate
   std::optional<double> pseudorange_m;
   double pseudorange_sigma_m = 5.0;
-  std::optional<double> rate_mps;        ///< pseudorange rate (= -lambda * Doppler)
+  std::optional<double> rate_mps;  ///< pseudorange rate (= -lambda * Doppler)
   double rate_sigma_mps = 0.1;
   /// Measurement time minus the navigator's time (the geometry must already be for the
   /// measurement time); the clock model is moved by it.
@@ -104,7 +104,8 @@ class AidedNavigator {
   /// A PVT fix: position at time_s() + time_offset_s, velocity at time_s() +
   /// velocity_time_offset_s (a Doppler velocity is a mean over the Dopplers' window, earlier
   /// than the fix; the INS velocity there is compared with it).
-  KalmanUpdate update_position_velocity(const Eigen::Vector3d& r_antenna_ecef_m, const Eigen::Vector3d& v_antenna_ecef_mps,
+  KalmanUpdate update_position_velocity(const Eigen::Vector3d& r_antenna_ecef_m,
+                                        const Eigen::Vector3d& v_antenna_ecef_mps,
                                         const Eigen::Vector3d& position_sigma_ned_m,
                                         const Eigen::Vector3d& velocity_sigma_ned_mps, double time_offset_s = 0.0,
                                         std::optional<double> velocity_time_offset_s = std::nullopt);
@@ -192,7 +193,8 @@ class AidedNavigator {
   double ionosphere_scale_residual_ = 0.0;
   Eigen::Vector3d last_f_b_mps2_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d last_w_b_radps_ = Eigen::Vector3d::Zero();
-  Eigen::Vector3d last_accel_ned_mps2_ = Eigen::Vector3d::Zero();  ///< INS velocity change over the last IMU interval / dt
+  Eigen::Vector3d last_accel_ned_mps2_ =
+      Eigen::Vector3d::Zero();  ///< INS velocity change over the last IMU interval / dt
 };
 
 /// P0 from the 1-sigma figures.

@@ -43,7 +43,7 @@ struct AidedReceiver::Impl : ChannelAiding {
   GnssReceiver rx;
   ImuLog imu;
   std::size_t next_imu = 0;
-  std::size_t next_gap = 0;  ///< first IMU gap not reached yet
+  std::size_t next_gap = 0;                ///< first IMU gap not reached yet
   std::optional<std::size_t> current_gap;  ///< the IMU gap the receiver is in (no INS there)
   InsInitializer init;
   std::optional<AidedNavigator> nav;
@@ -75,8 +75,8 @@ struct AidedReceiver::Impl : ChannelAiding {
         rx(cfg.receiver, source),
         imu(std::move(log)),
         init(cfg.imu, cfg.lever_arm_imu_to_antenna_b_m),
-        ultra(cfg.ultra, source.sample_rate_hz(), cfg.receiver.pvt.range_errors, cfg.fault_exclusion ? &faults : nullptr,
-              cfg.receiver.atmosphere),
+        ultra(cfg.ultra, source.sample_rate_hz(), cfg.receiver.pvt.range_errors,
+              cfg.fault_exclusion ? &faults : nullptr, cfg.receiver.atmosphere),
         modes(cfg.mode, cfg.limits),
         faults(cfg.faults),
         troposphere_watch{DelayMismatchDetector(cfg.troposphere_mismatch), {}},
@@ -101,15 +101,16 @@ struct AidedReceiver::Impl : ChannelAiding {
     const double t = static_cast<double>(end) / fs;
     propagate_to(t);
     follow_receiver_clock();
-    if (nav && modes.mode() != NavMode::ultra && modes.mode() != NavMode::scalar) ultra.update_and_steer(*nav, block, false);
+    if (nav && modes.mode() != NavMode::ultra && modes.mode() != NavMode::scalar)
+      ultra.update_and_steer(*nav, block, false);
     if (nav && modes.mode() == NavMode::ultra) {
       std::vector<SatelliteInnovation> rows;
       const KalmanUpdate r = ultra.update_and_steer(*nav, block, true, cfg.fault_exclusion ? &rows : nullptr);
       innovations.add(t, r);
       if (cfg.fault_exclusion) report_exclusions(t, rows);
       if (end % static_cast<std::int64_t>(fs) < static_cast<std::int64_t>(fs / 100))
-        spdlog::debug("t = {:.2f} s: ultra update {} measurements, {} rejected, max |nu|/sigma {:.2f}, {} steered",
-                      t, ultra.measuring_channels(), r.rejected, r.max_normalized_innovation, ultra.steered_channels());
+        spdlog::debug("t = {:.2f} s: ultra update {} measurements, {} rejected, max |nu|/sigma {:.2f}, {} steered", t,
+                      ultra.measuring_channels(), r.rejected, r.max_normalized_innovation, ultra.steered_channels());
       check_health();
     }
     evaluate_modes(t, block);
@@ -135,9 +136,10 @@ struct AidedReceiver::Impl : ChannelAiding {
     while (next_gap < imu.gaps.size() && t > imu.gaps[next_gap].t_before_s + 1.5 * imu.nominal_interval_s) {
       const ImuGap& g = imu.gaps[next_gap++];
       if (t >= g.t_after_s) continue;  // passed within one block
-      spdlog::warn("t = {:.2f} s: IMU data missing from t = {:.3f} s to {:.3f} s (IMU file line {}): INS stopped, "
-                   "scalar receiver until it restarts after the gap",
-                   t, g.t_before_s, g.t_after_s, g.line);
+      spdlog::warn(
+          "t = {:.2f} s: IMU data missing from t = {:.3f} s to {:.3f} s (IMU file line {}): INS stopped, "
+          "scalar receiver until it restarts after the gap",
+          t, g.t_before_s, g.t_after_s, g.line);
       stop_ins();  // an alignment under way starts over too: its samples end before the gap
       current_gap = next_gap - 1;
     }
@@ -161,7 +163,8 @@ struct AidedReceiver::Impl : ChannelAiding {
   /// clock bias follows each step, taken from the receiver's own sum of steps.
   void follow_receiver_clock() {
     const double steps_s = rx.clock_steps_s();
-    if (nav && steps_s != followed_clock_steps_s) nav->shift_clock_bias(gps::kSpeedOfLight_mps * (steps_s - followed_clock_steps_s));
+    if (nav && steps_s != followed_clock_steps_s)
+      nav->shift_clock_bias(gps::kSpeedOfLight_mps * (steps_s - followed_clock_steps_s));
     followed_clock_steps_s = steps_s;
   }
 
@@ -180,7 +183,8 @@ struct AidedReceiver::Impl : ChannelAiding {
     const NavMode before = modes.mode();
     const NavMode now = modes.update(t, in);
     if (now != before) {
-      spdlog::info("t = {:.2f} s: mode {} -> {} ({})", t, to_string(before), to_string(now), modes.changes().back().reason);
+      spdlog::info("t = {:.2f} s: mode {} -> {} ({})", t, to_string(before), to_string(now),
+                   modes.changes().back().reason);
       if (before == NavMode::ultra) ultra.release_all();
     }
   }
@@ -190,9 +194,10 @@ struct AidedReceiver::Impl : ChannelAiding {
     if (!nav->healthy()) {
       spdlog::error("navigation filter failed ({}); INS restarted from the next fix", nav->health_reason());
     } else if (innovations.inconsistent()) {
-      spdlog::error("navigation filter rejects {} of its last {} measurement rows: it no longer agrees with the "
-                    "signals; INS restarted from the next fix",
-                    innovations.rejected(), innovations.rows());
+      spdlog::error(
+          "navigation filter rejects {} of its last {} measurement rows: it no longer agrees with the "
+          "signals; INS restarted from the next fix",
+          innovations.rejected(), innovations.rows());
     } else {
       return;
     }
@@ -214,8 +219,7 @@ struct AidedReceiver::Impl : ChannelAiding {
   /// from the Earth's surface, or faster than 12 km/s.
   static std::optional<std::string> implausible(const Eigen::Vector3d& r_ecef_m, const Eigen::Vector3d& v_ecef_mps) {
     const double r = r_ecef_m.norm(), v = v_ecef_mps.norm();
-    if (!(r > 6.0e6 && r < 7.0e6))
-      return fmt::format("{:.0f} km from the Earth's centre", r / 1000.0);
+    if (!(r > 6.0e6 && r < 7.0e6)) return fmt::format("{:.0f} km from the Earth's centre", r / 1000.0);
     if (!(v < 1.2e4)) return fmt::format("moving at {:.3g} m/s", v);
     return std::nullopt;
   }
@@ -227,11 +231,13 @@ struct AidedReceiver::Impl : ChannelAiding {
     const double horizontal = std::hypot(sigma(0), sigma(1));
     const bool supported = horizontal <= cfg.max_published_sigma_m;
     if (!supported && !withholding)
-      spdlog::warn("t = {:.2f} s: the aided solution's horizontal 1-sigma is {:.1f} m, over {:.1f} m: not published "
-                   "until measurements bring it back",
-                   t_s, horizontal, cfg.max_published_sigma_m);
+      spdlog::warn(
+          "t = {:.2f} s: the aided solution's horizontal 1-sigma is {:.1f} m, over {:.1f} m: not published "
+          "until measurements bring it back",
+          t_s, horizontal, cfg.max_published_sigma_m);
     if (supported && withholding)
-      spdlog::info("t = {:.2f} s: the aided solution's horizontal 1-sigma is {:.1f} m: published again", t_s, horizontal);
+      spdlog::info("t = {:.2f} s: the aided solution's horizontal 1-sigma is {:.1f} m: published again", t_s,
+                   horizontal);
     withholding = !supported;
     if (!supported) ++withheld;
     return supported;
@@ -270,7 +276,8 @@ struct AidedReceiver::Impl : ChannelAiding {
     if (dopplers > 0) doppler_offset_s /= dopplers;
     // Not watched by the innovation monitor: the PVT's own errors come in runs under high
     // dynamics (its velocity model), and the gate turning them away is the right answer.
-    aiding::loose_update(*nav, {ep.t_s, ep.pvt, doppler_offset_s, Eigen::Vector3d::Constant(cfg.pvt_velocity_sigma_mps)},
+    aiding::loose_update(*nav,
+                         {ep.t_s, ep.pvt, doppler_offset_s, Eigen::Vector3d::Constant(cfg.pvt_velocity_sigma_mps)},
                          coupling.pvt_position_sigma_scale_m);
   }
 
@@ -304,7 +311,8 @@ struct AidedReceiver::Impl : ChannelAiding {
     const std::vector<int> after = faults.excluded_prns();
     for (int prn : after)
       if (std::find(before.begin(), before.end(), prn) == before.end())
-        spdlog::info("t = {:.2f} s: PRN {:2d} excluded: its pseudorange innovations disagree with the filter", t_s, prn);
+        spdlog::info("t = {:.2f} s: PRN {:2d} excluded: its pseudorange innovations disagree with the filter", t_s,
+                     prn);
     for (int prn : before)
       if (std::find(after.begin(), after.end(), prn) == after.end())
         spdlog::info("t = {:.2f} s: PRN {:2d} agrees with the filter again: re-admitted", t_s, prn);
@@ -316,7 +324,8 @@ struct AidedReceiver::Impl : ChannelAiding {
   void watch_atmosphere(const ReceiverEpoch& ep) {
     if (!cfg.troposphere.enabled && cfg.troposphere.enable_on_mismatch) {
       find_mismatch(ep, troposphere_watch);
-      if (troposphere_watch.report.found_at_s && take_state(ep, troposphere_watch, nav && nav->troposphere_state_enabled())) {
+      if (troposphere_watch.report.found_at_s &&
+          take_state(ep, troposphere_watch, nav && nav->troposphere_state_enabled())) {
         // From 0 with room for the error the fixes show (the prior's half metre would take
         // minutes to reach it).
         nav->enable_troposphere_state(std::max(0.5, std::abs(troposphere_watch.report.fitted_error)));
@@ -329,7 +338,8 @@ struct AidedReceiver::Impl : ChannelAiding {
     const bool troposphere_explains = troposphere_watch.report.found_at_s.has_value();
     if (!cfg.ionosphere.enabled && cfg.ionosphere.enable_on_mismatch && !troposphere_explains) {
       find_mismatch(ep, ionosphere_watch);
-      if (ionosphere_watch.report.found_at_s && take_state(ep, ionosphere_watch, nav && nav->ionosphere_state_enabled())) {
+      if (ionosphere_watch.report.found_at_s &&
+          take_state(ep, ionosphere_watch, nav && nav->ionosphere_state_enabled())) {
         nav->enable_ionosphere_state(ionosphere_watch.report.fitted_error, 0.2);
         spdlog::info("t = {:.2f} s: the aided filter estimates the ionosphere model's scale error from now on", ep.t_s);
       }
@@ -361,13 +371,15 @@ struct AidedReceiver::Impl : ChannelAiding {
     if (!w.check.mismatch()) return;
     w.report.found_at_s = ep.t_s;
     if (troposphere)
-      spdlog::warn("t = {:.2f} s: the fixes fit a troposphere model error of {:+.2f} m at the zenith: the signal does not "
-                   "match the receiver's troposphere model (IF without troposphere? then use --troposphere none)",
-                   ep.t_s, w.report.fitted_error);
+      spdlog::warn(
+          "t = {:.2f} s: the fixes fit a troposphere model error of {:+.2f} m at the zenith: the signal does not "
+          "match the receiver's troposphere model (IF without troposphere? then use --troposphere none)",
+          ep.t_s, w.report.fitted_error);
     else
-      spdlog::warn("t = {:.2f} s: the fixes fit the ionosphere model's delay scaled by {:+.2f}: the signal does not match "
-                   "the receiver's ionosphere model (IF without ionosphere? then use --ionosphere none)",
-                   ep.t_s, 1.0 + w.report.fitted_error);
+      spdlog::warn(
+          "t = {:.2f} s: the fixes fit the ionosphere model's delay scaled by {:+.2f}: the signal does not match "
+          "the receiver's ionosphere model (IF without ionosphere? then use --ionosphere none)",
+          ep.t_s, 1.0 + w.report.fitted_error);
   }
 
   AidedEpoch on_observation(const ReceiverEpoch& ep) {
@@ -392,9 +404,10 @@ struct AidedReceiver::Impl : ChannelAiding {
     out.valid = out.r_ecef_m.allFinite() && out.v_ecef_mps.allFinite();
     if (!out.valid) return out;
     if (const auto why = implausible(out.r_ecef_m, out.v_ecef_mps)) {
-      spdlog::error("t = {:.2f} s: the aided solution left the physically possible ({}): not published; INS "
-                    "restarted from the next fix",
-                    ep.t_s, *why);
+      spdlog::error(
+          "t = {:.2f} s: the aided solution left the physically possible ({}): not published; INS "
+          "restarted from the next fix",
+          ep.t_s, *why);
       stop_ins();
       ++restarts;
       out.valid = false;
@@ -412,10 +425,17 @@ struct AidedReceiver::Impl : ChannelAiding {
     out.steered_channels = ultra.steered_channels();
     out.measuring_channels = ultra.measuring_channels();
     switch (out.mode) {
-      case NavMode::ultra: out.filter_satellites = ultra.measuring_channels(); break;
-      case NavMode::tight: out.filter_satellites = last_tight_satellites; break;
-      case NavMode::loose: out.filter_satellites = ep.pvt.valid ? static_cast<int>(ep.pvt.used_prns.size()) : 0; break;
-      default: out.filter_satellites = 0;
+      case NavMode::ultra:
+        out.filter_satellites = ultra.measuring_channels();
+        break;
+      case NavMode::tight:
+        out.filter_satellites = last_tight_satellites;
+        break;
+      case NavMode::loose:
+        out.filter_satellites = ep.pvt.valid ? static_cast<int>(ep.pvt.used_prns.size()) : 0;
+        break;
+      default:
+        out.filter_satellites = 0;
     }
     if (out.mode != NavMode::coast && out.filter_satellites < kMinSatellitesForAidedLabel) out.mode = NavMode::coast;
     return out;
@@ -428,11 +448,11 @@ AidedReceiver::AidedReceiver(AidedReceiverConfig config, SampleSource& source, I
   if (imu.samples.empty()) throw std::invalid_argument(name + " holds no samples");
   const double first = imu.samples.front().t_s, last = imu.samples.back().t_s;
   if (first > 1.0)
-    throw std::invalid_argument(fmt::format("{} starts at t = {} s; it must cover the IF data from t = 0 (the first sample)",
-                                            name, first));
+    throw std::invalid_argument(
+        fmt::format("{} starts at t = {} s; it must cover the IF data from t = 0 (the first sample)", name, first));
   if (if_duration_s && last + 0.05 < *if_duration_s)
-    throw std::invalid_argument(fmt::format("{}: the IMU log ends at t = {} s but the IF data last {} s", name, last,
-                                            *if_duration_s));
+    throw std::invalid_argument(
+        fmt::format("{}: the IMU log ends at t = {} s but the IF data last {} s", name, last, *if_duration_s));
   impl_ = std::make_unique<Impl>(std::move(config), source, std::move(imu));
 }
 

@@ -24,7 +24,7 @@ namespace deepnav::aiding {
 struct AidedReceiverConfig {
   NavMode mode = NavMode::ultra;
   ReceiverConfig receiver;
-  ImuErrorModel imu;                     ///< the IMU's grade: process noise and alignment limits
+  ImuErrorModel imu;  ///< the IMU's grade: process noise and alignment limits
   OscillatorNoise oscillator;
   Eigen::Vector3d lever_arm_imu_to_antenna_b_m = Eigen::Vector3d::Zero();
   UltraTightConfig ultra;
@@ -50,7 +50,7 @@ struct AidedReceiverConfig {
 
 /// The aided solution at one observation epoch, next to the receiver's own.
 struct AidedEpoch {
-  ReceiverEpoch receiver;                ///< observables and the receiver's standalone PVT
+  ReceiverEpoch receiver;  ///< observables and the receiver's standalone PVT
   /// The coupling the filter runs at this epoch (the mode manager's choice).
   NavMode coupling = NavMode::scalar;
   /// What the solution is published as: the coupling, except that a solution whose update
@@ -58,12 +58,12 @@ struct AidedEpoch {
   /// tight: ranges; ultra-tight: measuring channels) is labelled coast: the INS, not the
   /// satellites, carries it in the directions they leave open.
   NavMode mode = NavMode::scalar;
-  bool valid = false;                    ///< an aided (or coasting) INS solution exists
-  Eigen::Vector3d r_ecef_m = Eigen::Vector3d::Zero();   ///< antenna
+  bool valid = false;                                  ///< an aided (or coasting) INS solution exists
+  Eigen::Vector3d r_ecef_m = Eigen::Vector3d::Zero();  ///< antenna
   Eigen::Vector3d v_ecef_mps = Eigen::Vector3d::Zero();
   wgs84::Llh llh{};
   Eigen::Vector3d v_ned_mps = Eigen::Vector3d::Zero();
-  Eigen::Vector3d rpy_rad = Eigen::Vector3d::Zero();   ///< roll, pitch, yaw of the body
+  Eigen::Vector3d rpy_rad = Eigen::Vector3d::Zero();  ///< roll, pitch, yaw of the body
   Eigen::Vector3d position_sigma_ned_m = Eigen::Vector3d::Zero();
   double clock_bias_m = 0.0, clock_drift_mps = 0.0;
   int steered_channels = 0;

@@ -51,8 +51,9 @@ NavBitMonitor::Check DataWipeoff::observe(std::int64_t bit, const std::complex<d
                                           double cn0_dbhz) {
   const double projected = phase_reference ? (prompt * std::conj(*phase_reference)).real() : prompt.real();
   const int sign = projected == 0.0 || polarity == 0 ? 0 : (projected > 0.0 ? 1 : -1) * polarity;
-  const double error_rate =
-      phase_reference || predictor_.sign(bit) == 0 ? nav_bit_error_rate(cn0_dbhz - kErrorRateMargin_db) : kUnreferencedErrorRate;
+  const double error_rate = phase_reference || predictor_.sign(bit) == 0
+                                ? nav_bit_error_rate(cn0_dbhz - kErrorRateMargin_db)
+                                : kUnreferencedErrorRate;
   return monitor_.observe(predictor_, bit, sign, error_rate);
 }
 

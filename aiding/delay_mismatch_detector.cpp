@@ -1,8 +1,8 @@
 #include "aiding/delay_mismatch_detector.hpp"
 
+#include <spdlog/spdlog.h>
 #include <Eigen/Dense>
 #include <cmath>
-#include <spdlog/spdlog.h>
 
 #include "signals/atmosphere.hpp"
 

@@ -46,8 +46,8 @@ struct DelayMismatchConfig {
   /// The model over the signal by this (troposphere: m at the zenith; ionosphere: a
   /// fraction of the model's delay): a mismatch.
   double threshold = 1.5;
-  int window_fixes = 30;            ///< fixes combined
-  int min_fixes = 20;               ///< before any verdict
+  int window_fixes = 30;  ///< fixes combined
+  int min_fixes = 20;     ///< before any verdict
   /// The fixes must agree on the error: the window's mean over the standard error of its
   /// per-fix fits (their own scatter, as if independent) beyond this. A missing delay reads
   /// the same at every fix (measured on the land and aircraft circles: 8.8 to 34); the
@@ -96,8 +96,8 @@ class DelayMismatchDetector {
 
  private:
   struct FixTerm {
-    double information = 0.0;  ///< m_perp' W m_perp
-    double weighted_sum = 0.0; ///< m_perp' W r
+    double information = 0.0;   ///< m_perp' W m_perp
+    double weighted_sum = 0.0;  ///< m_perp' W r
   };
   DelayMismatchConfig cfg_;
   std::deque<FixTerm> window_;

@@ -25,8 +25,10 @@ void to_fusion_axis(ImuLog& imu, ImuTimeBase base, const ObservationFile& obs) {
   const double first_sow = obs.epochs.front().t.sow;
   const auto convert = [&](double t) {
     switch (base) {
-      case ImuTimeBase::gps_seconds: return t - week_start_gps_s;
-      case ImuTimeBase::unix_gps: return t - kGpsToUnix_s - week_start_gps_s;
+      case ImuTimeBase::gps_seconds:
+        return t - week_start_gps_s;
+      case ImuTimeBase::unix_gps:
+        return t - kGpsToUnix_s - week_start_gps_s;
       case ImuTimeBase::week_seconds:
         // Seconds of week: the week of the first epoch, or the next one across a rollover.
         return t < first_sow - kSecondsPerWeek / 2 ? t + kSecondsPerWeek : t;

@@ -63,8 +63,8 @@ TightRows tight_rows(const AidedNavigator& nav, const RangeEpoch& epoch, const A
     RangeMeasurement m;
     m.prn = o.prn;
     m.time_offset_s = dt;
-    m.geometry = predict_range(o.ephemeris, epoch.t_rx, bias, nav.antenna_ecef_at(epoch.t_s), nav.antenna_velocity_ecef_mps(),
-                               epoch.iono, atmosphere);
+    m.geometry = predict_range(o.ephemeris, epoch.t_rx, bias, nav.antenna_ecef_at(epoch.t_s),
+                               nav.antenna_velocity_ecef_mps(), epoch.iono, atmosphere);
     if (m.geometry.elevation_rad < elevation_mask_rad) {
       out.below_mask.push_back(m);
       continue;

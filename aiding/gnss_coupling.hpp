@@ -37,10 +37,10 @@ namespace deepnav::aiding {
 /// What both navigators couple with, taken from one structure: the filter's settings and
 /// the atmosphere its ranges are predicted with.
 struct CouplingSettings {
-  ImuErrorModel imu;                     ///< the IMU's grade: process noise and start limits
+  ImuErrorModel imu;  ///< the IMU's grade: process noise and start limits
   OscillatorNoise oscillator;
   Eigen::Vector3d lever_arm_imu_to_antenna_b_m = Eigen::Vector3d::Zero();
-  double gate_sigma = 5.0;               ///< innovation gate of the GNSS updates (0: none)
+  double gate_sigma = 5.0;  ///< innovation gate of the GNSS updates (0: none)
   /// The atmosphere: the models every predicted range applies, the same the navigator's PVT
   /// solver applies (the IF receiver's ReceiverConfig::atmosphere), and the filter's
   /// residual states of those models (estimated from the start when enabled).
@@ -70,8 +70,8 @@ AidedNavigator start_navigator(const InsStart& start, const GnssFix& fix, const 
 
 /// One epoch's PVT as the loose update takes it.
 struct LooseFix {
-  double t_s = 0.0;                 ///< the epoch, navigator's axis
-  PvtSolution pvt;                  ///< a valid fix
+  double t_s = 0.0;  ///< the epoch, navigator's axis
+  PvtSolution pvt;   ///< a valid fix
   /// Its velocity's time minus t_s: the mean time offset of the Dopplers it was solved from.
   double doppler_offset_s = 0.0;
   Eigen::Vector3d velocity_sigma_ned_mps = Eigen::Vector3d::Constant(0.1);
@@ -88,17 +88,17 @@ struct RangeObservation {
   int prn = 0;
   Ephemeris ephemeris;
   double pseudorange_m = 0.0;
-  double cn0_dbhz = 0.0;            ///< weighs the pseudorange
+  double cn0_dbhz = 0.0;             ///< weighs the pseudorange
   std::optional<double> doppler_hz;  ///< none: a pseudorange row only
-  double doppler_offset_s = 0.0;    ///< the Doppler's time minus the epoch's
-  double rate_sigma_mps = 0.1;      ///< of the pseudorange rate from the Doppler
+  double doppler_offset_s = 0.0;     ///< the Doppler's time minus the epoch's
+  double rate_sigma_mps = 0.1;       ///< of the pseudorange rate from the Doppler
 };
 
 /// One epoch's observables, in the order the rows are to be made.
 struct RangeEpoch {
-  double t_s = 0.0;                 ///< navigator's axis
-  GpsTime t_rx;                     ///< the receiver clock's time tag of the epoch
-  IonoParameters iono;              ///< for the Klobuchar model (invalid: no ionosphere)
+  double t_s = 0.0;     ///< navigator's axis
+  GpsTime t_rx;         ///< the receiver clock's time tag of the epoch
+  IonoParameters iono;  ///< for the Klobuchar model (invalid: no ionosphere)
   std::vector<RangeObservation> satellites;
 };
 

@@ -11,9 +11,9 @@
 namespace deepnav::aiding {
 
 struct InnovationMonitorConfig {
-  double window_s = 3.0;                ///< judged over the updates of the last window_s
-  int min_rows = 15;                    ///< fewer rows than this say nothing
-  double max_rejected_fraction = 0.2;   ///< more rejected than this: inconsistent (a 5-sigma gate rejects almost none)
+  double window_s = 3.0;               ///< judged over the updates of the last window_s
+  int min_rows = 15;                   ///< fewer rows than this say nothing
+  double max_rejected_fraction = 0.2;  ///< more rejected than this: inconsistent (a 5-sigma gate rejects almost none)
 };
 
 class InnovationMonitor {

@@ -42,8 +42,9 @@ StateMatrix error_dynamics(const NavState& state, const Eigen::Vector3d& f_b_mps
   const Eigen::Vector3d w_ie = earth_rate_ned_radps(state.llh.lat_rad);
   const Eigen::Vector3d w_en = transport_rate_ned_radps(state.llh, state.v_ned_mps);
   const Eigen::Vector3d f_n = C_b_n * f_b_mps2;
-  const double radius = std::sqrt(wgs84::meridian_radius_m(state.llh.lat_rad) *
-                                  wgs84::transverse_radius_m(state.llh.lat_rad)) + state.llh.height_m;
+  const double radius =
+      std::sqrt(wgs84::meridian_radius_m(state.llh.lat_rad) * wgs84::transverse_radius_m(state.llh.lat_rad)) +
+      state.llh.height_m;
   const double g = wgs84::normal_gravity_mps2(state.llh.lat_rad, state.llh.height_m);
 
   F.block<3, 3>(kPos, kVel).setIdentity();

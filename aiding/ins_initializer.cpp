@@ -14,7 +14,7 @@ namespace {
 
 constexpr double kRestWindow_s = 5.0;
 constexpr double kRestSpeed_mps = 0.2;
-constexpr double kMovingSpeed_mps = 1.0;  ///< below this the direction of travel is too noisy for heading
+constexpr double kMovingSpeed_mps = 1.0;       ///< below this the direction of travel is too noisy for heading
 constexpr double kVelocityDifference_s = 1.0;  ///< the moving start's velocity difference spans at least this
 constexpr double kFixHistory_s = 3.0;
 
@@ -64,17 +64,15 @@ std::optional<InsStart> InsInitializer::at_rest(const GnssFix& fix) const {
   limits.accel_noise_mps2 = imu_.accel.random_walk / std::sqrt(dt) + imu_.accel.quantization / dt;
   limits.gyro_noise_radps = imu_.gyro.random_walk / std::sqrt(dt) + imu_.gyro.quantization / dt;
   limits.gyro_bias_radps = std::max(1e-4, 3.0 * (imu_.gyro.bias_sigma + imu_.gyro.bias_instability_sigma));
-  const CoarseAlignmentOutcome a =
-      coarse_align(f, w, llh.lat_rad, g, CoarseAlignmentMethod::kTwoStep, limits);
+  const CoarseAlignmentOutcome a = coarse_align(f, w, llh.lat_rad, g, CoarseAlignmentMethod::kTwoStep, limits);
   if (!a.attitude) return std::nullopt;
   InsStart s = finish(fix, a.attitude->C_b_n);
   s.method = "two-step coarse alignment";
   // Levelling is limited by the accelerometer bias, gyrocompassing by the gyro bias
   // against the horizontal Earth rate.
   const double tilt = std::max(1e-4, (imu_.accel.bias_sigma + imu_.accel.bias_instability_sigma) / g);
-  const double heading = std::min(
-      0.5, std::max(1e-3, (imu_.gyro.bias_sigma + imu_.gyro.bias_instability_sigma) /
-                              (wgs84::kEarthRate_radps * std::cos(llh.lat_rad))));
+  const double heading = std::min(0.5, std::max(1e-3, (imu_.gyro.bias_sigma + imu_.gyro.bias_instability_sigma) /
+                                                          (wgs84::kEarthRate_radps * std::cos(llh.lat_rad))));
   s.uncertainty.attitude_rad = Eigen::Vector3d(2 * tilt, 2 * tilt, 2 * heading);
   s.uncertainty.velocity_ned_mps = Eigen::Vector3d::Constant(0.1);
   return s;
@@ -119,9 +117,10 @@ std::optional<InsStart> InsInitializer::moving(const GnssFix& fix) const {
   };
   if (std::abs(f_n.norm() - f_b.norm()) > kMaxSpecificForceMismatch_mps2 ||
       std::abs(angle(f_n, v_n) - angle(f_b, v_b)) > kMaxTriadAngleMismatch_rad) {
-    spdlog::debug("t = {:.2f} s: moving INS start passed over: specific force {:.2f} m/s^2 from the fixes, {:.2f} from "
-                  "the IMU; angle to the velocity {:.2f} / {:.2f} deg",
-                  fix.t_s, f_n.norm(), f_b.norm(), angle(f_n, v_n) * 180.0 / M_PI, angle(f_b, v_b) * 180.0 / M_PI);
+    spdlog::debug(
+        "t = {:.2f} s: moving INS start passed over: specific force {:.2f} m/s^2 from the fixes, {:.2f} from "
+        "the IMU; angle to the velocity {:.2f} / {:.2f} deg",
+        fix.t_s, f_n.norm(), f_b.norm(), angle(f_n, v_n) * 180.0 / M_PI, angle(f_b, v_b) * 180.0 / M_PI);
     return std::nullopt;
   }
   const Eigen::Matrix3d C_b_n = triad(f_n, v_n) * triad(f_b, v_b).transpose();
@@ -148,10 +147,10 @@ InsStart InsInitializer::finish(const GnssFix& fix, const Eigen::Matrix3d& C_b_n
   const double dt = s.state.t_s - fix.t_s;
   s.state.llh = wgs84::ecef_to_llh(r_imu + fix.v_antenna_ecef_mps * dt);
   s.uncertainty.position_ned_m = Eigen::Vector3d(fix.horizontal_sigma_m, fix.horizontal_sigma_m, fix.vertical_sigma_m);
-  s.uncertainty.accel_bias_mps2 =
-      Eigen::Vector3d::Constant(std::max(1e-5, imu_.accel.bias_sigma + imu_.accel.bias_instability_sigma + imu_.accel.bias.norm()));
-  s.uncertainty.gyro_bias_radps =
-      Eigen::Vector3d::Constant(std::max(1e-8, imu_.gyro.bias_sigma + imu_.gyro.bias_instability_sigma + imu_.gyro.bias.norm()));
+  s.uncertainty.accel_bias_mps2 = Eigen::Vector3d::Constant(
+      std::max(1e-5, imu_.accel.bias_sigma + imu_.accel.bias_instability_sigma + imu_.accel.bias.norm()));
+  s.uncertainty.gyro_bias_radps = Eigen::Vector3d::Constant(
+      std::max(1e-8, imu_.gyro.bias_sigma + imu_.gyro.bias_instability_sigma + imu_.gyro.bias.norm()));
   s.uncertainty.clock_bias_m = 10.0;
   s.uncertainty.clock_drift_mps = 0.5;
   return s;

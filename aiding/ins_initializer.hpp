@@ -19,7 +19,7 @@
 namespace deepnav::aiding {
 
 struct GnssFix {
-  double t_s = 0.0;                 ///< on the IMU's time axis
+  double t_s = 0.0;  ///< on the IMU's time axis
   Eigen::Vector3d r_antenna_ecef_m;
   Eigen::Vector3d v_antenna_ecef_mps;
   double clock_bias_m = 0.0, clock_drift_mps = 0.0;
@@ -27,9 +27,9 @@ struct GnssFix {
 };
 
 struct InsStart {
-  NavState state;                   ///< of the IMU, at the last IMU sample the initializer saw
+  NavState state;  ///< of the IMU, at the last IMU sample the initializer saw
   InitialUncertainty uncertainty;
-  std::string method;               ///< "two-step coarse alignment" or "moving: TRIAD"
+  std::string method;  ///< "two-step coarse alignment" or "moving: TRIAD"
 };
 
 class InsInitializer {

@@ -27,12 +27,12 @@ namespace deepnav::aiding {
 
 /// One integration as the estimator sees it.
 struct IntegrationPower {
-  double end_s = 0.0;            ///< when it ended (s), for the window
-  double prompt_power = 0.0;     ///< sum over its coherent pieces of |P_k|^2
-  double sum_t_s = 0.0;          ///< sum of the pieces' lengths
-  double sum_t2_s2 = 0.0;        ///< sum of their squares (= T^2 for one coherent piece)
-  double noise_power = 0.0;      ///< |N|^2 summed over the noise correlator's pieces
-  double noise_s = 0.0;          ///< time the noise correlator covered
+  double end_s = 0.0;                 ///< when it ended (s), for the window
+  double prompt_power = 0.0;          ///< sum over its coherent pieces of |P_k|^2
+  double sum_t_s = 0.0;               ///< sum of the pieces' lengths
+  double sum_t2_s2 = 0.0;             ///< sum of their squares (= T^2 for one coherent piece)
+  double noise_power = 0.0;           ///< |N|^2 summed over the noise correlator's pieces
+  double noise_s = 0.0;               ///< time the noise correlator covered
   std::complex<double> wiped_prompt;  ///< the coherent prompt when the data was wiped off (else 0)
   bool data_wiped = false;
 };

@@ -26,7 +26,7 @@
 namespace deepnav::aiding {
 
 struct LongIntegrationConfig {
-  int coherent_ms = 200;     ///< data-wiped coherent length: a multiple of 20 ms; 20: no wipe-off
+  int coherent_ms = 200;      ///< data-wiped coherent length: a multiple of 20 ms; 20: no wipe-off
   int noncoherent_ms = 1000;  ///< power sum of 20 ms bits where the data are not predicted (multiple of 20)
   /// Predict subframes 1-3 from the receiver's ephemeris where they have not been decoded
   /// (an assisted ephemeris from a navigation file): assisted data bits.
@@ -43,9 +43,9 @@ struct SteeredIntegration {
   /// Sums over the integration (data wiped when `data_wiped`); for a non-coherent one the
   /// complex sums are the last bit's. Timing, NCO state and flags are those at its end.
   CorrelatorEpoch sums;
-  bool data_wiped = false;      ///< coherent across bits with the data removed
-  int pieces = 1;               ///< coherent pieces combined in power (1: one coherent integration)
-  double piece_s = 0.0;         ///< length of each coherent piece
+  bool data_wiped = false;  ///< coherent across bits with the data removed
+  int pieces = 1;           ///< coherent pieces combined in power (1: one coherent integration)
+  double piece_s = 0.0;     ///< length of each coherent piece
   double early_power = 0.0, prompt_power = 0.0, late_power = 0.0;  ///< sum of |.|^2 over the pieces
   /// The noise correlator's |N|^2 summed over the channel's integrations (each an independent
   /// sample of the noise density; |sum N|^2 would be a single one) and the samples it covered.

@@ -74,7 +74,8 @@ Eigen::Vector3d pvt_position_sigma_ned_m(double hdop, double vdop, double scale_
 
 double scalar_pseudorange_sigma_m(const RangeErrorModel& errors, double elevation_rad, double cn0_dbhz,
                                   double row_interval_s) {
-  return std::sqrt(errors.model_variance_per_row_m2(elevation_rad, row_interval_s) + errors.thermal_variance_m2(cn0_dbhz));
+  return std::sqrt(errors.model_variance_per_row_m2(elevation_rad, row_interval_s) +
+                   errors.thermal_variance_m2(cn0_dbhz));
 }
 
 double scalar_rate_sigma_mps(double cn0_dbhz, double pll_bandwidth_hz, double coherent_s) {
@@ -96,9 +97,9 @@ double discriminator_rate_sigma_mps(double cn0_dbhz, double integration_s, doubl
   // span (adjoining windows share an end, so their errors are negatively correlated:
   // taking them as independent understates what a run of windows says).
   const bool phase_window = rate_window_s > 0.0;
-  const double sigma_hz =
-      mean_frequency_sigma_hz(phase_variance_rad2(cn0_dbhz, integration_s), phase_window ? rate_window_s : integration_s) /
-      std::sqrt(static_cast<double>(std::max(pairs, 1)));
+  const double sigma_hz = mean_frequency_sigma_hz(phase_variance_rad2(cn0_dbhz, integration_s),
+                                                  phase_window ? rate_window_s : integration_s) /
+                          std::sqrt(static_cast<double>(std::max(pairs, 1)));
   return std::hypot(sigma_hz * gps::kL1Wavelength_m, phase_window ? kPhaseRateFloor_mps : kDiscriminatorRateFloor_mps);
 }
 

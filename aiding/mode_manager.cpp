@@ -7,7 +7,8 @@ namespace deepnav::aiding {
 namespace {
 
 /// The fallback chain, best first.
-constexpr std::array<NavMode, 5> kChain{NavMode::ultra, NavMode::tight, NavMode::loose, NavMode::coast, NavMode::scalar};
+constexpr std::array<NavMode, 5> kChain{NavMode::ultra, NavMode::tight, NavMode::loose, NavMode::coast,
+                                        NavMode::scalar};
 
 int rank(NavMode m) {
   for (std::size_t i = 0; i < kChain.size(); ++i)
@@ -19,11 +20,16 @@ int rank(NavMode m) {
 
 const char* to_string(NavMode mode) {
   switch (mode) {
-    case NavMode::scalar: return "scalar";
-    case NavMode::coast: return "coast";
-    case NavMode::loose: return "loose";
-    case NavMode::tight: return "tight";
-    case NavMode::ultra: return "ultra";
+    case NavMode::scalar:
+      return "scalar";
+    case NavMode::coast:
+      return "coast";
+    case NavMode::loose:
+      return "loose";
+    case NavMode::tight:
+      return "tight";
+    case NavMode::ultra:
+      return "ultra";
   }
   return "?";
 }
@@ -46,17 +52,22 @@ std::string ModeManager::missing(NavMode mode, const ModeInputs& in) const {
   if (!in.ins_ready) return "INS not initialised";
   if (!in.filter_healthy) return "filter unhealthy";
   switch (mode) {
-    case NavMode::coast: return {};
-    case NavMode::loose: return in.recent_pvt ? std::string{} : "no receiver PVT";
-    case NavMode::tight: return in.ranging_satellites >= 1 ? std::string{} : "no satellite with a usable pseudorange";
+    case NavMode::coast:
+      return {};
+    case NavMode::loose:
+      return in.recent_pvt ? std::string{} : "no receiver PVT";
+    case NavMode::tight:
+      return in.ranging_satellites >= 1 ? std::string{} : "no satellite with a usable pseudorange";
     case NavMode::ultra: {
       if (in.steerable_channels < 1) return "no channel to steer";
       const double limit = mode_ == NavMode::ultra ? limits_.ultra_keep_sigma_m : limits_.ultra_enter_sigma_m;
       if (in.horizontal_sigma_m > limit) return "position uncertainty too large to steer the channels";
-      if (in.velocity_sigma_mps > limits_.ultra_keep_velocity_sigma_mps) return "velocity uncertainty too large to steer the carrier";
+      if (in.velocity_sigma_mps > limits_.ultra_keep_velocity_sigma_mps)
+        return "velocity uncertainty too large to steer the carrier";
       return {};
     }
-    default: return {};
+    default:
+      return {};
   }
 }
 

@@ -20,7 +20,7 @@ NavMode parse_nav_mode(const std::string& text);
 
 /// What the modes need, as seen at one instant.
 struct ModeInputs {
-  bool ins_ready = false;           ///< the INS is initialised
+  bool ins_ready = false;  ///< the INS is initialised
   bool filter_healthy = false;
   bool recent_pvt = false;          ///< a valid receiver PVT within the last few seconds
   int ranging_satellites = 0;       ///< channels with ephemeris, transmit time and usable C/N0
@@ -30,8 +30,8 @@ struct ModeInputs {
 };
 
 struct ModeLimits {
-  double ultra_enter_sigma_m = 10.0;     ///< converged enough to take the channels over
-  double ultra_keep_sigma_m = 40.0;      ///< 0.14 chip: beyond it predicted code phases are unsafe
+  double ultra_enter_sigma_m = 10.0;           ///< converged enough to take the channels over
+  double ultra_keep_sigma_m = 40.0;            ///< 0.14 chip: beyond it predicted code phases are unsafe
   double ultra_keep_velocity_sigma_mps = 1.5;  ///< ~8 Hz of carrier: beyond it the FLL range is at risk
   double return_after_s = 2.0;
 };

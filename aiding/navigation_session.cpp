@@ -25,10 +25,14 @@ PvtSolution aided_solution(const AidedEpoch& a) {
 
 int gnss_measurements(const AidedEpoch& a) {
   switch (a.coupling) {
-    case NavMode::ultra: return a.measuring_channels;
-    case NavMode::tight: return static_cast<int>(a.receiver.observations.size());
-    case NavMode::coast: return 0;
-    default: return a.receiver.pvt.valid ? static_cast<int>(a.receiver.pvt.used_prns.size()) : 0;
+    case NavMode::ultra:
+      return a.measuring_channels;
+    case NavMode::tight:
+      return static_cast<int>(a.receiver.observations.size());
+    case NavMode::coast:
+      return 0;
+    default:
+      return a.receiver.pvt.valid ? static_cast<int>(a.receiver.pvt.used_prns.size()) : 0;
   }
 }
 
@@ -43,12 +47,12 @@ nlohmann::json mode_changes_json(const std::vector<ModeChange>& changes) {
 
 NavigationSession::NavigationSession(NavigationSessionConfig config, SampleSource& source, std::optional<ImuLog> imu,
                                      std::optional<double> duration_s)
-    : config_(std::move(config)),
-      mitigated_(std::make_unique<MitigationSampleSource>(source, config_.mitigation)) {
+    : config_(std::move(config)), mitigated_(std::make_unique<MitigationSampleSource>(source, config_.mitigation)) {
   if (config_.navigator.mode == NavMode::scalar) {
     scalar_ = std::make_unique<GnssReceiver>(config_.navigator.receiver, *mitigated_);
   } else {
-    if (!imu) throw std::invalid_argument(std::string("mode ") + to_string(config_.navigator.mode) + " needs an IMU log");
+    if (!imu)
+      throw std::invalid_argument(std::string("mode ") + to_string(config_.navigator.mode) + " needs an IMU log");
     aided_ = std::make_unique<AidedReceiver>(config_.navigator, *mitigated_, std::move(*imu), duration_s);
   }
   if (config_.assisted_iono) receiver().set_assisted_iono(*config_.assisted_iono);
@@ -80,10 +84,8 @@ void NavigationSession::run(const std::vector<ProductSink*>& sinks, const std::f
   };
   std::exception_ptr failure;
   try {
-    if (aided_)
-      aided_->run([&](const AidedEpoch& a) { hand_out(a.receiver, &a, sinks); }, on_correlation, progress);
-    else
-      scalar_->run([&](const ReceiverEpoch& ep) { hand_out(ep, nullptr, sinks); }, on_correlation, progress);
+    if (aided_) aided_->run([&](const AidedEpoch& a) { hand_out(a.receiver, &a, sinks); }, on_correlation, progress);
+    else scalar_->run([&](const ReceiverEpoch& ep) { hand_out(ep, nullptr, sinks); }, on_correlation, progress);
   } catch (const std::exception& e) {
     // The products keep what they were given up to here; the summary says why it ended.
     failure = std::current_exception();
@@ -98,8 +100,8 @@ void NavigationSession::run(const std::vector<ProductSink*>& sinks, const std::f
   if (!product_failures_.empty()) {
     std::string what;
     for (const ProductFailure& f : product_failures_) what += (what.empty() ? "" : "; ") + f.product + ": " + f.error;
-    throw std::runtime_error(fmt::format("{} of the products could not be written (the others are): {}",
-                                         product_failures_.size(), what));
+    throw std::runtime_error(
+        fmt::format("{} of the products could not be written (the others are): {}", product_failures_.size(), what));
   }
 }
 

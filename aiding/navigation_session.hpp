@@ -5,8 +5,8 @@
 // `deepnav run`, the benchmarks and the end-to-end tests all run through it, so the
 // wiring exists once.
 #include <map>
-#include <nlohmann/json.hpp>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>

@@ -61,11 +61,11 @@ FusionSatelliteTrace& satellite_trace(FusionEpochTrace& trace, int prn) {
 /// One epoch of the recording as the filter takes it.
 struct FusionEpoch {
   const ObservationEpoch* recorded = nullptr;  ///< as read from the file
-  double t = 0.0;                          ///< fusion axis
-  ReceiverEpoch receiver;                  ///< t_s: since the first epoch; observables and PVT
-  std::map<int, Ephemeris> ephemerides;    ///< of the satellites with a pseudorange
-  std::map<int, double> code;              ///< the pseudoranges the PVT and the filter take (smoothed or raw)
-  bool dopplers = true;                    ///< every satellite offered to the PVT has a Doppler
+  double t = 0.0;                              ///< fusion axis
+  ReceiverEpoch receiver;                      ///< t_s: since the first epoch; observables and PVT
+  std::map<int, Ephemeris> ephemerides;        ///< of the satellites with a pseudorange
+  std::map<int, double> code;                  ///< the pseudoranges the PVT and the filter take (smoothed or raw)
+  bool dopplers = true;                        ///< every satellite offered to the PVT has a Doppler
   FusionEpochTrace trace;
 };
 
@@ -87,7 +87,8 @@ class FusionRun {
                                                 : wgs84::Llh{0.7, 0.0, 0.0}),
         init_(cfg.coupling.imu, cfg.coupling.lever_arm_imu_to_antenna_b_m),
         // At rest the mean rate is the gyro's bias: up to three of its sigmas.
-        still_(cfg.stationarity, wgs84::normal_gravity_mps2(site_.lat_rad, site_.height_m), 3.0 * gyro_bias_sigma_radps(cfg)),
+        still_(cfg.stationarity, wgs84::normal_gravity_mps2(site_.lat_rad, site_.height_m),
+               3.0 * gyro_bias_sigma_radps(cfg)),
         // A start at rest gyrocompasses: it needs a gyro whose bias is small against the
         // Earth's rate (the initializer's heading sigma reaches its 0.5 rad cap beyond
         // this). A consumer MEMS gyro (hundreds of deg/h) waits for the moving start
@@ -252,7 +253,8 @@ class FusionRun {
     // Each epoch's row carries the range model's terms whole, whatever the epoch rate (the
     // IF path shares them among the rows of a second); pseudorange_sigma_scale tunes it.
     const PseudorangeWeighting weighting{cfg_.pvt.range_errors, 1.0, cfg_.pseudorange_sigma_scale};
-    const TightRows rows = tight_rows(*nav_filter_, epoch, cfg_.coupling.atmosphere, cfg_.pvt.elevation_mask_rad, weighting);
+    const TightRows rows =
+        tight_rows(*nav_filter_, epoch, cfg_.coupling.atmosphere, cfg_.pvt.elevation_mask_rad, weighting);
     for (const RangeMeasurement& m : rows.below_mask)
       satellite_trace(fe.trace, m.prn).elevation_deg = m.geometry.elevation_rad * 180.0 / M_PI;
     for (const RangeMeasurement& m : rows.used) {
@@ -327,8 +329,8 @@ class FusionRun {
     report_.seconds_in_mode[mode_name] += interval_s_;
     const int pvt_satellites = static_cast<int>(re.pvt.used_prns.size());
     const int measurements = from_filter && cfg_.mode == NavMode::tight ? filter_satellites : pvt_satellites;
-    const NavigationEpoch ne{re, solution, from_filter, mode_name, from_filter ? filter_satellites : pvt_satellites,
-                             measurements, leap_};
+    const NavigationEpoch ne{
+        re, solution, from_filter, mode_name, from_filter ? filter_satellites : pvt_satellites, measurements, leap_};
     for (ProductSink* s : sinks) s->on_epoch(ne);
   }
 
@@ -381,10 +383,9 @@ RecordedFusion::RecordedFusion(RecordedFusionConfig config, const ObservationFil
   const double first = fusion_time_s(obs_, obs_.epochs.front().t), last = fusion_time_s(obs_, obs_.epochs.back().t);
   const double imu_first = imu_.samples.front().t_s, imu_last = imu_.samples.back().t_s;
   if (imu_last < first || imu_first > last)
-    throw std::invalid_argument(
-        "the IMU log (" + std::to_string(imu_first) + " to " + std::to_string(imu_last) +
-        " s of GPS week) does not overlap the observations (" + std::to_string(first) + " to " + std::to_string(last) +
-        " s): check the IMU time base and offset");
+    throw std::invalid_argument("the IMU log (" + std::to_string(imu_first) + " to " + std::to_string(imu_last) +
+                                " s of GPS week) does not overlap the observations (" + std::to_string(first) + " to " +
+                                std::to_string(last) + " s): check the IMU time base and offset");
 }
 
 void RecordedFusion::run(const std::vector<ProductSink*>& sinks) {

@@ -46,12 +46,12 @@
 namespace deepnav::aiding {
 
 struct RecordedFusionConfig {
-  NavMode mode = NavMode::tight;        ///< loose or tight
+  NavMode mode = NavMode::tight;  ///< loose or tight
   /// The IMU, lever arm, gate and atmosphere (the PVT solver's models and the filter's
   /// residual states): the settings `deepnav run` couples with.
   CouplingSettings coupling;
   PvtConfig pvt;
-  double pseudorange_sigma_scale = 1.0;     ///< tight: times the shared range weight model's sigma
+  double pseudorange_sigma_scale = 1.0;  ///< tight: times the shared range weight model's sigma
   /// Sigma of one pseudorange rate from a recorded Doppler: a tight row's, and in loose
   /// coupling the PVT velocity's per axis times its DOP (HDOP / sqrt 2 east and north, VDOP
   /// up), the same satellites' Dopplers through the same geometry.
@@ -73,16 +73,16 @@ struct RecordedFusionConfig {
 struct FusionSatelliteTrace {
   int prn = 0;
   double elevation_deg = 0.0, cn0_dbhz = 0.0;
-  int smoothing_epochs = 0;                      ///< 0: raw code (no smoothing), else n
-  std::optional<double> code_residual_m;         ///< tight: measured minus predicted pseudorange (prior)
-  std::optional<double> code_normalized;         ///< its ratio to the innovation sigma
+  int smoothing_epochs = 0;               ///< 0: raw code (no smoothing), else n
+  std::optional<double> code_residual_m;  ///< tight: measured minus predicted pseudorange (prior)
+  std::optional<double> code_normalized;  ///< its ratio to the innovation sigma
   bool code_rejected = false;
-  std::optional<double> rate_residual_mps;       ///< tight: measured minus predicted rate (prior)
+  std::optional<double> rate_residual_mps;  ///< tight: measured minus predicted rate (prior)
   bool rate_rejected = false;
 };
 
 struct FusionEpochTrace {
-  double t_s = 0.0;                              ///< since the first epoch
+  double t_s = 0.0;  ///< since the first epoch
   bool filter = false;
   int pvt_satellites = 0;
   bool pvt_valid = false;
@@ -96,10 +96,10 @@ struct FusionEpochTrace {
 /// What the run did, for summary.json.
 struct RecordedFusionReport {
   int epochs = 0, fixes = 0, filter_epochs = 0;
-  int zero_velocity_updates = 0;         ///< applied
-  int zero_velocity_rejected = 0;        ///< the detector fired, the filter's gate turned it away
+  int zero_velocity_updates = 0;   ///< applied
+  int zero_velocity_rejected = 0;  ///< the detector fired, the filter's gate turned it away
   int clock_jumps_followed = 0;
-  int clock_steps_absorbed = 0;          ///< every pseudorange off by one amount: the clock took it
+  int clock_steps_absorbed = 0;  ///< every pseudorange off by one amount: the clock took it
   int filter_restarts = 0;
   int rows_rejected = 0;
   int smoothing_restarts = 0, smoothing_slips = 0, smoothing_doppler_steps = 0;

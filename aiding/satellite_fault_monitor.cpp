@@ -10,8 +10,8 @@ void SatelliteFaultMonitor::add(double t_s, const std::vector<SatelliteInnovatio
     tracks_[r.prn].rows.push_back({t_s, r.normalized, r.rejected});
   }
   for (auto& [prn, track] : tracks_) {
-    while (!track.rows.empty() && (track.rows.front().t_s <= t_s - cfg_.window_s ||
-                                   static_cast<int>(track.rows.size()) > cfg_.max_rows))
+    while (!track.rows.empty() &&
+           (track.rows.front().t_s <= t_s - cfg_.window_s || static_cast<int>(track.rows.size()) > cfg_.max_rows))
       track.rows.pop_front();
     const bool bad = faulty(track);
     if (!track.excluded && bad) {
@@ -49,8 +49,6 @@ std::vector<int> SatelliteFaultMonitor::excluded_prns() const {
   return out;
 }
 
-void SatelliteFaultMonitor::clear() {
-  tracks_.clear();
-}
+void SatelliteFaultMonitor::clear() { tracks_.clear(); }
 
 }  // namespace deepnav::aiding

@@ -20,12 +20,12 @@
 namespace deepnav::aiding {
 
 struct SatelliteFaultConfig {
-  double window_s = 5.0;              ///< the tests look at the rows of the last window_s,
-  int max_rows = 20;                  ///< at most this many (ultra-tight's 100 Hz: 0.2 s)
-  int min_rows = 3;                   ///< fewer rows than this say nothing
+  double window_s = 5.0;  ///< the tests look at the rows of the last window_s,
+  int max_rows = 20;      ///< at most this many (ultra-tight's 100 Hz: 0.2 s)
+  int min_rows = 3;       ///< fewer rows than this say nothing
   double max_rejected_fraction = 0.5;
   double max_mean_sigma = 3.0;
-  double hold_s = 5.0;                ///< an exclusion lasts at least this long
+  double hold_s = 5.0;  ///< an exclusion lasts at least this long
 };
 
 /// One satellite's pseudorange row at one update: its innovation over its predicted sigma

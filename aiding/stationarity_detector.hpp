@@ -20,9 +20,9 @@ namespace deepnav::aiding {
 struct StationarityConfig {
   bool enabled = true;
   double window_s = 0.5;
-  double accel_tolerance_mps2 = 0.25;   ///< |f - mean f| within this over the window
+  double accel_tolerance_mps2 = 0.25;  ///< |f - mean f| within this over the window
   double gyro_tolerance_radps = 0.25 * M_PI / 180.0;
-  double velocity_sigma_mps = 0.02;     ///< of the zero-velocity update
+  double velocity_sigma_mps = 0.02;  ///< of the zero-velocity update
   /// No update while the PVT's Doppler velocity is faster than this (m/s).
   double max_gnss_speed_mps = 0.5;
 };

@@ -170,7 +170,8 @@ void SteeredChannelController::phase_window_rate(DiscriminatorSample& d, std::in
 void SteeredChannelController::short_sample(const CorrelatorEpoch& e, const ChannelView& view,
                                             const std::optional<double>& doppler) {
   const TrackingChannel& ch = view.channel;
-  if (cfg_.carrier_phase_tracking) phase_correction_cycles_ = cfg_.carrier_phase_gain * costas_phase_error_cycles(e.prompt);
+  if (cfg_.carrier_phase_tracking)
+    phase_correction_cycles_ = cfg_.carrier_phase_gain * costas_phase_error_cycles(e.prompt);
   const std::int64_t mid = e.first_sample + e.samples / 2;
   const std::optional<double> tt = transmit_time_sow(view.decoder, ch, mid);
   if (!tt) return;

@@ -36,36 +36,36 @@ struct UltraTightConfig {
   /// data-wiped integration passes down to about 5 dB-Hz (where the C/N0 estimate, not the
   /// discriminator, becomes the limit), ten 20 ms bits summed in power down to about 9.
   double min_cn0_dbhz = 18.0;
-  double max_code_correction_chips = 5.0;   ///< a larger jump means the channel is not where the filter thinks
+  double max_code_correction_chips = 5.0;  ///< a larger jump means the channel is not where the filter thinks
   bool carrier_phase_tracking = true;
-  double carrier_phase_gain = 0.25;         ///< fraction of the Costas error removed per integration
-  double faded_below_dbhz = 26.0;           ///< faded_only: take a channel over below this C/N0
-  double recovered_above_dbhz = 32.0;       ///< faded_only: give it back above this
+  double carrier_phase_gain = 0.25;    ///< fraction of the Costas error removed per integration
+  double faded_below_dbhz = 26.0;      ///< faded_only: take a channel over below this C/N0
+  double recovered_above_dbhz = 32.0;  ///< faded_only: give it back above this
   /// Long integration of weak steered channels (data wipe-off); coherent_ms = 20 turns the
   /// wipe-off off (bit-edge-limited integrations, summed in power up to noncoherent_ms).
   LongIntegrationConfig long_integration;
-  double long_phase_gain = 0.5;             ///< fraction of a long integration's phase error removed
+  double long_phase_gain = 0.5;  ///< fraction of a long integration's phase error removed
 };
 
 /// One channel's discriminator outputs from one integration.
 struct DiscriminatorSample {
   int prn = 0;
   std::int64_t mid_sample = 0;
-  double replica_transmit_sow = 0.0;   ///< replica transmit time at mid_sample
-  double code_error_chips = 0.0;       ///< signal minus replica (positive: replica lags)
-  double spacing_chips = 0.0;          ///< early-late spacing it was measured with (the epoch's)
+  double replica_transmit_sow = 0.0;  ///< replica transmit time at mid_sample
+  double code_error_chips = 0.0;      ///< signal minus replica (positive: replica lags)
+  double spacing_chips = 0.0;         ///< early-late spacing it was measured with (the epoch's)
   /// Phase-locked: the mean carrier frequency over the window that just closed (adjoining
   /// windows of about 100 ms); otherwise NCO Doppler plus the frequency discriminator, when
   /// the previous integration adjoins.
-  std::optional<double> doppler_hz;     ///< none from a non-coherent integration (no carrier phase)
-  std::int64_t doppler_sample = 0;     ///< where that Doppler refers to (mid-window, or the two integrations' common edge)
-  double rate_window_s = 0.0;          ///< > 0: doppler_hz is a phase-based mean over this window
-  int frequency_pairs = 1;             ///< frequency discriminator pairs averaged into doppler_hz
+  std::optional<double> doppler_hz;  ///< none from a non-coherent integration (no carrier phase)
+  std::int64_t doppler_sample = 0;  ///< where that Doppler refers to (mid-window, or the two integrations' common edge)
+  double rate_window_s = 0.0;       ///< > 0: doppler_hz is a phase-based mean over this window
+  int frequency_pairs = 1;          ///< frequency discriminator pairs averaged into doppler_hz
   double cn0_dbhz = 0.0;
   double integration_s = 0.0;
-  double piece_s = 0.0;                ///< > 0: pieces of this coherent length summed in power
-  bool data_wiped = false;             ///< coherent across data bits, their signs removed
-  bool measurement = false;            ///< passes the aided lock criterion (UltraTightConfig::min_cn0_dbhz)
+  double piece_s = 0.0;      ///< > 0: pieces of this coherent length summed in power
+  bool data_wiped = false;   ///< coherent across data bits, their signs removed
+  bool measurement = false;  ///< passes the aided lock criterion (UltraTightConfig::min_cn0_dbhz)
   Ephemeris ephemeris;
 };
 
@@ -81,7 +81,10 @@ class SteeredChannelController final : public ChannelController {
   ChannelDecision on_epoch(const CorrelatorEpoch& epoch, const ChannelView& view) override;
   ChannelDecision between_blocks(const ChannelView& view) override;
   /// The channel is gone: not steered any more, nothing queued or published for it.
-  void channel_ended() override { release(); inbox_release_ = false; }
+  void channel_ended() override {
+    release();
+    inbox_release_ = false;
+  }
 
   // The filter's side, between blocks only.
   bool steered() const { return steered_; }
@@ -121,8 +124,8 @@ class SteeredChannelController final : public ChannelController {
   std::complex<double> prompt_;
   std::int64_t end_sample_ = 0;
   double doppler_hz_ = 0.0;
-  double phase_correction_cycles_ = 0.0;    ///< pending Costas correction for the next command
-  double applied_correction_cycles_ = 0.0;  ///< correction applied since the last integration ended
+  double phase_correction_cycles_ = 0.0;           ///< pending Costas correction for the next command
+  double applied_correction_cycles_ = 0.0;         ///< correction applied since the last integration ended
   std::optional<std::int64_t> rate_window_start_;  ///< integration end where the current phase window began
   double rate_window_start_cycles_ = 0.0;          ///< carrier phase there (NCO plus Costas error)
   // Long integration.
@@ -130,7 +133,7 @@ class SteeredChannelController final : public ChannelController {
   DataWipeoff wipeoff_;
   LongIntegrator long_;
   IntegrationCn0Estimator cn0_;
-  std::optional<SteeredIntegration> last_long_;  ///< the previous data-wiped integration
+  std::optional<SteeredIntegration> last_long_;       ///< the previous data-wiped integration
   std::optional<std::int64_t> last_measurement_end_;  ///< end of the latest integration that was a measurement
   std::vector<DiscriminatorSample> outbox_;
   std::optional<NcoCommand> inbox_command_;

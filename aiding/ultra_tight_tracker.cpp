@@ -18,15 +18,18 @@ constexpr double kBroadcastRangeSigma_m = 3.0;  // broadcast orbit and clock err
 
 }  // namespace
 
-UltraTightTracker::UltraTightTracker(UltraTightConfig config, double sample_rate_hz, const RangeErrorModel& range_errors,
-                                     const SatelliteFaultMonitor* faults, const AtmosphereModels& atmosphere)
+UltraTightTracker::UltraTightTracker(UltraTightConfig config, double sample_rate_hz,
+                                     const RangeErrorModel& range_errors, const SatelliteFaultMonitor* faults,
+                                     const AtmosphereModels& atmosphere)
     : cfg_(config), fs_(sample_rate_hz), range_errors_(range_errors), faults_(faults), atmosphere_(atmosphere) {}
 
 SteeredChannelController* UltraTightTracker::controller_for(int prn) {
   auto it = controllers_.find(prn);
   if (it == controllers_.end())
-    it = controllers_.emplace(std::piecewise_construct, std::forward_as_tuple(prn),
-                              std::forward_as_tuple(cfg_, fs_, engagement_)).first;
+    it = controllers_
+             .emplace(std::piecewise_construct, std::forward_as_tuple(prn),
+                      std::forward_as_tuple(cfg_, fs_, engagement_))
+             .first;
   return &it->second;
 }
 
@@ -54,8 +57,8 @@ std::optional<UltraTightTracker::SamplePrediction> UltraTightTracker::predict_at
   p.offset_s = t_s - nav.time_s();
   p.clock_bias_m = nav.clock_bias_m() + nav.clock_drift_mps() * p.offset_s;
   p.antenna_velocity_ecef_mps = nav.antenna_velocity_ecef_at(t_s);
-  p.range = predict_range(eph, p.t_rx, p.clock_bias_m, nav.antenna_ecef_at(t_s), p.antenna_velocity_ecef_mps, block.iono,
-                          atmosphere_);
+  p.range = predict_range(eph, p.t_rx, p.clock_bias_m, nav.antenna_ecef_at(t_s), p.antenna_velocity_ecef_mps,
+                          block.iono, atmosphere_);
   return p;
 }
 
@@ -112,8 +115,8 @@ KalmanUpdate UltraTightTracker::update_and_steer(AidedNavigator& nav, const Bloc
       (faults_ && faults_->excluded(d.prn) ? watched : ms).push_back(*m);
       if (m->pseudorange_m) {
         const RangePrediction& g = m->geometry;
-        const double predicted = g.pseudorange_m(nav.clock_bias_m() + nav.clock_drift_mps() * m->time_offset_s) +
-                                 nav.residual_delay_m(g);
+        const double predicted =
+            g.pseudorange_m(nav.clock_bias_m() + nav.clock_drift_mps() * m->time_offset_s) + nav.residual_delay_m(g);
         ResidualSum& sum = residual_sums_[d.prn];
         sum.latest = {g.los_ecef, g.elevation_rad, d.cn0_dbhz, *m->pseudorange_m - predicted, g.ionosphere_m};
         sum.sum_m += sum.latest.residual_m;
@@ -150,12 +153,13 @@ double UltraTightTracker::transmit_sow(const SamplePrediction& p, const AidedNav
 
 double UltraTightTracker::doppler_hz(const SamplePrediction& p, const AidedNavigator& nav) {
   const RangePrediction& g = p.range;
-  return -(g.pseudorange_rate_mps(p.antenna_velocity_ecef_mps, nav.clock_drift_mps()) + nav.residual_delay_rate_mps(g)) /
+  return -(g.pseudorange_rate_mps(p.antenna_velocity_ecef_mps, nav.clock_drift_mps()) +
+           nav.residual_delay_rate_mps(g)) /
          gps::kL1Wavelength_m;
 }
 
-std::optional<SignalPrediction> UltraTightTracker::predict_signal(int prn, const Ephemeris& eph, const AidedNavigator& nav,
-                                                                  const BlockSnapshot& block,
+std::optional<SignalPrediction> UltraTightTracker::predict_signal(int prn, const Ephemeris& eph,
+                                                                  const AidedNavigator& nav, const BlockSnapshot& block,
                                                                   double elevation_mask_rad) const {
   const std::optional<SamplePrediction> now = predict_at(eph, block.end_sample, nav, block);
   if (!now || now->range.elevation_rad < elevation_mask_rad) return std::nullopt;
@@ -184,7 +188,8 @@ void UltraTightTracker::steer(const ChannelStatus& ch, SteeredChannelController&
   const std::optional<SamplePrediction> predicted = predict_at(*ch.ephemeris, block.end_sample, nav, block);
   if (!predicted) return;
   const double tt_predicted = transmit_sow(*predicted, nav);
-  const double correction_chips = seconds_of_week_difference(tt_predicted, *ch.replica_transmit_sow) * gps::kCodeRate_cps;
+  const double correction_chips =
+      seconds_of_week_difference(tt_predicted, *ch.replica_transmit_sow) * gps::kCodeRate_cps;
   if (std::abs(correction_chips) > cfg_.max_code_correction_chips) {
     // The replica and the filter disagree by more than a plausible tracking error: the
     // channel or the filter is wrong. Give the channel back to its own loops.

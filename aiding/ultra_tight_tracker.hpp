@@ -27,13 +27,13 @@
 // reads what they queued and the receiver's BlockSnapshot after each block, and publishes
 // the commands back into them.
 #include <map>
-#include <set>
 #include <optional>
+#include <set>
 #include <vector>
 
 #include "aiding/aided_navigator.hpp"
-#include "aiding/steered_channel_controller.hpp"
 #include "aiding/delay_mismatch_detector.hpp"
+#include "aiding/steered_channel_controller.hpp"
 #include "receiver/tracking/channel_controller.hpp"
 
 namespace deepnav::aiding {
@@ -81,10 +81,10 @@ class UltraTightTracker {
  private:
   /// The filter's view of one satellite at an absolute sample index.
   struct SamplePrediction {
-    GpsTime t_rx;              ///< receiver clock at the sample
-    double offset_s = 0.0;     ///< sample time minus the navigator's time
-    double clock_bias_m = 0.0; ///< the clock model moved to the sample
-    RangePrediction range;     ///< from the antenna position extrapolated to the sample
+    GpsTime t_rx;               ///< receiver clock at the sample
+    double offset_s = 0.0;      ///< sample time minus the navigator's time
+    double clock_bias_m = 0.0;  ///< the clock model moved to the sample
+    RangePrediction range;      ///< from the antenna position extrapolated to the sample
     Eigen::Vector3d antenna_velocity_ecef_mps = Eigen::Vector3d::Zero();  ///< at the sample
   };
   std::optional<SamplePrediction> predict_at(const Ephemeris& eph, std::int64_t sample, const AidedNavigator& nav,
@@ -110,7 +110,7 @@ class UltraTightTracker {
   };
   std::map<int, ResidualSum> residual_sums_;
   std::map<int, std::int64_t> last_measured_sample_;  ///< per PRN, where its latest measurement refers to
-  std::set<int> disagreeing_;  ///< PRNs given back for disagreeing with the filter (warned once)
+  std::set<int> disagreeing_;                         ///< PRNs given back for disagreeing with the filter (warned once)
   int measuring_ = 0;
 };
 

@@ -5,8 +5,8 @@
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 #include <numbers>
+#include <sstream>
 #include <stdexcept>
 
 #include "ins/wgs84.hpp"
@@ -79,8 +79,8 @@ AlignedAttitude align_two_step(const Eigen::Vector3d& f_b_mps2, const Eigen::Vec
   return attitude_from_dcm(dcm_from_euler(roll, pitch, yaw));
 }
 
-OneShotAlignment align_one_shot(const Eigen::Vector3d& f_b_mps2, const Eigen::Vector3d& w_ib_b_radps,
-                                double lat_rad, double gravity_mps2) {
+OneShotAlignment align_one_shot(const Eigen::Vector3d& f_b_mps2, const Eigen::Vector3d& w_ib_b_radps, double lat_rad,
+                                double gravity_mps2) {
   require_finite(f_b_mps2, "specific force f_b");
   require_finite(w_ib_b_radps, "angular rate w_ib_b");
   if (std::abs(std::cos(lat_rad)) < 1e-6)
@@ -109,8 +109,7 @@ Eigen::Vector3d one_shot_tilt_error_rad(const Eigen::Vector3d& df_n_mps2, const 
   const double w_ie = wgs84::kEarthRate_radps;
   const double tan_l = std::tan(lat_rad);
   const double sec_l = 1.0 / std::cos(lat_rad);
-  return {-df_n_mps2.y() / g,
-          0.5 * (df_n_mps2.x() / g - df_n_mps2.z() / g * tan_l + dw_n_radps.z() / w_ie * sec_l),
+  return {-df_n_mps2.y() / g, 0.5 * (df_n_mps2.x() / g - df_n_mps2.z() / g * tan_l + dw_n_radps.z() / w_ie * sec_l),
           df_n_mps2.y() / g * tan_l - dw_n_radps.y() / w_ie * sec_l};
 }
 
@@ -135,10 +134,8 @@ StationarityReport check_stationary(std::span<const Eigen::Vector3d> f_b_mps2,
                                     const StationarityLimits& limits) {
   if (f_b_mps2.size() != w_ib_b_radps.size())
     throw std::invalid_argument("stationarity check: " + std::to_string(f_b_mps2.size()) +
-                                " accelerometer samples but " + std::to_string(w_ib_b_radps.size()) +
-                                " gyro samples");
-  if (f_b_mps2.size() < 2)
-    throw std::invalid_argument("stationarity check: need at least 2 samples of f_b and w_ib_b");
+                                " accelerometer samples but " + std::to_string(w_ib_b_radps.size()) + " gyro samples");
+  if (f_b_mps2.size() < 2) throw std::invalid_argument("stationarity check: need at least 2 samples of f_b and w_ib_b");
   const auto n = static_cast<double>(f_b_mps2.size());
   StationarityReport report;
   for (std::size_t i = 0; i < f_b_mps2.size(); ++i) {
@@ -165,7 +162,8 @@ StationarityReport check_stationary(std::span<const Eigen::Vector3d> f_b_mps2,
   const double gyro_std_max = std::max(std_slack * limits.gyro_noise_radps, 1e-12);
   // The mean itself is uncertain by noise/sqrt(n); allow 5 sigma of that on top of the bias.
   const double norm_tol = limits.accel_bias_mps2 + 5.0 * limits.accel_noise_mps2 / std::sqrt(n);
-  const double rate_max = wgs84::kEarthRate_radps + limits.gyro_bias_radps + 5.0 * limits.gyro_noise_radps / std::sqrt(n);
+  const double rate_max =
+      wgs84::kEarthRate_radps + limits.gyro_bias_radps + 5.0 * limits.gyro_noise_radps / std::sqrt(n);
 
   std::string reason;
   auto add = [&reason](const std::string& text) { reason += (reason.empty() ? "" : "; ") + text; };
@@ -187,9 +185,8 @@ StationarityReport check_stationary(std::span<const Eigen::Vector3d> f_b_mps2,
 }
 
 CoarseAlignmentOutcome coarse_align(std::span<const Eigen::Vector3d> f_b_mps2,
-                                    std::span<const Eigen::Vector3d> w_ib_b_radps, double lat_rad,
-                                    double gravity_mps2, CoarseAlignmentMethod method,
-                                    const StationarityLimits& limits) {
+                                    std::span<const Eigen::Vector3d> w_ib_b_radps, double lat_rad, double gravity_mps2,
+                                    CoarseAlignmentMethod method, const StationarityLimits& limits) {
   CoarseAlignmentOutcome out;
   out.stationarity = check_stationary(f_b_mps2, w_ib_b_radps, gravity_mps2, limits);
   if (!out.stationarity.stationary) return out;

@@ -38,8 +38,8 @@ struct OneShotAlignment {
   AlignedAttitude attitude;
   Eigen::Matrix3d raw_C_b_n = Eigen::Matrix3d::Identity();
 };
-OneShotAlignment align_one_shot(const Eigen::Vector3d& f_b_mps2, const Eigen::Vector3d& w_ib_b_radps,
-                                double lat_rad, double gravity_mps2);
+OneShotAlignment align_one_shot(const Eigen::Vector3d& f_b_mps2, const Eigen::Vector3d& w_ib_b_radps, double lat_rad,
+                                double gravity_mps2);
 
 /// Tilt error eps with C_est = (I + [eps x]) C_true, from the skew part of C_est C_true^T - I
 /// (the symmetric part, the one-shot matrix's non-orthogonality, is ignored).
@@ -73,11 +73,11 @@ StaticImuMean stationary_imu_outputs(const Eigen::Matrix3d& C_b_n, double lat_ra
 
 /// What a sensor at rest is expected to show, per sample.
 struct StationarityLimits {
-  double accel_noise_mps2 = 0.0;          ///< 1-sigma white noise of one accelerometer sample
-  double gyro_noise_radps = 0.0;          ///< 1-sigma white noise of one gyro sample
-  double accel_bias_mps2 = 0.05;          ///< largest plausible accelerometer bias + gravity model error (norm check)
-  double gyro_bias_radps = 1e-4;          ///< largest plausible gyro bias (mean-rate check)
-  double noise_ratio_limit = 3.0;         ///< allowed sample std / expected std (vibration, engine)
+  double accel_noise_mps2 = 0.0;   ///< 1-sigma white noise of one accelerometer sample
+  double gyro_noise_radps = 0.0;   ///< 1-sigma white noise of one gyro sample
+  double accel_bias_mps2 = 0.05;   ///< largest plausible accelerometer bias + gravity model error (norm check)
+  double gyro_bias_radps = 1e-4;   ///< largest plausible gyro bias (mean-rate check)
+  double noise_ratio_limit = 3.0;  ///< allowed sample std / expected std (vibration, engine)
 };
 
 /// Result of the rest check on raw samples; reason is empty when stationary.
@@ -107,8 +107,7 @@ struct CoarseAlignmentOutcome {
   std::optional<AlignedAttitude> attitude;
 };
 CoarseAlignmentOutcome coarse_align(std::span<const Eigen::Vector3d> f_b_mps2,
-                                    std::span<const Eigen::Vector3d> w_ib_b_radps, double lat_rad,
-                                    double gravity_mps2, CoarseAlignmentMethod method,
-                                    const StationarityLimits& limits);
+                                    std::span<const Eigen::Vector3d> w_ib_b_radps, double lat_rad, double gravity_mps2,
+                                    CoarseAlignmentMethod method, const StationarityLimits& limits);
 
 }  // namespace deepnav

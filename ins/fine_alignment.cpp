@@ -1,6 +1,6 @@
 #include "ins/fine_alignment.hpp"
-#include "ins/rotations.hpp"
 #include "ins/frames.hpp"
+#include "ins/rotations.hpp"
 
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
@@ -46,7 +46,8 @@ void FineAlignment::step(const ImuReading& reading, double dt_s) {
   if (samples_per_zupt_ == 0) samples_per_zupt_ = std::max(1L, std::lround(config_.zupt_interval_s / dt_s));
   const Eigen::Vector3d w_ie_n = earth_rate_ned_radps(config_.lat_rad);
   // Attitude: body rotation on the right, Earth rotation of the NED frame on the left.
-  C_b_n_ = dcm_from_rotation_vector(-w_ie_n * dt_s) * C_b_n_ * dcm_from_rotation_vector((reading.w_ib_b_radps - gyro_bias_radps_) * dt_s);
+  C_b_n_ = dcm_from_rotation_vector(-w_ie_n * dt_s) * C_b_n_ *
+           dcm_from_rotation_vector((reading.w_ib_b_radps - gyro_bias_radps_) * dt_s);
   const Eigen::Vector3d f_n = C_b_n_ * (reading.f_b_mps2 - accel_bias_mps2_);
   const Eigen::Vector3d g_n(0.0, 0.0, config_.gravity_mps2);
   v_ned_mps_ += (f_n + g_n - 2.0 * w_ie_n.cross(v_ned_mps_)) * dt_s;

@@ -31,12 +31,12 @@ namespace deepnav {
 struct FineAlignmentConfig {
   double lat_rad = 0.0;
   double gravity_mps2 = 9.80665;
-  double zupt_interval_s = 0.1;     ///< one zero-velocity update per interval
-  double zupt_sigma_mps = 1e-3;     ///< ZUPT measurement noise (a parked vehicle's sway)
+  double zupt_interval_s = 0.1;  ///< one zero-velocity update per interval
+  double zupt_sigma_mps = 1e-3;  ///< ZUPT measurement noise (a parked vehicle's sway)
   double gyro_noise_density_radps_per_rthz = 0.0;
   double accel_noise_density_mps2_per_rthz = 0.0;
-  double gyro_bias_sigma_radps = 0.0;   ///< prior 1 sigma of the gyro bias
-  double accel_bias_sigma_mps2 = 0.0;   ///< prior 1 sigma of the accelerometer bias
+  double gyro_bias_sigma_radps = 0.0;  ///< prior 1 sigma of the gyro bias
+  double accel_bias_sigma_mps2 = 0.0;  ///< prior 1 sigma of the accelerometer bias
   double initial_tilt_sigma_rad = 0.02;
   double initial_heading_sigma_rad = 0.3;
 };

@@ -55,8 +55,8 @@ bool is_valid_calendar(const CalendarTime& c) {
 }
 
 GpsTime gps_time_from_calendar(const CalendarTime& c) {
-  const long days = days_from_civil(c.year, static_cast<unsigned>(c.month), static_cast<unsigned>(c.day)) -
-                    kGpsEpochDays;
+  const long days =
+      days_from_civil(c.year, static_cast<unsigned>(c.month), static_cast<unsigned>(c.day)) - kGpsEpochDays;
   const double seconds = static_cast<double>(days % 7) * 86400.0 + c.hour * 3600.0 + c.minute * 60.0 + c.second;
   return GpsTime::normalized(static_cast<int>(days / 7), seconds);
 }

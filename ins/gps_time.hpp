@@ -16,9 +16,7 @@ struct GpsTime {
   static GpsTime normalized(int week, double sow);
   GpsTime plus_seconds(double dt_s) const { return normalized(week, sow + dt_s); }
   /// this - other, in seconds.
-  double seconds_since(const GpsTime& other) const {
-    return (week - other.week) * kSecondsPerWeek + (sow - other.sow);
-  }
+  double seconds_since(const GpsTime& other) const { return (week - other.week) * kSecondsPerWeek + (sow - other.sow); }
 };
 
 /// Calendar date and time on the GPS time scale (no leap seconds applied).

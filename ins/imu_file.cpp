@@ -60,8 +60,8 @@ std::string_view trim(std::string_view s) {
 ImuFileForm parse_header(const std::string& path, std::size_t line_no, std::string_view line) {
   std::vector<std::string_view> names = split(line);
   for (auto& n : names) n = trim(n);
-  for (const auto& [columns, form] : {std::pair{kIncrementColumns, ImuFileForm::kIncrements},
-                                      std::pair{kRateColumns, ImuFileForm::kRates}}) {
+  for (const auto& [columns, form] :
+       {std::pair{kIncrementColumns, ImuFileForm::kIncrements}, std::pair{kRateColumns, ImuFileForm::kRates}}) {
     if (names.size() == columns.size() && std::equal(names.begin(), names.end(), columns.begin())) return form;
   }
   fail(path, line_no,
@@ -202,8 +202,8 @@ ImuLog read_imu_csv(std::istream& in, const std::string& path) {
     for (int i = 0; i < 3; ++i) row.b[i] = parse_value(path, line_no, fields[4 + i], columns[4 + i]);
     if (!rows.empty() && row.t_s <= rows.back().t_s) {
       fail(path, line_no,
-           std::string(row.t_s == rows.back().t_s ? "duplicate" : "non-monotonic") + " timestamp t_s = " +
-               std::string(trim(fields[0])) + " after line " + std::to_string(rows.back().line) +
+           std::string(row.t_s == rows.back().t_s ? "duplicate" : "non-monotonic") +
+               " timestamp t_s = " + std::string(trim(fields[0])) + " after line " + std::to_string(rows.back().line) +
                " (timestamps must increase)");
     }
     rows.push_back(row);

@@ -79,8 +79,8 @@ Layout parse_columns(const std::string& spec, const std::string& path) {
     else if (n == "ax" || n == "ay" || n == "az") set(l.accel[static_cast<std::size_t>(n[1] - 'x')]);
     else if (n == "gx" || n == "gy" || n == "gz") set(l.gyro[static_cast<std::size_t>(n[1] - 'x')]);
     else if (n != "-")
-      throw std::runtime_error(path + ": IMU column map '" + spec + "': column " + std::to_string(index + 1) + " is '" + n +
-                               "'; each column is one of t, ax, ay, az, gx, gy, gz or - (ignored)");
+      throw std::runtime_error(path + ": IMU column map '" + spec + "': column " + std::to_string(index + 1) + " is '" +
+                               n + "'; each column is one of t, ax, ay, az, gx, gy, gz or - (ignored)");
     ++index;
   }
   l.fields = index;
@@ -91,7 +91,8 @@ Layout parse_columns(const std::string& spec, const std::string& path) {
     if (l.gyro[static_cast<std::size_t>(i)] < 0) missing += std::string(" g") + "xyz"[i];
   }
   if (!missing.empty())
-    throw std::runtime_error(path + ": IMU column map '" + spec + "' lacks" + missing + " (it names t, ax, ay, az, gx, gy, gz)");
+    throw std::runtime_error(path + ": IMU column map '" + spec + "' lacks" + missing +
+                             " (it names t, ax, ay, az, gx, gy, gz)");
   return l;
 }
 
@@ -194,14 +195,16 @@ ImuLogRead read_imu_log(const std::string& path, const ImuLogOptions& o) {
           ++rep.truncated_lines;
           continue;
         }
-        fail(path, line_no, "expected " + std::to_string(layout.fields) + " fields (" + o.columns + "), found " +
-                                std::to_string(f.size()));
+        fail(path, line_no,
+             "expected " + std::to_string(layout.fields) + " fields (" + o.columns + "), found " +
+                 std::to_string(f.size()));
       }
       const auto value = [&](int col, const std::string& name) -> std::optional<double> {
         const auto v = to_number(f[static_cast<std::size_t>(col)]);
         if (!v && (seen_data || !edge))
-          fail(path, line_no, "column " + std::to_string(col + 1) + " (" + name + "): '" +
-                                  std::string(f[static_cast<std::size_t>(col)]) + "' is not a finite number");
+          fail(path, line_no,
+               "column " + std::to_string(col + 1) + " (" + name + "): '" +
+                   std::string(f[static_cast<std::size_t>(col)]) + "' is not a finite number");
         return v;
       };
       const auto t = value(layout.time, "t");
@@ -237,7 +240,8 @@ ImuLogRead read_imu_log(const std::string& path, const ImuLogOptions& o) {
     if (rows.size() < 2) fail(path, rep.lines, "fewer than two IMU samples in the file");
 
     const double span = rows.back().t - rows.front().t;
-    result.log.nominal_interval_s = o.nominal_rate_hz ? 1.0 / *o.nominal_rate_hz : span / static_cast<double>(rows.size() - 1);
+    result.log.nominal_interval_s =
+        o.nominal_rate_hz ? 1.0 / *o.nominal_rate_hz : span / static_cast<double>(rows.size() - 1);
     result.log.form = quantity == ImuQuantity::rates ? ImuFileForm::kRates : ImuFileForm::kIncrements;
     const double nominal = result.log.nominal_interval_s;
     rep.min_interval_s = 1e300;

@@ -46,23 +46,23 @@ struct ImuLogOptions {
   std::string accel_unit = "m/s^2";
   /// csv gyro unit: "deg/s" or "rad/s" (rates); increments "rad" or "deg".
   std::string gyro_unit = "rad/s";
-  double time_scale = 1.0;    ///< seconds per unit of the time column
-  double time_offset_s = 0.0; ///< added after scaling (time base origin + IMU-to-GNSS offset)
+  double time_scale = 1.0;                ///< seconds per unit of the time column
+  double time_offset_s = 0.0;             ///< added after scaling (time base origin + IMU-to-GNSS offset)
   std::optional<double> nominal_rate_hz;  ///< else the mean rate of the kept samples
-  double gap_factor = 3.0;    ///< interval > gap_factor / rate: a gap
+  double gap_factor = 3.0;                ///< interval > gap_factor / rate: a gap
 };
 
 struct ImuLogReport {
   std::string format;
-  int lines = 0;               ///< lines in the file
-  int header_lines = 0;        ///< comment and header lines
-  int rows = 0;                ///< data rows read
-  int samples = 0;             ///< samples kept
-  int duplicate_rows = 0;      ///< same sensor values as the row before (dropped)
-  int repeated_time = 0;       ///< time equal to the previous kept sample's (dropped)
-  int backward_time = 0;       ///< time before the previous kept sample's (dropped)
-  int first_backward_line = 0; ///< 0: none
-  int truncated_lines = 0;     ///< cut first or last line (skipped)
+  int lines = 0;                ///< lines in the file
+  int header_lines = 0;         ///< comment and header lines
+  int rows = 0;                 ///< data rows read
+  int samples = 0;              ///< samples kept
+  int duplicate_rows = 0;       ///< same sensor values as the row before (dropped)
+  int repeated_time = 0;        ///< time equal to the previous kept sample's (dropped)
+  int backward_time = 0;        ///< time before the previous kept sample's (dropped)
+  int first_backward_line = 0;  ///< 0: none
+  int truncated_lines = 0;      ///< cut first or last line (skipped)
   double nominal_interval_s = 0.0;
   double min_interval_s = 0.0, max_interval_s = 0.0, mean_interval_s = 0.0;
   double first_t_s = 0.0, last_t_s = 0.0;

@@ -16,13 +16,11 @@ namespace {
 struct FieldContext {
   const std::string& path;
   const std::string& grade;
-  std::string where(const std::string& field) const {
-    return path + ": grade '" + grade + "', field '" + field + "'";
-  }
+  std::string where(const std::string& field) const { return path + ": grade '" + grade + "', field '" + field + "'"; }
 };
 
-double read_number(const YAML::Node& map, const std::string& key, const std::string& prefix,
-                   const FieldContext& ctx, bool required) {
+double read_number(const YAML::Node& map, const std::string& key, const std::string& prefix, const FieldContext& ctx,
+                   bool required) {
   const std::string field = prefix + key;
   const YAML::Node node = map[key];
   if (!node) {
@@ -87,10 +85,11 @@ void reject_unknown_keys(const YAML::Node& map, const std::set<std::string>& kno
 TriadErrorSpec parse_gyro(const YAML::Node& node, const FieldContext& ctx) {
   using namespace imu_units;
   const std::string p = "gyro.";
-  reject_unknown_keys(node,
-                      {"bias_deg_per_h", "bias_sigma_deg_per_h", "bias_instability_deg_per_h", "correlation_time_s",
-                       "arw_deg_per_sqrt_h", "scale_factor_ppm", "misalignment_mrad", "quantization_rad", "range_deg_per_s"},
-                      p, ctx);
+  reject_unknown_keys(
+      node,
+      {"bias_deg_per_h", "bias_sigma_deg_per_h", "bias_instability_deg_per_h", "correlation_time_s",
+       "arw_deg_per_sqrt_h", "scale_factor_ppm", "misalignment_mrad", "quantization_rad", "range_deg_per_s"},
+      p, ctx);
   TriadErrorSpec s;
   s.bias = read_bias(node, "bias_deg_per_h", p, ctx) * kDegPerHour_to_radps;
   s.bias_sigma = read_non_negative(node, "bias_sigma_deg_per_h", p, ctx) * kDegPerHour_to_radps;

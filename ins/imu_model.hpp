@@ -16,13 +16,13 @@ namespace deepnav {
 struct TriadErrorSpec {
   Eigen::Vector3d bias = Eigen::Vector3d::Zero();  ///< deterministic bias, rad/s or m/s^2
   double bias_sigma = 0.0;                         ///< turn-on bias 1 sigma per axis
-  double bias_instability_sigma = 0.0;  ///< steady-state 1 sigma of the Gauss-Markov bias
-  double bias_correlation_time_s = 0.0; ///< its correlation time; 0 disables the process
-  double random_walk = 0.0;             ///< ARW rad/sqrt(s) or VRW m/s/sqrt(s) (white rate noise)
-  double scale_factor_sigma = 0.0;      ///< 1 sigma per axis, dimensionless (1e-6 = 1 ppm)
-  double misalignment_sigma_rad = 0.0;  ///< 1 sigma of each off-diagonal axis misalignment
-  double quantization = 0.0;            ///< LSB of the increment (rad or m/s); 0 = none
-  double full_scale = 0.0;              ///< measurement range, +- rad/s or m/s^2 per axis; 0 = not given
+  double bias_instability_sigma = 0.0;             ///< steady-state 1 sigma of the Gauss-Markov bias
+  double bias_correlation_time_s = 0.0;            ///< its correlation time; 0 disables the process
+  double random_walk = 0.0;                        ///< ARW rad/sqrt(s) or VRW m/s/sqrt(s) (white rate noise)
+  double scale_factor_sigma = 0.0;                 ///< 1 sigma per axis, dimensionless (1e-6 = 1 ppm)
+  double misalignment_sigma_rad = 0.0;             ///< 1 sigma of each off-diagonal axis misalignment
+  double quantization = 0.0;                       ///< LSB of the increment (rad or m/s); 0 = none
+  double full_scale = 0.0;                         ///< measurement range, +- rad/s or m/s^2 per axis; 0 = not given
 };
 
 /// Both triads and the output rate.

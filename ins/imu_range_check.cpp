@@ -22,7 +22,8 @@ ImuRangeExcess samples_beyond_range(const std::vector<ImuSample>& samples, const
   ImuRangeExcess out;
   for (std::size_t i = 1; i < samples.size(); ++i) {
     const double dt = samples[i].t_s - samples[i - 1].t_s;
-    std::string what = beyond(samples[i].dtheta_b_rad, dt, grade.gyro.full_scale, imu_units::kDegToRad, "deg/s", "gyro");
+    std::string what =
+        beyond(samples[i].dtheta_b_rad, dt, grade.gyro.full_scale, imu_units::kDegToRad, "deg/s", "gyro");
     if (what.empty())
       what = beyond(samples[i].dv_b_mps, dt, grade.accel.full_scale, imu_units::kStandardGravity_mps2, "g",
                     "accelerometer");

@@ -59,11 +59,11 @@ struct KalmanHealthPolicy {
 /// Outcome of one measurement update.
 struct KalmanUpdate {
   bool applied = false;
-  int rows = 0;                            ///< rows offered (kept or not)
-  int rejected = 0;                        ///< rows not used (gated, not finite, or refused by the NIS test)
-  double max_normalized_innovation = 0.0;  ///< largest |nu| / sqrt(S_ii) among the rows kept
-  double nis = 0.0;                        ///< nu^T S^-1 nu of the rows kept (0 when none)
-  bool nis_rejected = false;               ///< the joint test refused the update
+  int rows = 0;                                ///< rows offered (kept or not)
+  int rejected = 0;                            ///< rows not used (gated, not finite, or refused by the NIS test)
+  double max_normalized_innovation = 0.0;      ///< largest |nu| / sqrt(S_ii) among the rows kept
+  double nis = 0.0;                            ///< nu^T S^-1 nu of the rows kept (0 when none)
+  bool nis_rejected = false;                   ///< the joint test refused the update
   std::vector<double> normalized_innovations;  ///< per row offered: nu / sqrt(S_ii) against the prior
   std::vector<bool> row_rejected;              ///< per row offered: not used
 };
@@ -75,9 +75,7 @@ class KalmanFilter {
   using Matrix = Eigen::Matrix<double, N, N>;
   using Row = Eigen::Matrix<double, 1, N>;
 
-  KalmanFilter(const Vector& x0, const Matrix& P0, KalmanHealthPolicy policy = {}) : policy_(policy) {
-    reset(x0, P0);
-  }
+  KalmanFilter(const Vector& x0, const Matrix& P0, KalmanHealthPolicy policy = {}) : policy_(policy) { reset(x0, P0); }
 
   /// Starts again from x0, P0 (healthy again unless they fail the check).
   /// Throws std::invalid_argument when the sizes of x0 and P0 disagree.
@@ -157,9 +155,10 @@ class KalmanFilter {
  private:
   void check_sizes(const Eigen::VectorXd& z, const Eigen::MatrixXd& H, const Eigen::VectorXd& r_diag) const {
     if (H.rows() != z.size() || r_diag.size() != z.size() || H.cols() != x_.size())
-      throw std::invalid_argument("Kalman update: " + std::to_string(z.size()) + " rows, H " + std::to_string(H.rows()) +
-                                  " x " + std::to_string(H.cols()) + ", " + std::to_string(r_diag.size()) +
-                                  " variances for " + std::to_string(x_.size()) + " states");
+      throw std::invalid_argument("Kalman update: " + std::to_string(z.size()) + " rows, H " +
+                                  std::to_string(H.rows()) + " x " + std::to_string(H.cols()) + ", " +
+                                  std::to_string(r_diag.size()) + " variances for " + std::to_string(x_.size()) +
+                                  " states");
   }
 
   KalmanUpdate update_with(const Eigen::VectorXd& nu_all, const Eigen::MatrixXd& H, const Eigen::VectorXd& r_diag,

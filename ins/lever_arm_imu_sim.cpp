@@ -56,8 +56,8 @@ std::vector<ImuReading> simulate_lever_arm_imu(const std::vector<AttitudeTruth>&
   for (const AttitudeTruth& s : truth) {
     ImuReading r;
     r.t_s = s.t_s;
-    r.f_b_mps2 = specific_force_at_lever_arm(s, lever_b_m, gravity_mps2) + accel_bias +
-                 accel_sigma * gaussian3(unit, rng);
+    r.f_b_mps2 =
+        specific_force_at_lever_arm(s, lever_b_m, gravity_mps2) + accel_bias + accel_sigma * gaussian3(unit, rng);
     r.w_ib_b_radps = s.w_nb_b_radps + drift + gyro_sigma * gaussian3(unit, rng);
     out.push_back(r);
     drift = a * drift + imu.gyro_drift_sigma_radps * std::sqrt(1.0 - a * a) * gaussian3(unit, rng);

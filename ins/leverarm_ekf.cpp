@@ -14,8 +14,8 @@ namespace {
 Eigen::Matrix4d omega_matrix(const Eigen::Vector3d& w) {
   Eigen::Matrix4d m;
   m << 0.0, -w.x(), -w.y(), -w.z(),  //
-      w.x(), 0.0, w.z(), -w.y(),      //
-      w.y(), -w.z(), 0.0, w.x(),      //
+      w.x(), 0.0, w.z(), -w.y(),     //
+      w.y(), -w.z(), 0.0, w.x(),     //
       w.z(), w.y(), -w.x(), 0.0;
   return m;
 }
@@ -35,9 +35,12 @@ Eigen::Vector4d to_vector(const Eigen::Quaterniond& q) { return {q.w(), q.x(), q
 
 int lever_state_count(LeverArmModel model) {
   switch (model) {
-    case LeverArmModel::kNone: return 0;
-    case LeverArmModel::kVertical: return 1;
-    case LeverArmModel::kFull3d: return 3;
+    case LeverArmModel::kNone:
+      return 0;
+    case LeverArmModel::kVertical:
+      return 1;
+    case LeverArmModel::kFull3d:
+      return 3;
   }
   return 0;
 }
@@ -105,12 +108,14 @@ LeverArmEkf::Filter LeverArmEkf::make_filter(const LeverArmEkfConfig& config, co
   Eigen::MatrixXd P = Eigen::MatrixXd::Zero(n, n);
   // Small-angle attitude uncertainty maps onto the quaternion through 1/2 Xi(q).
   const Eigen::Matrix<double, 4, 3> Xi = xi_matrix(x.head<4>());
-  P.topLeftCorner<4, 4>() = 0.25 * Xi * Xi.transpose() * config.initial_attitude_sigma_rad * config.initial_attitude_sigma_rad;
-  const double drift0 = config.initial_drift_sigma_radps > 0.0 ? config.initial_drift_sigma_radps : config.gyro_drift_sigma_radps;
+  P.topLeftCorner<4, 4>() =
+      0.25 * Xi * Xi.transpose() * config.initial_attitude_sigma_rad * config.initial_attitude_sigma_rad;
+  const double drift0 =
+      config.initial_drift_sigma_radps > 0.0 ? config.initial_drift_sigma_radps : config.gyro_drift_sigma_radps;
   P.block<3, 3>(4, 4) = Eigen::Matrix3d::Identity() * drift0 * drift0;
   if (lever_states > 0)
-    P.bottomRightCorner(lever_states, lever_states) =
-        Eigen::MatrixXd::Identity(lever_states, lever_states) * config.initial_lever_sigma_m * config.initial_lever_sigma_m;
+    P.bottomRightCorner(lever_states, lever_states) = Eigen::MatrixXd::Identity(lever_states, lever_states) *
+                                                      config.initial_lever_sigma_m * config.initial_lever_sigma_m;
   return Filter(x, P, {.allow_zero_variance = true});
 }
 
@@ -139,16 +144,16 @@ void LeverArmEkf::propagate(const Eigen::Vector3d& w_meas_radps, double dt_s) {
   const double gyro_psd = config_.gyro_noise_density_radps_per_rthz * config_.gyro_noise_density_radps_per_rthz;
   Qd.topLeftCorner<4, 4>() = 0.25 * Xi * Xi.transpose() * gyro_psd * dt_s;
   const double a = std::exp(-beta * dt_s);
-  Qd.block<3, 3>(4, 4) = Eigen::Matrix3d::Identity() * config_.gyro_drift_sigma_radps *
-                         config_.gyro_drift_sigma_radps * (1.0 - a * a);
+  Qd.block<3, 3>(4, 4) =
+      Eigen::Matrix3d::Identity() * config_.gyro_drift_sigma_radps * config_.gyro_drift_sigma_radps * (1.0 - a * a);
   if (lever_states_ > 0)
     Qd.bottomRightCorner(lever_states_, lever_states_) =
         Eigen::MatrixXd::Identity(lever_states_, lever_states_) * config_.lever_psd_m2ps * dt_s;
 
   // State: exact rotation increment for the quaternion, exact Markov decay for the drift.
   const double angle = w.norm() * dt_s;
-  const Eigen::Quaterniond dq = angle > 0.0 ? Eigen::Quaterniond(Eigen::AngleAxisd(angle, w.normalized()))
-                                            : Eigen::Quaterniond::Identity();
+  const Eigen::Quaterniond dq =
+      angle > 0.0 ? Eigen::Quaterniond(Eigen::AngleAxisd(angle, w.normalized())) : Eigen::Quaterniond::Identity();
   Eigen::VectorXd& x = kf_.x();
   x.head<4>() = to_vector((to_quaternion(q) * dq).normalized());
   x.segment<3>(4) *= a;
@@ -227,18 +232,19 @@ std::vector<Eigen::Vector3d> smoothed_angular_acceleration(const std::vector<Eig
   return out;
 }
 
-LeverArmEkfRun run_lever_arm_ekf(const std::vector<ImuReading>& imu, const LeverArmEkfConfig& config,
-                                 int level_samples, int accel_half_window) {
+LeverArmEkfRun run_lever_arm_ekf(const std::vector<ImuReading>& imu, const LeverArmEkfConfig& config, int level_samples,
+                                 int accel_half_window) {
   if (imu.size() < 2) throw std::invalid_argument("lever-arm EKF run: need at least 2 IMU readings");
-  const std::size_t n_level = std::clamp<std::size_t>(static_cast<std::size_t>(std::max(level_samples, 1)), 1, imu.size());
+  const std::size_t n_level =
+      std::clamp<std::size_t>(static_cast<std::size_t>(std::max(level_samples, 1)), 1, imu.size());
   Eigen::Vector3d f0 = Eigen::Vector3d::Zero();
   for (std::size_t i = 0; i < n_level; ++i) f0 += imu[i].f_b_mps2 / static_cast<double>(n_level);
   if (!f0.allFinite() || f0.norm() <= 0.0)
     throw std::invalid_argument("lever-arm EKF run: initial specific force is zero or not finite");
   const double roll0 = std::atan2(-f0.y(), -f0.z());
   const double pitch0 = std::atan2(f0.x(), std::hypot(f0.y(), f0.z()));
-  const Eigen::Quaterniond q0 = Eigen::AngleAxisd(pitch0, Eigen::Vector3d::UnitY()) *
-                                Eigen::AngleAxisd(roll0, Eigen::Vector3d::UnitX());
+  const Eigen::Quaterniond q0 =
+      Eigen::AngleAxisd(pitch0, Eigen::Vector3d::UnitY()) * Eigen::AngleAxisd(roll0, Eigen::Vector3d::UnitX());
 
   std::vector<Eigen::Vector3d> rates;
   rates.reserve(imu.size());

@@ -37,10 +37,11 @@ struct LeverArmEkfConfig {
   double accel_sigma_mps2 = 0.05;                  ///< R = sigma^2 I per update (noise + unmodelled motion)
   double lever_psd_m2ps = 1e-6;                    ///< lambda of eq. 18
   double initial_attitude_sigma_rad = 0.02;
-  double initial_drift_sigma_radps = 0.0;          ///< 0: use gyro_drift_sigma_radps
+  double initial_drift_sigma_radps = 0.0;  ///< 0: use gyro_drift_sigma_radps
   double initial_lever_sigma_m = 1.0;
   Eigen::Vector3d initial_lever_b_m = Eigen::Vector3d::Zero();
-  double observability_sigma_limit_m = 0.05;  ///< a direction whose information-only sigma exceeds this is "not observable"
+  double observability_sigma_limit_m =
+      0.05;  ///< a direction whose information-only sigma exceeds this is "not observable"
 };
 
 /// The tuning used for paper 004's scenarios with an IMU of the given figures. The paper
@@ -51,7 +52,7 @@ LeverArmEkfConfig paper004_config(LeverArmModel model, const MemsImuFigures& imu
 /// Which lever-arm directions the angular motion has made observable: the information
 /// sum_k K_k^T K_k / sigma^2 (K = [w x][w x] + [w' x]) and its eigen-decomposition.
 struct LeverArmObservability {
-  Eigen::Vector3d eigenvalues = Eigen::Vector3d::Zero();    ///< ascending
+  Eigen::Vector3d eigenvalues = Eigen::Vector3d::Zero();     ///< ascending
   Eigen::Matrix3d directions = Eigen::Matrix3d::Identity();  ///< unit eigenvectors (columns, body axes)
   Eigen::Vector3d sigma_m = Eigen::Vector3d::Zero();         ///< 1/sqrt(eigenvalue), infinity if zero
   bool fully_observable = false;

@@ -80,8 +80,8 @@ Eigen::Vector3d body_rate_from_euler_rates(const EulerAngles& e, const Eigen::Ve
   const double sr = std::sin(e.roll_rad), cr = std::cos(e.roll_rad);
   const double sp = std::sin(e.pitch_rad), cp = std::cos(e.pitch_rad);
   // w = Rx(roll)^T [roll' 0 0] + Rx^T Ry(pitch)^T [0 pitch' 0] + ... for yaw.
-  return {r.x() - r.z() * sp,                //
-          r.y() * cr + r.z() * sr * cp,      //
+  return {r.x() - r.z() * sp,            //
+          r.y() * cr + r.z() * sr * cp,  //
           -r.y() * sr + r.z() * cr * cp};
 }
 
@@ -91,8 +91,7 @@ Eigen::Vector3d body_rate_derivative_from_euler(const EulerKinematics& k) {
   const double dr = k.rate_radps.x(), dp = k.rate_radps.y(), dy = k.rate_radps.z();
   const double ddr = k.accel_radps2.x(), ddp = k.accel_radps2.y(), ddy = k.accel_radps2.z();
   // Product rule applied to body_rate_from_euler_rates.
-  return {ddr - ddy * sp - dy * cp * dp,
-          ddp * cr - dp * sr * dr + ddy * sr * cp + dy * (cr * dr * cp - sr * sp * dp),
+  return {ddr - ddy * sp - dy * cp * dp, ddp * cr - dp * sr * dr + ddy * sr * cp + dy * (cr * dr * cp - sr * sp * dp),
           -ddp * sr - dp * cr * dr + ddy * cr * cp + dy * (-sr * dr * cp - cr * sp * dp)};
 }
 

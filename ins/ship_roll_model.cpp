@@ -16,19 +16,19 @@ AttitudeTruth truth_from_euler(double t_s, const Eigen::Vector3d& eta, const Eig
   const double sp = std::sin(eta.x()), cp = std::cos(eta.x());
   const double st = std::sin(eta.y()), ct = std::cos(eta.y());
   Eigen::Matrix3d E;
-  E << 1.0, 0.0, -st,  //
+  E << 1.0, 0.0, -st,    //
       0.0, cp, sp * ct,  //
       0.0, -sp, cp * ct;
   Eigen::Matrix3d dE;
-  dE << 0.0, 0.0, -ct * deta.y(),  //
+  dE << 0.0, 0.0, -ct * deta.y(),                                    //
       0.0, -sp * deta.x(), cp * ct * deta.x() - sp * st * deta.y(),  //
       0.0, -cp * deta.x(), -sp * ct * deta.x() - cp * st * deta.y();
   AttitudeTruth out;
   out.t_s = t_s;
-  out.C_b_n = (Eigen::AngleAxisd(eta.z(), Eigen::Vector3d::UnitZ()) *
-               Eigen::AngleAxisd(eta.y(), Eigen::Vector3d::UnitY()) *
-               Eigen::AngleAxisd(eta.x(), Eigen::Vector3d::UnitX()))
-                  .toRotationMatrix();
+  out.C_b_n =
+      (Eigen::AngleAxisd(eta.z(), Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(eta.y(), Eigen::Vector3d::UnitY()) *
+       Eigen::AngleAxisd(eta.x(), Eigen::Vector3d::UnitX()))
+          .toRotationMatrix();
   out.w_nb_b_radps = E * deta;
   out.dw_nb_b_radps2 = E * ddeta + dE * deta;
   out.roll_rad = eta.x();

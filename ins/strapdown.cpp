@@ -22,8 +22,8 @@ Radii radii_of_curvature(double sin_lat) {
 
 void require_finite(const Eigen::Vector3d& v, const char* what, double t_s) {
   if (!v.allFinite()) {
-    throw std::invalid_argument(std::string("strapdown: ") + what + " of the IMU sample at t = " +
-                                std::to_string(t_s) + " s is not finite");
+    throw std::invalid_argument(std::string("strapdown: ") + what + " of the IMU sample at t = " + std::to_string(t_s) +
+                                " s is not finite");
   }
 }
 

@@ -18,10 +18,10 @@ struct TrajectoryState {
   Eigen::Vector3d v_ecef_mps = Eigen::Vector3d::Zero();
   Eigen::Vector3d a_ecef_mps2 = Eigen::Vector3d::Zero();  ///< d(v_ecef)/dt, kinematic (not specific force)
   Eigen::Vector3d v_ned_mps = Eigen::Vector3d::Zero();
-  Eigen::Vector3d a_ned_mps2 = Eigen::Vector3d::Zero();  ///< d(v_ned)/dt as seen in the local NED frame
+  Eigen::Vector3d a_ned_mps2 = Eigen::Vector3d::Zero();       ///< d(v_ned)/dt as seen in the local NED frame
   Eigen::Quaterniond q_b_n = Eigen::Quaterniond::Identity();  ///< body -> NED
-  Eigen::Vector3d w_nb_b_radps = Eigen::Vector3d::Zero();      ///< body rate w.r.t. NED, in body axes
-  Eigen::Vector3d dw_nb_b_radps2 = Eigen::Vector3d::Zero();    ///< its time derivative
+  Eigen::Vector3d w_nb_b_radps = Eigen::Vector3d::Zero();     ///< body rate w.r.t. NED, in body axes
+  Eigen::Vector3d dw_nb_b_radps2 = Eigen::Vector3d::Zero();   ///< its time derivative
 };
 
 class Trajectory {

@@ -8,8 +8,7 @@ Eigen::Vector3d llh_to_ecef(const Llh& llh) {
   const double sin_lat = std::sin(llh.lat_rad);
   const double cos_lat = std::cos(llh.lat_rad);
   const double rn = transverse_radius_m(llh.lat_rad);
-  return {(rn + llh.height_m) * cos_lat * std::cos(llh.lon_rad),
-          (rn + llh.height_m) * cos_lat * std::sin(llh.lon_rad),
+  return {(rn + llh.height_m) * cos_lat * std::cos(llh.lon_rad), (rn + llh.height_m) * cos_lat * std::sin(llh.lon_rad),
           (rn * (1.0 - kEccentricitySq) + llh.height_m) * sin_lat};
 }
 
@@ -53,8 +52,8 @@ double normal_gravity_mps2(double lat_rad, double height_m) {
   constexpr double k_somigliana = 1.931853e-3;
   const double s2 = std::sin(lat_rad) * std::sin(lat_rad);
   const double g0 = g_equator * (1.0 + k_somigliana * s2) / std::sqrt(1.0 - kEccentricitySq * s2);
-  constexpr double m = kEarthRate_radps * kEarthRate_radps * kSemiMajorAxis_m * kSemiMajorAxis_m *
-                       kSemiMinorAxis_m / kGM_m3ps2;
+  constexpr double m =
+      kEarthRate_radps * kEarthRate_radps * kSemiMajorAxis_m * kSemiMajorAxis_m * kSemiMinorAxis_m / kGM_m3ps2;
   const double h_over_a = height_m / kSemiMajorAxis_m;
   return g0 * (1.0 - 2.0 / kSemiMajorAxis_m * (1.0 + kFlattening + m - 2.0 * kFlattening * s2) * height_m +
                3.0 * h_over_a * h_over_a);

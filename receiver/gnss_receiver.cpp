@@ -33,7 +33,8 @@ ReceiverConfig checked(ReceiverConfig cfg, const SampleSource& src) {
     throw std::invalid_argument(
         fmt::format("intermediate frequency {} Hz is not below half the sample rate ({} Hz)", if_hz, fs / 2));
   if (!(cfg.observation_rate_hz >= 0.01 && cfg.observation_rate_hz <= 50.0))
-    throw std::invalid_argument(fmt::format("observation rate {} Hz is outside [0.01, 50] Hz", cfg.observation_rate_hz));
+    throw std::invalid_argument(
+        fmt::format("observation rate {} Hz is outside [0.01, 50] Hz", cfg.observation_rate_hz));
   if (cfg.channels < 1 || cfg.channels > gps::kMaxPrn)
     throw std::invalid_argument(fmt::format("{} tracking channels: expected 1 to {}", cfg.channels, gps::kMaxPrn));
   return cfg;
@@ -43,8 +44,8 @@ ReceiverConfig checked(ReceiverConfig cfg, const SampleSource& src) {
 /// the channels itself: `threads` - 1 of them (none for one thread).
 std::unique_ptr<WorkerThreads> channel_workers(unsigned threads) {
   if (threads > kMaxReceiverThreads)
-    throw std::invalid_argument(fmt::format("{} channel threads asked for: at most {} (0: one per core)", threads,
-                                            kMaxReceiverThreads));
+    throw std::invalid_argument(
+        fmt::format("{} channel threads asked for: at most {} (0: one per core)", threads, kMaxReceiverThreads));
   const unsigned n = threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : threads;
   return n > 1 ? std::make_unique<WorkerThreads>(n - 1, "channel worker") : nullptr;
 }
@@ -88,7 +89,7 @@ struct GnssReceiver::Impl {
   ChannelAiding* aiding = nullptr;  ///< an outside filter driving channels, or none
   std::vector<ReceiverChannel> channels;
   std::vector<std::vector<ChannelEpochRecord>> records;  ///< per channel, for the block being tracked
-  std::vector<int> tracked_prns;  ///< channels of the block just tracked, lost ones included
+  std::vector<int> tracked_prns;                         ///< channels of the block just tracked, lost ones included
   std::vector<int> acquired;
   std::map<int, NavigationStatus> finished_status;  ///< of channels already released
   std::int64_t first_index = -1, end_index = -1;    ///< span of the samples read so far
@@ -133,8 +134,8 @@ struct GnssReceiver::Impl {
     if (prns.empty()) return;
     for (const AcquisitionResult& r : acquisition.search(samples, prns)) {
       if (!channel_free()) break;
-      spdlog::debug("PRN {:2d} acquired: {:.1f} Hz, {:.2f} chips, {:.1f} dB-Hz", r.prn, r.doppler_hz, r.code_phase_chips,
-                    r.cn0_dbhz);
+      spdlog::debug("PRN {:2d} acquired: {:.1f} Hz, {:.2f} chips, {:.1f} dB-Hz", r.prn, r.doppler_hz,
+                    r.code_phase_chips, r.cn0_dbhz);
       start_channel(ChannelStart{r.prn, r.doppler_hz, r.code_phase_chips, first, 0, std::nullopt});
     }
   }
@@ -205,7 +206,9 @@ struct GnssReceiver::Impl {
   }
 
   void release_lost_channels() {
-    const auto gone = [](const ReceiverChannel& ch) { return ch.tracking().state() == ChannelState::lost || ch.released(); };
+    const auto gone = [](const ReceiverChannel& ch) {
+      return ch.tracking().state() == ChannelState::lost || ch.released();
+    };
     for (const ReceiverChannel& ch : channels) {
       if (!gone(ch)) continue;
       if (!ch.released()) spdlog::info("PRN {:2d}: loss of lock", ch.prn());
@@ -255,7 +258,8 @@ struct GnssReceiver::Impl {
       if (const auto start = guided.conclude(ended, snap.end_sample, free_channels(), tracked_signals()))
         start_guided_channel(*start);
     }
-    guided.schedule(snap, free_channels(), [&](const GpsTime& now) { return untracked_satellites(now); }, *aiding);
+    guided.schedule(
+        snap, free_channels(), [&](const GpsTime& now) { return untracked_satellites(now); }, *aiding);
   }
 
   std::vector<TrackedSignal> tracked_signals() const {
@@ -327,8 +331,8 @@ GnssReceiver::GnssReceiver(ReceiverConfig config, SampleSource& source)
 GnssReceiver::~GnssReceiver() = default;
 
 void GnssReceiver::run(const std::function<void(const ReceiverEpoch&)>& on_epoch,
-                      const std::function<void(const CorrelatorEpoch&, const ChannelSnapshot&)>& on_correlation,
-                      const std::function<void(double)>& progress) {
+                       const std::function<void(const CorrelatorEpoch&, const ChannelSnapshot&)>& on_correlation,
+                       const std::function<void(double)>& progress) {
   Impl& m = *impl_;
   const auto block_samples = static_cast<std::size_t>(std::llround(m.fs / 100.0));  // 10 ms blocks
   EpochGrid epochs(static_cast<std::int64_t>(std::llround(m.fs / m.cfg.observation_rate_hz)));

@@ -36,8 +36,8 @@ inline constexpr double kMaxSampleRate_hz = 2.0e8;
 
 struct ReceiverConfig {
   int channels = 12;
-  unsigned threads = 1;                 ///< channel worker threads (0: all cores); 1 tracks inline
-  double observation_rate_hz = 1.0;     ///< up to 50
+  unsigned threads = 1;              ///< channel worker threads (0: all cores); 1 tracks inline
+  double observation_rate_hz = 1.0;  ///< up to 50
   /// GPS week near the data (0: none given). The signal broadcasts its week modulo 1024
   /// (LNAV's 10-bit WN, in subframe 1): a reference resolves it to the full week. This one,
   /// else the epoch of the assisted ephemerides, else the build date (data within about
@@ -49,11 +49,11 @@ struct ReceiverConfig {
   std::string reference_week_origin = "reference week";
   double reacquire_interval_s = 5.0;
   GuidedReacquisitionConfig guided;
-  AcquisitionConfig acquisition;        ///< sample rate and IF are taken from the source
+  AcquisitionConfig acquisition;  ///< sample rate and IF are taken from the source
   TrackingConfig tracking;
   LoopBandwidths pull_in{15.0, 10.0, 1.0};
   LoopBandwidths tracking_loops{10.0, 0.0, 0.5};
-  int pll_order = 2;                    ///< every channel's carrier loop, pull-in and tracking: 2, or 3 for high dynamics
+  int pll_order = 2;  ///< every channel's carrier loop, pull-in and tracking: 2, or 3 for high dynamics
   PvtConfig pvt;
   /// The atmosphere models of every range the receiver or an aided filter predicts: the
   /// PVT solution reads them from here, and so do tight coupling and the ultra-tight NCO commands
@@ -64,8 +64,8 @@ struct ReceiverConfig {
 /// Everything the receiver knows at one observation epoch.
 struct ReceiverEpoch {
   std::int64_t sample_index = 0;
-  double t_s = 0.0;                     ///< sample time since the first sample of the source
-  std::optional<GpsTime> t_rx;          ///< receiver clock (set once four transmit times exist)
+  double t_s = 0.0;             ///< sample time since the first sample of the source
+  std::optional<GpsTime> t_rx;  ///< receiver clock (set once four transmit times exist)
   std::vector<ChannelObservation> observations;
   PvtSolution pvt;
   int channels_tracking = 0;

@@ -56,8 +56,8 @@ struct NavigationStatus {
   int prn = 0;
   double tracked_s = 0.0;
   int subframes_decoded = 0;
-  int parity_failures = 0;    ///< preamble candidates whose words failed parity
-  bool ephemeris = false;     ///< decoded from the signal (not assisted)
+  int parity_failures = 0;  ///< preamble candidates whose words failed parity
+  bool ephemeris = false;   ///< decoded from the signal (not assisted)
 };
 
 /// How every channel tracks and closes its own loops (from ReceiverConfig).

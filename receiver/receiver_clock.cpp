@@ -52,12 +52,12 @@ void ReceiverClock::take_broadcast_week(int prn, int wn10, double subframe_start
   spdlog::info("GPS week {} (PRN {:2d} broadcasts week number {} modulo 1024; resolved against {})", week, prn, wn10,
                reference_origin());
   const auto contradiction = [&](double off_s) {
-    return fmt::format("the GPS week of {} contradicts the signal: PRN {} broadcasts week number {} (modulo 1024), "
-                       "i.e. week {} ({:.1f} days off){}",
-                       reference_origin(), prn, wn10, week, off_s / 86400.0,
-                       reference_week_ > 0
-                           ? fmt::format(": give {} {} or leave it out", reference_week_origin_, week)
-                           : std::string(": a navigation file of another day?"));
+    return fmt::format(
+        "the GPS week of {} contradicts the signal: PRN {} broadcasts week number {} (modulo 1024), "
+        "i.e. week {} ({:.1f} days off){}",
+        reference_origin(), prn, wn10, week, off_s / 86400.0,
+        reference_week_ > 0 ? fmt::format(": give {} {} or leave it out", reference_week_origin_, week)
+                            : std::string(": a navigation file of another day?"));
   };
   // A week either side is the data crossing a week boundary, not a contradiction.
   if (reference_week_ > 0 && std::abs(week - reference_week_) > 1)

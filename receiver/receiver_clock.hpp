@@ -77,7 +77,7 @@ class ReceiverClock {
   std::string reference_origin() const;
 
   struct SignalWeek {
-    int week = 0;                  ///< resolved full week
+    int week = 0;                     ///< resolved full week
     double subframe_start_sow = 0.0;  ///< start of the subframe 1 it came from
   };
 

@@ -24,8 +24,8 @@ WorkerThreads::WorkerThreads(std::size_t count, const char* what) {
     } catch (const std::system_error& e) {
       const std::size_t started = threads_.size();
       stop_and_join();
-      throw std::runtime_error(fmt::format("cannot start {} thread {} of {} ({} started): {}", what, i + 1, count,
-                                           started, e.what()));
+      throw std::runtime_error(
+          fmt::format("cannot start {} thread {} of {} ({} started): {}", what, i + 1, count, started, e.what()));
     }
   }
 }

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds and runs the whole test suite with ctest.
+# Installs what is missing, checks the C++ formatting (scripts/check_format.sh), builds and
+# runs the whole test suite with ctest.
 #   scripts/test.sh              Release build in build/
 #   scripts/test.sh --sanitize   ASan+UBSan build in build-sanitize/
 # Then a brief fuzzing stage (scripts/fuzz.sh): every harness for DEEPNAV_FUZZ_SECONDS
@@ -15,6 +16,7 @@ for arg in "$@"; do
   esac
 done
 "$root/scripts/install_deps.sh"
+"$root/scripts/check_format.sh"
 jobs=$(nproc)
 cmake -S "$root" -B "$build" -G Ninja "${cmake_args[@]}"
 cmake --build "$build" -j "$jobs"

@@ -97,8 +97,7 @@ TroposphereZenithDelay saastamoinen_zenith_delay(double lat_rad, double height_m
       6.108 * kRelativeHumidity * std::exp((17.15 * temperature_k - 4684.0) / (temperature_k - 38.45));
 
   TroposphereZenithDelay z;
-  z.hydrostatic_m = 0.0022768 * pressure_hpa /
-                    (1.0 - 0.00266 * std::cos(2.0 * lat_rad) - 0.00028 * h / 1000.0);
+  z.hydrostatic_m = 0.0022768 * pressure_hpa / (1.0 - 0.00266 * std::cos(2.0 * lat_rad) - 0.00028 * h / 1000.0);
   z.wet_m = 0.002277 * (1255.0 / temperature_k + 0.05) * vapour_hpa;
   return z;
 }

@@ -8,9 +8,9 @@ namespace {
 
 // G2 phase-selector taps per PRN (IS-GPS-200 Table 3-Ia), 1-based register stages.
 constexpr std::array<std::array<int, 2>, 32> kG2Taps = {{
-    {2, 6}, {3, 7}, {4, 8}, {5, 9}, {1, 9}, {2, 10}, {1, 8}, {2, 9},  {3, 10}, {2, 3}, {3, 4},
-    {5, 6}, {6, 7}, {7, 8}, {8, 9}, {9, 10}, {1, 4}, {2, 5}, {3, 6}, {4, 7},  {5, 8}, {6, 9},
-    {1, 3}, {4, 6}, {5, 7}, {6, 8}, {7, 9}, {8, 10}, {1, 6}, {2, 7}, {3, 8},  {4, 9},
+    {2, 6}, {3, 7}, {4, 8}, {5, 9}, {1, 9},  {2, 10}, {1, 8}, {2, 9}, {3, 10}, {2, 3}, {3, 4},
+    {5, 6}, {6, 7}, {7, 8}, {8, 9}, {9, 10}, {1, 4},  {2, 5}, {3, 6}, {4, 7},  {5, 8}, {6, 9},
+    {1, 3}, {4, 6}, {5, 7}, {6, 8}, {7, 9},  {8, 10}, {1, 6}, {2, 7}, {3, 8},  {4, 9},
 }};
 
 CaCodeChips to_chips(const CaCodeBits& bits) {
@@ -37,8 +37,9 @@ CaCodeBits ca_code_bits(int prn) {
   CaCodeBits out{};
   for (auto& chip : out) {
     chip = static_cast<std::uint8_t>(g1[9] ^ g2[t1 - 1] ^ g2[t2 - 1]);
-    const auto g1_feedback = static_cast<std::uint8_t>(g1[2] ^ g1[9]);                            // 1 + x^3 + x^10
-    const auto g2_feedback = static_cast<std::uint8_t>(g2[1] ^ g2[2] ^ g2[5] ^ g2[7] ^ g2[8] ^ g2[9]);  // 1+x2+x3+x6+x8+x9+x10
+    const auto g1_feedback = static_cast<std::uint8_t>(g1[2] ^ g1[9]);  // 1 + x^3 + x^10
+    const auto g2_feedback =
+        static_cast<std::uint8_t>(g2[1] ^ g2[2] ^ g2[5] ^ g2[7] ^ g2[8] ^ g2[9]);  // 1+x2+x3+x6+x8+x9+x10
     for (int i = 9; i > 0; --i) {
       g1[i] = g1[i - 1];
       g2[i] = g2[i - 1];

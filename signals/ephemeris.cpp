@@ -62,8 +62,8 @@ OrbitSolution solve_orbit(const Ephemeris& eph, double tk) {
   const double xp = r * std::cos(u), yp = r * std::sin(u);
   // Corrected longitude of the ascending node, including Earth rotation since the start of
   // the week (toe) and during tk.
-  const double omega_k = eph.omega0_rad + (eph.omega_dot_radps - gps::kEarthRate_radps) * tk -
-                         gps::kEarthRate_radps * eph.toe_s;
+  const double omega_k =
+      eph.omega0_rad + (eph.omega_dot_radps - gps::kEarthRate_radps) * tk - gps::kEarthRate_radps * eph.toe_s;
   const double sin_o = std::sin(omega_k), cos_o = std::cos(omega_k);
   const double sin_i = std::sin(inc), cos_i = std::cos(inc);
 
@@ -118,8 +118,7 @@ Eigen::Vector3d earth_rotation_corrected(const Eigen::Vector3d& r_ecef_at_tx, do
   // satellite appears rotated by -omega_e tau about z.
   const double angle = gps::kEarthRate_radps * tau_s;
   const double c = std::cos(angle), s = std::sin(angle);
-  return {c * r_ecef_at_tx.x() + s * r_ecef_at_tx.y(), -s * r_ecef_at_tx.x() + c * r_ecef_at_tx.y(),
-          r_ecef_at_tx.z()};
+  return {c * r_ecef_at_tx.x() + s * r_ecef_at_tx.y(), -s * r_ecef_at_tx.x() + c * r_ecef_at_tx.y(), r_ecef_at_tx.z()};
 }
 
 double fit_interval_s(const Ephemeris& eph) {

@@ -30,24 +30,26 @@ IfFileStream::IfFileStream(IfFileStreamOptions options) : options_(std::move(opt
   if (size_bytes == 0) throw std::runtime_error(fmt::format("sample file '{}' is empty", name));
   const std::uint64_t outside = options_.header_bytes + options_.footer_bytes;
   if (outside >= size_bytes)
-    throw std::runtime_error(fmt::format("sample file '{}' ({} bytes) holds nothing beyond its {}-byte header and "
-                                         "{}-byte footer",
-                                         name, size_bytes, options_.header_bytes, options_.footer_bytes));
+    throw std::runtime_error(
+        fmt::format("sample file '{}' ({} bytes) holds nothing beyond its {}-byte header and "
+                    "{}-byte footer",
+                    name, size_bytes, options_.header_bytes, options_.footer_bytes));
   std::uint64_t data_bytes = size_bytes - outside;
   if (options_.length_bytes) {
     if (*options_.length_bytes > data_bytes)
-      warnings_.push_back(fmt::format("sample file '{}': {} bytes of samples were announced, the file holds {}: "
-                                      "reading those",
-                                      name, *options_.length_bytes, data_bytes));
+      warnings_.push_back(
+          fmt::format("sample file '{}': {} bytes of samples were announced, the file holds {}: "
+                      "reading those",
+                      name, *options_.length_bytes, data_bytes));
     data_bytes = std::min(data_bytes, *options_.length_bytes);
   }
   total_samples_ = static_cast<std::int64_t>(data_bytes / bpw * samples_per_word(options_.format));
   if (const auto trailing = data_bytes % bpw; trailing != 0)
-    warnings_.push_back(fmt::format(
-        "sample file '{}': its last {} byte(s) are ignored (a partial {}: the size {} is not a multiple of "
-        "the {} bytes of one {} {})",
-        name, trailing, is_packed(options_.format) ? "word" : "sample", data_bytes, bpw, to_string(options_.format),
-        is_packed(options_.format) ? "word" : "sample"));
+    warnings_.push_back(
+        fmt::format("sample file '{}': its last {} byte(s) are ignored (a partial {}: the size {} is not a multiple of "
+                    "the {} bytes of one {} {})",
+                    name, trailing, is_packed(options_.format) ? "word" : "sample", data_bytes, bpw,
+                    to_string(options_.format), is_packed(options_.format) ? "word" : "sample"));
   if (total_samples_ == 0)
     throw std::runtime_error(fmt::format("sample file '{}' holds no whole {} sample ({} bytes)", name,
                                          to_string(options_.format), data_bytes));

@@ -72,8 +72,8 @@ class Reader {
       pt::read_xml(path_.string(), doc_, pt::xml_parser::trim_whitespace | pt::xml_parser::no_comments);
     } catch (const pt::xml_parser_error& e) {
       if (e.line() == 0) throw MetadataError(fmt::format("metadata file '{}': {}", path_.string(), e.message()));
-      throw MetadataError(fmt::format("metadata file '{}':{}: not well-formed XML: {}", path_.string(), e.line(),
-                                      e.message()));
+      throw MetadataError(
+          fmt::format("metadata file '{}':{}: not well-formed XML: {}", path_.string(), e.line(), e.message()));
     }
     for (const auto& [k, v] : doc_) {
       if (k == "<xmlcomment>") continue;
@@ -122,7 +122,8 @@ class Reader {
     if (t.empty() || *end != '\0' || t.front() == '-') fail(e, fmt::format("'{}' is not a whole number", t));
     return v;
   }
-  std::uint64_t unsigned_child(const Element& parent, const std::string& tag, std::optional<std::uint64_t> fallback) const {
+  std::uint64_t unsigned_child(const Element& parent, const std::string& tag,
+                               std::optional<std::uint64_t> fallback) const {
     const auto c = optional_one(parent, tag);
     if (!c) {
       if (fallback) return *fallback;
@@ -233,7 +234,9 @@ std::vector<SampleFormat> candidates(int q, const std::string& encoding, bool co
     PackedLayout l;
     l.bits = q;
     l.complex = complex;
-    l.encoding = tc ? PackedEncoding::twos_complement : sm ? PackedEncoding::sign_magnitude : PackedEncoding::offset_binary;
+    l.encoding = tc   ? PackedEncoding::twos_complement
+                 : sm ? PackedEncoding::sign_magnitude
+                      : PackedEncoding::offset_binary;
     for (const int wb : {1, 2, 4})
       for (const bool big : {false, true}) {
         if (wb == 1 && big) continue;
@@ -261,11 +264,10 @@ struct StreamFormat {
 
 std::optional<StreamFormat> parse_stream_format(const std::string& text) {
   static const std::map<std::string, StreamFormat> kFormats = {
-      {"IF", {false, false, false, false}},  {"IFn", {false, false, true, false}},
-      {"IQ", {true, false, false, false}},   {"IQn", {true, false, false, true}},
-      {"InQ", {true, false, true, false}},   {"InQn", {true, false, true, true}},
-      {"QI", {true, true, false, false}},    {"QIn", {true, true, true, false}},
-      {"QnI", {true, true, false, true}},    {"QnIn", {true, true, true, true}},
+      {"IF", {false, false, false, false}}, {"IFn", {false, false, true, false}}, {"IQ", {true, false, false, false}},
+      {"IQn", {true, false, false, true}},  {"InQ", {true, false, true, false}},  {"InQn", {true, false, true, true}},
+      {"QI", {true, true, false, false}},   {"QIn", {true, true, true, false}},   {"QnI", {true, true, false, true}},
+      {"QnIn", {true, true, true, true}},
   };
   const auto it = kFormats.find(text);
   if (it == kFormats.end()) return std::nullopt;
@@ -313,8 +315,7 @@ IfMetadata read_if_metadata(const std::filesystem::path& xml_path) {
   std::optional<Element> system = r.optional_one(*lane, "system");
   if (!system) {
     const auto systems = root.children("system");
-    if (systems.size() != 1)
-      r.fail(*lane, "names no <system> (with the <freqbase> the sample rate is built on)");
+    if (systems.size() != 1) r.fail(*lane, "names no <system> (with the <freqbase> the sample rate is built on)");
     system = systems.front();
   }
   const double freqbase_hz = r.frequency_hz(r.one(*system, "freqbase"));
@@ -331,7 +332,8 @@ IfMetadata read_if_metadata(const std::filesystem::path& xml_path) {
   // Chunk: words, their byte order and order in the chunk, padding.
   const std::uint64_t size_word = r.unsigned_child(chunk, "sizeword", std::nullopt);
   if (size_word != 1 && size_word != 2 && size_word != 4 && size_word != 8)
-    r.fail(*r.optional_one(chunk, "sizeword"), fmt::format("{} bytes: words of 1, 2, 4 or 8 bytes are supported", size_word));
+    r.fail(*r.optional_one(chunk, "sizeword"),
+           fmt::format("{} bytes: words of 1, 2, 4 or 8 bytes are supported", size_word));
   const std::uint64_t count_words = r.unsigned_child(chunk, "countwords", std::nullopt);
   if (count_words == 0 || count_words * size_word > 64)
     r.fail(*r.optional_one(chunk, "countwords"),
@@ -339,7 +341,8 @@ IfMetadata read_if_metadata(const std::filesystem::path& xml_path) {
   const std::string endian = r.word_child(chunk, "endian", "Undefined", {"Undefined", "Little", "Big"});
   const std::string padding = r.word_child(chunk, "padding", "None", {"None", "Head", "Tail"});
   std::string word_shift = r.word_child(chunk, "wordshift", "Left", {"Left", "Right"});
-  if (chunk.children("wordshift").empty()) word_shift = r.word_child(chunk, "shift", "Left", {"Left", "Right", "Undefined"});
+  if (chunk.children("wordshift").empty())
+    word_shift = r.word_child(chunk, "shift", "Left", {"Left", "Right", "Undefined"});
   const std::string lump_shift = r.word_child(lump, "shift", "Left", {"Left", "Right", "Undefined"});
 
   // Stream: values and their code.
@@ -353,10 +356,10 @@ IfMetadata read_if_metadata(const std::filesystem::path& xml_path) {
   const auto sf = parse_stream_format(format_element.text());
   if (!sf)
     r.fail(format_element, fmt::format("'{}' is not a sample format of the standard (IF, IFn, IQ, IQn, InQ, InQn, QI, "
-                                       "QIn, QnI, QnIn)", format_element.text()));
+                                       "QIn, QnI, QnIn)",
+                                       format_element.text()));
   const Element encoding = r.one(stream, "encoding");
-  const std::vector<SampleFormat> formats =
-      candidates(static_cast<int>(quantization), encoding.text(), sf->complex);
+  const std::vector<SampleFormat> formats = candidates(static_cast<int>(quantization), encoding.text(), sf->complex);
   if (formats.empty())
     r.fail(encoding, fmt::format("{} samples of {}-bit '{}' values are not supported (supported: 8-bit TC/INT8 "
                                  "(I/Q or real), 8-bit OB (I/Q), 16-bit TC (I/Q), 32-bit FP (I/Q); 1, 2 or 4-bit TC, "
@@ -383,7 +386,8 @@ IfMetadata read_if_metadata(const std::filesystem::path& xml_path) {
     r.fail(chunk, fmt::format("{} bits cannot hold the stream's {} packed bits", chunk_bits, packed_bits));
   const int chunk_pad = chunk_bits - repeats * static_cast<int>(packed_bits);
   if (chunk_pad > 0 && padding == "None")
-    r.fail(chunk, fmt::format("{} of its {} bits are left over by the lumps, but <padding> is None", chunk_pad, chunk_bits));
+    r.fail(chunk,
+           fmt::format("{} of its {} bits are left over by the lumps, but <padding> is None", chunk_pad, chunk_bits));
 
   struct Placed {
     int order_key;
@@ -497,7 +501,8 @@ std::string if_metadata_xml(const IfMetadataDescription& d) {
       packed_bits = 16;
       encoding = d.format.kind == SampleKind::cu8 ? "OB" : "TC";
       break;
-    case SampleKind::byte: break;
+    case SampleKind::byte:
+      break;
     case SampleKind::ishort:
       size_word = 2;
       count_words = 2;
@@ -517,7 +522,7 @@ std::string if_metadata_xml(const IfMetadataDescription& d) {
       const PackedLayout& l = d.format.packed;
       quantization = l.bits;
       packed_bits = l.bits * (l.complex ? 2 : 1);
-      encoding = l.encoding == PackedEncoding::twos_complement ? "TC"
+      encoding = l.encoding == PackedEncoding::twos_complement  ? "TC"
                  : l.encoding == PackedEncoding::sign_magnitude ? "SM"
                                                                 : "OB";
       if (l.order == PackedOrder::byte_msb) {

@@ -56,7 +56,7 @@ struct IfMetadataDescription {
   SampleFormat format;
   double sample_rate_hz = 0.0;
   double if_hz = 0.0;
-  std::string comment;         ///< free text (scenario name, ADC bits, start time)
+  std::string comment;  ///< free text (scenario name, ADC bits, start time)
 };
 
 /// The XML of a metadata file describing an IF file of the synthesizer (centre 1575.42 MHz

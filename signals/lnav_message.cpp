@@ -22,11 +22,11 @@ constexpr int kDataIdLnav = 1;            // binary 01: the NAV data structure o
 // at `second` (e.g. M0: 8 MSBs in word 4, 24 LSBs in word 5).
 struct Field {
   const char* name;
-  int first;         ///< subframe bit (1..300) of the MSB
-  int bits;          ///< total width
-  double lsb;        ///< scale factor, message units
-  bool is_signed;    ///< two's complement
-  double unit;       ///< SI value of one message unit (pi for semicircles)
+  int first;       ///< subframe bit (1..300) of the MSB
+  int bits;        ///< total width
+  double lsb;      ///< scale factor, message units
+  bool is_signed;  ///< two's complement
+  double unit;     ///< SI value of one message unit (pi for semicircles)
   int second = 0;
   int first_bits = 0;
 };
@@ -35,8 +35,8 @@ constexpr Field plain(const char* name, int first, int bits, double lsb = 1.0, b
                       double unit = 1.0) {
   return {name, first, bits, lsb, is_signed, unit, 0, 0};
 }
-constexpr Field split(const char* name, int first, int first_bits, int second, int bits, double lsb,
-                      bool is_signed, double unit = 1.0) {
+constexpr Field split(const char* name, int first, int first_bits, int second, int bits, double lsb, bool is_signed,
+                      double unit = 1.0) {
   return {name, first, bits, lsb, is_signed, unit, second, first_bits};
 }
 
@@ -87,8 +87,8 @@ void encode_value(DataWords& d, const Field& f, double si_value, int subframe_id
   if (!std::isfinite(counts_real) || std::round(counts_real) < static_cast<double>(lo) ||
       std::round(counts_real) > static_cast<double>(hi)) {
     throw std::invalid_argument(fmt::format(
-        "LNAV subframe {} field {}: value {} is outside the {}-bit {} range [{}, {}] x LSB {} x unit {}",
-        subframe_id, f.name, si_value, f.bits, f.is_signed ? "two's complement" : "unsigned", lo, hi, f.lsb, f.unit));
+        "LNAV subframe {} field {}: value {} is outside the {}-bit {} range [{}, {}] x LSB {} x unit {}", subframe_id,
+        f.name, si_value, f.bits, f.is_signed ? "two's complement" : "unsigned", lo, hi, f.lsb, f.unit));
   }
   const auto counts = static_cast<std::int64_t>(std::llround(counts_real));
   write_raw(d, f, static_cast<std::uint64_t>(counts) & low_mask(f.bits));
@@ -191,7 +191,9 @@ constexpr Field kP25Wna = plain("WNa", 77, 8);
 int sf5_health_bit(int prn) { return 30 * (3 + (prn - 1) / 4) + 1 + 6 * ((prn - 1) % 4); }
 // Subframe 4 page 25: 4-bit A-S/configuration of SVs 1-32 (4 in word 3, then 6 per word),
 // 2 reserved bits, then 6-bit health of SVs 25-32 from bit 229, 4 reserved bits at the end.
-int sf4_config_bit(int prn) { return prn <= 4 ? 69 + 4 * (prn - 1) : 30 * (3 + (prn - 5) / 6) + 1 + 4 * ((prn - 5) % 6); }
+int sf4_config_bit(int prn) {
+  return prn <= 4 ? 69 + 4 * (prn - 1) : 30 * (3 + (prn - 5) / 6) + 1 + 4 * ((prn - 5) % 6);
+}
 int sf4_health_bit(int prn) {
   if (prn == 25) return 229;
   return prn <= 29 ? 241 + 6 * (prn - 26) : 271 + 6 * (prn - 30);
@@ -322,14 +324,16 @@ void fill_sf4_page25(DataWords& d, const LnavContent& c) {
     encode_value(d, plain("A-S/SV configuration", sf4_config_bit(prn), 4), c.sv_config[prn - 1] & 0xF, 4);
   }
   fill_alternating(d, 227, 228);
-  for (int prn = 25; prn <= 32; ++prn) encode_value(d, plain("SV health", sf4_health_bit(prn), 6), health6_of(c, prn), 4);
+  for (int prn = 25; prn <= 32; ++prn)
+    encode_value(d, plain("SV health", sf4_health_bit(prn), 6), health6_of(c, prn), 4);
   fill_alternating(d, 289, 292);
 }
 
 void fill_sf5_page25(DataWords& d, const LnavContent& c) {
   encode_value(d, kP25Toa, c.almanac_toa_s, 5);
   encode_value(d, kP25Wna, ((c.almanac_week % 256) + 256) % 256, 5);
-  for (int prn = 1; prn <= 24; ++prn) encode_value(d, plain("SV health", sf5_health_bit(prn), 6), health6_of(c, prn), 5);
+  for (int prn = 1; prn <= 24; ++prn)
+    encode_value(d, plain("SV health", sf5_health_bit(prn), 6), health6_of(c, prn), 5);
   fill_alternating(d, 271, 292);
 }
 
@@ -440,12 +444,15 @@ void decode_subframe45(const DataWords& d, DecodedSubframe& out) {
   } else if (sf == 5 && out.sv_id == 51) {
     out.almanac_toa_s = decode_int(d, kP25Toa);
     out.almanac_wna = decode_int(d, kP25Wna);
-    for (int prn = 1; prn <= 24; ++prn) out.sv_health[prn - 1] = decode_int(d, plain("SV health", sf5_health_bit(prn), 6));
+    for (int prn = 1; prn <= 24; ++prn)
+      out.sv_health[prn - 1] = decode_int(d, plain("SV health", sf5_health_bit(prn), 6));
   } else if (sf == 4 && out.sv_id == 56) {
     decode_iono_utc(d, out);
   } else if (sf == 4 && out.sv_id == 63) {
-    for (int prn = 1; prn <= 32; ++prn) out.sv_config[prn - 1] = decode_int(d, plain("A-S/SV configuration", sf4_config_bit(prn), 4));
-    for (int prn = 25; prn <= 32; ++prn) out.sv_health[prn - 1] = decode_int(d, plain("SV health", sf4_health_bit(prn), 6));
+    for (int prn = 1; prn <= 32; ++prn)
+      out.sv_config[prn - 1] = decode_int(d, plain("A-S/SV configuration", sf4_config_bit(prn), 4));
+    for (int prn = 25; prn <= 32; ++prn)
+      out.sv_health[prn - 1] = decode_int(d, plain("SV health", sf4_health_bit(prn), 6));
   }
 }
 
@@ -453,9 +460,7 @@ double wrap_pi(double a) { return std::remainder(a, 2.0 * gps::kPi); }
 
 // Rounds to the field's LSB the way the encoder does, so a derived almanac equals what a
 // receiver decodes from it.
-double quantized(double si_value, const Field& f) {
-  return std::round(si_value / f.unit / f.lsb) * f.lsb * f.unit;
-}
+double quantized(double si_value, const Field& f) { return std::round(si_value / f.unit / f.lsb) * f.lsb * f.unit; }
 
 }  // namespace
 
@@ -503,9 +508,7 @@ Subframe encode_words(const SubframeData& data, bool prev_d29, bool prev_d30) {
   return words;
 }
 
-int subframe_id_at(std::int64_t subframe_of_week) {
-  return static_cast<int>(((subframe_of_week % 5) + 5) % 5) + 1;
-}
+int subframe_id_at(std::int64_t subframe_of_week) { return static_cast<int>(((subframe_of_week % 5) + 5) % 5) + 1; }
 
 int page_at(std::int64_t subframe_of_week) {
   const std::int64_t frame = (subframe_of_week >= 0 ? subframe_of_week : subframe_of_week - 4) / 5;
@@ -527,10 +530,18 @@ Subframe encode_subframe(int subframe_id, const LnavContent& content, int tow_co
   DataWords d{};
   fill_tlm_how(d, subframe_id, content, tow_count_next);
   switch (subframe_id) {
-    case 1: fill_subframe1(d, content.eph); break;
-    case 2: fill_subframe2(d, content.eph); break;
-    case 3: fill_subframe3(d, content.eph); break;
-    default: fill_subframe45(d, subframe_id, page, content); break;
+    case 1:
+      fill_subframe1(d, content.eph);
+      break;
+    case 2:
+      fill_subframe2(d, content.eph);
+      break;
+    case 3:
+      fill_subframe3(d, content.eph);
+      break;
+    default:
+      fill_subframe45(d, subframe_id, page, content);
+      break;
   }
   return encode_words(d, prev_d29, prev_d30);
 }
@@ -585,9 +596,15 @@ std::optional<DecodedSubframe> decode_subframe(const Subframe& words) {
   out.sv_config.fill(-1);
   const int start_count = (th.tow_count + kTowCountsPerWeek - 1) % kTowCountsPerWeek;
   switch (th.subframe_id) {
-    case 1: decode_subframe1(d, out.eph); break;
-    case 2: decode_subframe2(d, out.eph); break;
-    case 3: decode_subframe3(d, out.eph); break;
+    case 1:
+      decode_subframe1(d, out.eph);
+      break;
+    case 2:
+      decode_subframe2(d, out.eph);
+      break;
+    case 3:
+      decode_subframe3(d, out.eph);
+      break;
     default:
       out.page = page_at(start_count);
       decode_subframe45(d, out);
@@ -624,9 +641,9 @@ Almanac almanac_from_ephemeris(const Ephemeris& eph) {
 
 FieldLimits field_limits(std::string_view name) {
   static const std::array<const Field*, 29> kFields = {
-      &kAf0,     &kAf1,    &kAf2,     &kTgd,     &kCrs,     &kDeltaN,  &kM0,      &kCuc,     &kE,      &kCus,
-      &kSqrtA,   &kCic,    &kOmega0,  &kCis,     &kI0,      &kCrc,     &kOmega,   &kOmegaDot, &kIdot,  &kAlpha[0],
-      &kAlpha[1], &kAlpha[2], &kAlpha[3], &kBeta[0], &kBeta[1], &kBeta[2], &kBeta[3], &kA0,     &kA1};
+      &kAf0,      &kAf1,      &kAf2,      &kTgd,     &kCrs,     &kDeltaN,  &kM0,      &kCuc,      &kE,    &kCus,
+      &kSqrtA,    &kCic,      &kOmega0,   &kCis,     &kI0,      &kCrc,     &kOmega,   &kOmegaDot, &kIdot, &kAlpha[0],
+      &kAlpha[1], &kAlpha[2], &kAlpha[3], &kBeta[0], &kBeta[1], &kBeta[2], &kBeta[3], &kA0,       &kA1};
   for (const Field* f : kFields) {
     if (name != f->name) continue;
     const double lo = f->is_signed ? -std::ldexp(1.0, f->bits - 1) : 0.0;
@@ -646,14 +663,21 @@ int resolve_week(int wn10, int reference_week) {
 
 bool EphemerisAssembler::add(const DecodedSubframe& sf) {
   switch (sf.tlm_how.subframe_id) {
-    case 1: sf1_ = sf; break;
-    case 2: sf2_ = sf; break;
-    case 3: sf3_ = sf; break;
+    case 1:
+      sf1_ = sf;
+      break;
+    case 2:
+      sf2_ = sf;
+      break;
+    case 3:
+      sf3_ = sf;
+      break;
     case 4:
       if (sf.iono) iono_ = *sf.iono;
       if (sf.utc) utc_ = *sf.utc;
       return false;
-    default: return false;
+    default:
+      return false;
   }
   return try_complete();
 }

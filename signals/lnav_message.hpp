@@ -32,11 +32,11 @@ inline constexpr double kAlmanacNominalInclination_rad = 0.30 * 3.1415926535898;
 
 /// Reduced-precision orbit and clock of one SV (IS-GPS-200 Table 20-VI). Angles in radians.
 struct Almanac {
-  int prn = 0;             ///< SV ID 1..32
-  int health = 0;          ///< 8-bit health word (3 MSBs NAV data, 5 LSBs signal components)
+  int prn = 0;     ///< SV ID 1..32
+  int health = 0;  ///< 8-bit health word (3 MSBs NAV data, 5 LSBs signal components)
   double e = 0.0;
-  int toa_s = 0;           ///< almanac reference time, multiple of 4096 s
-  int week = 0;            ///< full almanac reference week (WNa in the message: 8 LSBs)
+  int toa_s = 0;             ///< almanac reference time, multiple of 4096 s
+  int week = 0;              ///< full almanac reference week (WNa in the message: 8 LSBs)
   double delta_i_rad = 0.0;  ///< inclination relative to 0.30 semicircles
   double omega_dot_radps = 0.0;
   double sqrt_a = 0.0;
@@ -49,13 +49,13 @@ struct Almanac {
 
 /// TLM and HOW words (IS-GPS-200 20.3.3.1, 20.3.3.2).
 struct TlmHow {
-  int tlm_message = 0;       ///< 14 bits
+  int tlm_message = 0;          ///< 14 bits
   bool integrity_flag = false;  ///< TLM bit 23
   bool tlm_reserved = false;    ///< TLM bit 24
-  int tow_count = 0;         ///< 17-bit truncated TOW count of the next subframe start (6 s units)
+  int tow_count = 0;            ///< 17-bit truncated TOW count of the next subframe start (6 s units)
   bool alert = false;
   bool anti_spoof = false;
-  int subframe_id = 0;       ///< 1..5
+  int subframe_id = 0;  ///< 1..5
 };
 
 /// Everything one satellite broadcasts. Subframe 1's week number is eph.week mod 1024.
@@ -64,9 +64,9 @@ struct LnavContent {
   IonoParameters iono;
   UtcParameters utc;
   std::array<std::optional<Almanac>, 32> almanac;  ///< by PRN - 1; empty: dummy SV page
-  int almanac_toa_s = 0;      ///< toa of subframe 5 page 25
-  int almanac_week = 0;       ///< full week; WNa of subframe 5 page 25 is its 8 LSBs
-  std::array<std::uint8_t, 32> sv_config{};  ///< 4-bit A-S flag and configuration per SV
+  int almanac_toa_s = 0;                           ///< toa of subframe 5 page 25
+  int almanac_week = 0;                            ///< full week; WNa of subframe 5 page 25 is its 8 LSBs
+  std::array<std::uint8_t, 32> sv_config{};        ///< 4-bit A-S flag and configuration per SV
   int tlm_message = 0;
   bool integrity_flag = false;
   bool alert = false;
@@ -132,18 +132,18 @@ class LnavBitSource {
 /// A subframe checked and decoded. Fields of the other subframe types keep their defaults.
 struct DecodedSubframe {
   TlmHow tlm_how;
-  SubframeData data{};     ///< d1..d24 of every word, polarity and complementing undone
-  bool inverted = false;   ///< the stream arrived with inverted polarity
-  int page = 0;            ///< 1..25 for subframes 4 and 5, from the TOW count
+  SubframeData data{};    ///< d1..d24 of every word, polarity and complementing undone
+  bool inverted = false;  ///< the stream arrived with inverted polarity
+  int page = 0;           ///< 1..25 for subframes 4 and 5, from the TOW count
   /// Subframes 1-3: the fields they carry. eph.week holds the 10-bit WN of subframe 1.
   Ephemeris eph;
-  int data_id = 0, sv_id = 0;  ///< subframes 4 and 5
+  int data_id = 0, sv_id = 0;      ///< subframes 4 and 5
   std::optional<Almanac> almanac;  ///< almanac pages (week = 0: WNa comes from subframe 5 page 25)
   std::optional<IonoParameters> iono;
   std::optional<UtcParameters> utc;
   std::optional<int> almanac_toa_s, almanac_wna;  ///< subframe 5 page 25
-  std::array<int, 32> sv_health{};   ///< 6-bit health by PRN - 1 from page 25; -1 absent
-  std::array<int, 32> sv_config{};   ///< 4-bit A-S/config by PRN - 1 (subframe 4 page 25); -1 absent
+  std::array<int, 32> sv_health{};                ///< 6-bit health by PRN - 1 from page 25; -1 absent
+  std::array<int, 32> sv_config{};                ///< 4-bit A-S/config by PRN - 1 (subframe 4 page 25); -1 absent
 };
 
 /// Checks every word's parity (D29*, D30* of word 1 taken as 0, the value word 10's t bits

@@ -24,7 +24,7 @@ namespace deepnav {
 
 namespace {
 
-constexpr int kOrbitLines = 7;            // broadcast orbit lines of a GPS record
+constexpr int kOrbitLines = 7;              // broadcast orbit lines of a GPS record
 constexpr double kUnknownTransmit = 9.0e8;  // RINEX writes 0.9999E+09 for "not known"
 
 // ---------------------------------------------------------------------------
@@ -128,8 +128,8 @@ std::array<double, 4> four_numbers(const LineReader& reader, std::string_view li
   return out;
 }
 
-int header_int(const LineReader& reader, std::string_view line, std::size_t start, std::size_t width,
-               const char* what, int lo, int hi) {
+int header_int(const LineReader& reader, std::string_view line, std::size_t start, std::size_t width, const char* what,
+               int lo, int hi) {
   return with_context(reader, what, [&] {
     const auto v = parse_number(column(line, start, width));
     if (!v) throw std::invalid_argument("expected a number, got a blank field");
@@ -162,9 +162,10 @@ void check_header_field(const LineReader& reader, const char* label, const char*
   const lnav::FieldLimits lim = lnav::field_limits(field);
   const double slack = (lim.max - lim.min) * 0x1p-32;  // one LSB: 12 digits may round full scale up
   if (value >= lim.min - slack && value <= lim.max + slack) return;
-  reader.fail(fmt::format("{}: {} = {:g} is outside [{:.6g}, {:.6g}], the range a GPS satellite can broadcast "
-                          "(IS-GPS-200 LNAV field): a corrupt navigation file",
-                          label, field, value, lim.min, lim.max));
+  reader.fail(
+      fmt::format("{}: {} = {:g} is outside [{:.6g}, {:.6g}], the range a GPS satellite can broadcast "
+                  "(IS-GPS-200 LNAV field): a corrupt navigation file",
+                  label, field, value, lim.min, lim.max));
 }
 
 std::array<double, 4> iono_numbers(const LineReader& reader, std::string_view line, std::size_t start,
@@ -292,9 +293,10 @@ EpochLine parse_epoch_line(const LineReader& reader, std::string_view line, doub
     return *v;
   });
   if (ep.toc.day > days_in_month(ep.toc.year, ep.toc.month)) {
-    reader.fail(fmt::format("epoch line, day (columns {}-{}): {:04d}-{:02d}-{:02d} is not a date ({:04d}-{:02d} has {} days)",
-                            base + 4, base + 6, ep.toc.year, ep.toc.month, ep.toc.day, ep.toc.year, ep.toc.month,
-                            days_in_month(ep.toc.year, ep.toc.month)));
+    reader.fail(
+        fmt::format("epoch line, day (columns {}-{}): {:04d}-{:02d}-{:02d} is not a date ({:04d}-{:02d} has {} days)",
+                    base + 4, base + 6, ep.toc.year, ep.toc.month, ep.toc.day, ep.toc.year, ep.toc.month,
+                    days_in_month(ep.toc.year, ep.toc.month)));
   }
   const Layout lay = layout_for(version);
   for (std::size_t i = 0; i < 3; ++i) {
@@ -319,8 +321,8 @@ std::array<double, 4> read_orbit_line(LineReader& reader, double version, int in
   }
   // Continuation lines start with blanks; anything else is the next record.
   if (!trim(column(line, 0, lay.orbit_col)).empty()) {
-    reader.fail(fmt::format("record of PRN {} (line {}) is truncated: expected broadcast orbit line {}, got '{}'",
-                            prn, record_line, index, line));
+    reader.fail(fmt::format("record of PRN {} (line {}) is truncated: expected broadcast orbit line {}, got '{}'", prn,
+                            record_line, index, line));
   }
   std::array<double, 4> out{};
   int present = 0;
@@ -355,17 +357,25 @@ struct BroadcastValue {
 /// (a corrupt file: af0 = 1e300, Cuc = 1e29) is an error naming the line, satellite and field.
 void check_broadcast_ranges(const LineReader& reader, int record_line, int prn, const Ephemeris& e) {
   constexpr double kTurn = 2.0 * gps::kPi;
-  const BroadcastValue values[] = {
-      {"af0", 0, 1, e.af0_s, "s"},           {"af1", 0, 2, e.af1_sps, "s/s"},
-      {"af2", 0, 3, e.af2_sps2, "s/s^2"},    {"Crs", 1, 2, e.crs_m, "m"},
-      {"delta n", 1, 3, e.delta_n_radps, "rad/s"}, {"M0", 1, 4, e.m0_rad, "rad"},
-      {"Cuc", 2, 1, e.cuc_rad, "rad"},       {"e", 2, 2, e.e, ""},
-      {"Cus", 2, 3, e.cus_rad, "rad"},       {"sqrt A", 2, 4, e.sqrt_a, "sqrt(m)"},
-      {"Cic", 3, 2, e.cic_rad, "rad"},       {"OMEGA0", 3, 3, e.omega0_rad, "rad"},
-      {"Cis", 3, 4, e.cis_rad, "rad"},       {"i0", 4, 1, e.i0_rad, "rad"},
-      {"Crc", 4, 2, e.crc_m, "m"},           {"omega", 4, 3, e.omega_rad, "rad"},
-      {"OMEGADOT", 4, 4, e.omega_dot_radps, "rad/s"}, {"IDOT", 5, 1, e.idot_radps, "rad/s"},
-      {"TGD", 6, 3, e.tgd_s, "s"}};
+  const BroadcastValue values[] = {{"af0", 0, 1, e.af0_s, "s"},
+                                   {"af1", 0, 2, e.af1_sps, "s/s"},
+                                   {"af2", 0, 3, e.af2_sps2, "s/s^2"},
+                                   {"Crs", 1, 2, e.crs_m, "m"},
+                                   {"delta n", 1, 3, e.delta_n_radps, "rad/s"},
+                                   {"M0", 1, 4, e.m0_rad, "rad"},
+                                   {"Cuc", 2, 1, e.cuc_rad, "rad"},
+                                   {"e", 2, 2, e.e, ""},
+                                   {"Cus", 2, 3, e.cus_rad, "rad"},
+                                   {"sqrt A", 2, 4, e.sqrt_a, "sqrt(m)"},
+                                   {"Cic", 3, 2, e.cic_rad, "rad"},
+                                   {"OMEGA0", 3, 3, e.omega0_rad, "rad"},
+                                   {"Cis", 3, 4, e.cis_rad, "rad"},
+                                   {"i0", 4, 1, e.i0_rad, "rad"},
+                                   {"Crc", 4, 2, e.crc_m, "m"},
+                                   {"omega", 4, 3, e.omega_rad, "rad"},
+                                   {"OMEGADOT", 4, 4, e.omega_dot_radps, "rad/s"},
+                                   {"IDOT", 5, 1, e.idot_radps, "rad/s"},
+                                   {"TGD", 6, 3, e.tgd_s, "s"}};
   for (const BroadcastValue& v : values) {
     lnav::FieldLimits lim = lnav::field_limits(v.name);
     const std::string_view name(v.name);
@@ -373,9 +383,9 @@ void check_broadcast_ranges(const LineReader& reader, int record_line, int prn, 
     // One LSB of slack either way: a file's 12 digits may round a full-scale value up.
     const double slack = (lim.max - lim.min) * 0x1p-32;
     if (v.value >= lim.min - slack && v.value <= lim.max + slack) continue;
-    const std::string where =
-        v.line_offset == 0 ? fmt::format("epoch line, clock field {}", v.field)
-                           : fmt::format("broadcast orbit line {}, field {}", v.line_offset, v.field);
+    const std::string where = v.line_offset == 0
+                                  ? fmt::format("epoch line, clock field {}", v.field)
+                                  : fmt::format("broadcast orbit line {}, field {}", v.line_offset, v.field);
     reader.fail(record_line + v.line_offset,
                 fmt::format("PRN {} (record at line {}), {}: {} = {:g} {} is outside [{:.6g}, {:.6g}], the range a GPS "
                             "satellite can broadcast (IS-GPS-200 LNAV field): a corrupt navigation file",
@@ -384,9 +394,10 @@ void check_broadcast_ranges(const LineReader& reader, int record_line, int prn, 
   // sqrt(A) within what LNAV carries may still put the orbit inside the Earth.
   constexpr double kMinSqrtA = 2525.0;  // sqrt of the Earth's equatorial radius, 6378137 m
   if (e.sqrt_a < kMinSqrtA) {
-    reader.fail(record_line + 2, fmt::format("PRN {} (record at line {}), broadcast orbit line 2, field 4: sqrt A = {:g} "
-                                             "sqrt(m) puts the orbit inside the Earth (at least {} expected)",
-                                             prn, record_line, e.sqrt_a, kMinSqrtA));
+    reader.fail(record_line + 2,
+                fmt::format("PRN {} (record at line {}), broadcast orbit line 2, field 4: sqrt A = {:g} "
+                            "sqrt(m) puts the orbit inside the Earth (at least {} expected)",
+                            prn, record_line, e.sqrt_a, kMinSqrtA));
   }
 }
 
@@ -403,8 +414,8 @@ Ephemeris read_gps_record(LineReader& reader, std::string_view first_line, doubl
   const EpochLine ep = parse_epoch_line(reader, first_line, version);
   std::array<std::array<double, 4>, kOrbitLines> o{};
   for (int i = 0; i < kOrbitLines; ++i) {
-    o[static_cast<std::size_t>(i)] = read_orbit_line(reader, version, i + 1, i + 1 < kOrbitLines ? 4 : 1, ep.prn,
-                                                     record_line);
+    o[static_cast<std::size_t>(i)] =
+        read_orbit_line(reader, version, i + 1, i + 1 < kOrbitLines ? 4 : 1, ep.prn, record_line);
   }
   Ephemeris eph;
   eph.prn = ep.prn;
@@ -442,7 +453,8 @@ Ephemeris read_gps_record(LineReader& reader, std::string_view first_line, doubl
     eph.transmission_time_known = std::abs(o[6][0]) < kUnknownTransmit;
     eph.transmission_time_s = eph.transmission_time_known ? o[6][0] : 0.0;
     eph.fit_interval_flag = o[6][1] > 4.0 ? 1 : 0;  // RINEX gives hours; 0 means not known
-    if (!(eph.e >= 0.0 && eph.e < 1.0)) throw std::invalid_argument(fmt::format("eccentricity {} not in [0, 1)", eph.e));
+    if (!(eph.e >= 0.0 && eph.e < 1.0))
+      throw std::invalid_argument(fmt::format("eccentricity {} not in [0, 1)", eph.e));
     if (!(eph.sqrt_a > 0.0)) throw std::invalid_argument(fmt::format("sqrt(A) {} is not positive", eph.sqrt_a));
     if (!(eph.toe_s >= 0.0 && eph.toe_s < kSecondsPerWeek)) {
       throw std::invalid_argument(fmt::format("toe {} not in [0, 604800)", eph.toe_s));
@@ -467,8 +479,8 @@ void skip_other_record(LineReader& reader, std::istream& in) {
 
 int ura_index_from_metres(double ura_m) {
   // Upper bounds of each URA index's range (IS-GPS-200 20.3.3.3.1.3).
-  static constexpr std::array<double, 15> kBounds = {2.4,   3.4,   4.85,   6.85,   9.65,   13.65,  24.0,  48.0,
-                                                     96.0,  192.0, 384.0,  768.0,  1536.0, 3072.0, 6144.0};
+  static constexpr std::array<double, 15> kBounds = {2.4,  3.4,   4.85,  6.85,  9.65,   13.65,  24.0,  48.0,
+                                                     96.0, 192.0, 384.0, 768.0, 1536.0, 3072.0, 6144.0};
   for (std::size_t i = 0; i < kBounds.size(); ++i) {
     if (ura_m <= kBounds[i]) return static_cast<int>(i);
   }
@@ -478,8 +490,8 @@ int ura_index_from_metres(double ura_m) {
 double ura_metres_from_index(int ura_index) {
   // Nominal values of IS-GPS-200: 2^(1 + N/2) up to N = 6, 2^(N - 2) above; N = 15 means
   // no accuracy prediction, written as a value that reads back as 15.
-  static constexpr std::array<double, 16> kNominal = {2.0,   2.8,   4.0,    5.7,    8.0,    11.3,   16.0,   32.0,
-                                                      64.0,  128.0, 256.0,  512.0,  1024.0, 2048.0, 4096.0, 8192.0};
+  static constexpr std::array<double, 16> kNominal = {2.0,  2.8,   4.0,   5.7,   8.0,    11.3,   16.0,   32.0,
+                                                      64.0, 128.0, 256.0, 512.0, 1024.0, 2048.0, 4096.0, 8192.0};
   return kNominal[static_cast<std::size_t>(std::clamp(ura_index, 0, 15))];
 }
 
@@ -607,9 +619,9 @@ void write_rinex3_nav(std::ostream& out, const NavData& nav, const std::string& 
                        "IONOSPHERIC CORR");
   }
   if (nav.utc.valid) {
-    out << header_line(fmt::format("GPUT {:17.10E}{:16.9E} {:6d} {:4d}", nav.utc.a0_s, nav.utc.a1_sps, nav.utc.tot_s,
-                                   nav.utc.wnt),
-                       "TIME SYSTEM CORR");
+    out << header_line(
+        fmt::format("GPUT {:17.10E}{:16.9E} {:6d} {:4d}", nav.utc.a0_s, nav.utc.a1_sps, nav.utc.tot_s, nav.utc.wnt),
+        "TIME SYSTEM CORR");
   }
   if (nav.leap_seconds_valid) {
     const UtcParameters& u = nav.utc;

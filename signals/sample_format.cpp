@@ -124,12 +124,18 @@ SampleFormat parse_sample_format(std::string_view name) {
 
 std::string to_string(const SampleFormat& format) {
   switch (format.kind) {
-    case SampleKind::ibyte: return "ibyte";
-    case SampleKind::ishort: return "ishort";
-    case SampleKind::gr_complex: return "gr_complex";
-    case SampleKind::byte: return "byte";
-    case SampleKind::cu8: return "cu8";
-    case SampleKind::packed: break;
+    case SampleKind::ibyte:
+      return "ibyte";
+    case SampleKind::ishort:
+      return "ishort";
+    case SampleKind::gr_complex:
+      return "gr_complex";
+    case SampleKind::byte:
+      return "byte";
+    case SampleKind::cu8:
+      return "cu8";
+    case SampleKind::packed:
+      break;
   }
   const PackedLayout& l = format.packed;
   std::string s = fmt::format("packed{}", l.bits);
@@ -162,12 +168,18 @@ std::size_t samples_per_word(const SampleFormat& format) {
 
 std::size_t bytes_per_sample(const SampleFormat& format) {
   switch (format.kind) {
-    case SampleKind::ibyte: return 2;
-    case SampleKind::ishort: return 4;
-    case SampleKind::gr_complex: return 8;
-    case SampleKind::byte: return 1;
-    case SampleKind::cu8: return 2;
-    case SampleKind::packed: break;
+    case SampleKind::ibyte:
+      return 2;
+    case SampleKind::ishort:
+      return 4;
+    case SampleKind::gr_complex:
+      return 8;
+    case SampleKind::byte:
+      return 1;
+    case SampleKind::cu8:
+      return 2;
+    case SampleKind::packed:
+      break;
   }
   throw std::logic_error("bytes_per_sample: packed format " + to_string(format) +
                          " holds several samples a byte (use bytes_per_word)");
@@ -177,10 +189,13 @@ int value_bits(const SampleFormat& format) {
   switch (format.kind) {
     case SampleKind::ibyte:
     case SampleKind::byte:
-    case SampleKind::cu8: return 8;
+    case SampleKind::cu8:
+      return 8;
     case SampleKind::ishort:
-    case SampleKind::gr_complex: return 16;
-    case SampleKind::packed: return format.packed.bits;
+    case SampleKind::gr_complex:
+      return 16;
+    case SampleKind::packed:
+      return format.packed.bits;
   }
   return 8;
 }

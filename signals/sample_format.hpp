@@ -49,13 +49,13 @@ enum class PackedOrder {
 };
 
 struct PackedLayout {
-  int bits = 2;            ///< bits a value: 1, 2 or 4
-  bool complex = false;    ///< values alternate I and Q
-  bool q_first = false;    ///< complex only: Q comes before I
+  int bits = 2;          ///< bits a value: 1, 2 or 4
+  bool complex = false;  ///< values alternate I and Q
+  bool q_first = false;  ///< complex only: Q comes before I
   PackedEncoding encoding = PackedEncoding::twos_complement;
   PackedOrder order = PackedOrder::lsb;
-  int word_bytes = 1;      ///< 1, 2 or 4
-  bool big_endian = false; ///< byte order of a multi-byte word in the file
+  int word_bytes = 1;       ///< 1, 2 or 4
+  bool big_endian = false;  ///< byte order of a multi-byte word in the file
   friend bool operator==(const PackedLayout&, const PackedLayout&) = default;
 };
 

@@ -34,12 +34,14 @@ int level_of_code(unsigned code, const PackedLayout& l) {
   const int half = full / 2;
   const int c = static_cast<int>(code);
   switch (l.encoding) {
-    case PackedEncoding::twos_complement: return 2 * (c >= half ? c - full : c) + 1;
+    case PackedEncoding::twos_complement:
+      return 2 * (c >= half ? c - full : c) + 1;
     case PackedEncoding::sign_magnitude: {
       const int m = c & (half - 1);
       return (c & half) != 0 ? -(2 * m + 1) : 2 * m + 1;
     }
-    case PackedEncoding::offset_binary: return 2 * c - (full - 1);
+    case PackedEncoding::offset_binary:
+      return 2 * c - (full - 1);
   }
   return 0;
 }
@@ -47,13 +49,16 @@ int level_of_code(unsigned code, const PackedLayout& l) {
 unsigned code_of_level(int level, const PackedLayout& l) {
   const int full = 1 << l.bits;
   if ((level & 1) == 0 || std::abs(level) > full - 1)
-    throw std::invalid_argument(fmt::format("pack_levels: {} is not an odd level of a {}-bit quantizer", level, l.bits));
+    throw std::invalid_argument(
+        fmt::format("pack_levels: {} is not an odd level of a {}-bit quantizer", level, l.bits));
   const unsigned mask = static_cast<unsigned>(full - 1);
   switch (l.encoding) {
-    case PackedEncoding::twos_complement: return static_cast<unsigned>((level - 1) / 2) & mask;
+    case PackedEncoding::twos_complement:
+      return static_cast<unsigned>((level - 1) / 2) & mask;
     case PackedEncoding::sign_magnitude:
       return (level < 0 ? static_cast<unsigned>(full / 2) : 0u) | static_cast<unsigned>((std::abs(level) - 1) / 2);
-    case PackedEncoding::offset_binary: return static_cast<unsigned>((level + full - 1) / 2);
+    case PackedEncoding::offset_binary:
+      return static_cast<unsigned>((level + full - 1) / 2);
   }
   return 0;
 }
@@ -67,8 +72,10 @@ int packed_value_shift(const PackedLayout& l, std::size_t k) {
   const int word_bits = 8 * l.word_bytes;
   const int ki = static_cast<int>(k);
   switch (l.order) {
-    case PackedOrder::lsb: return ki * b;
-    case PackedOrder::msb: return word_bits - (ki + 1) * b;
+    case PackedOrder::lsb:
+      return ki * b;
+    case PackedOrder::msb:
+      return word_bits - (ki + 1) * b;
     case PackedOrder::byte_msb: {
       const int per_byte = 8 / b;
       return 8 * (ki / per_byte) + 8 - (ki % per_byte + 1) * b;

@@ -15,9 +15,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "ins/sim/imu_error_generator.hpp"
 #include "ins/imu_model.hpp"
 #include "ins/imu_sample.hpp"
+#include "ins/sim/imu_error_generator.hpp"
 #include "ins/trajectory.hpp"
 
 namespace deepnav {

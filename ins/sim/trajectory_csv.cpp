@@ -120,12 +120,17 @@ std::unique_ptr<Trajectory> load_csv_trajectory(std::istream& in, const std::str
   const std::vector<std::string> geo{"t_s", "lat_deg", "lon_deg", "height_m"};
   const std::vector<std::string> ecef{"t_s", "x_ecef_m", "y_ecef_m", "z_ecef_m"};
   const std::vector<std::string> att{"roll_deg", "pitch_deg", "yaw_deg"};
-  const bool is_geo = std::equal(geo.begin(), geo.end(), header.begin(), header.begin() + std::min<std::size_t>(4, header.size())) && header.size() >= 4;
-  const bool is_ecef = std::equal(ecef.begin(), ecef.end(), header.begin(), header.begin() + std::min<std::size_t>(4, header.size())) && header.size() >= 4;
+  const bool is_geo =
+      std::equal(geo.begin(), geo.end(), header.begin(), header.begin() + std::min<std::size_t>(4, header.size())) &&
+      header.size() >= 4;
+  const bool is_ecef =
+      std::equal(ecef.begin(), ecef.end(), header.begin(), header.begin() + std::min<std::size_t>(4, header.size())) &&
+      header.size() >= 4;
   const bool has_att = header.size() == 7 && std::equal(att.begin(), att.end(), header.begin() + 4);
   if (!(is_geo || is_ecef) || !(header.size() == 4 || has_att)) {
-    fail(line_no, "expected the header 't_s,lat_deg,lon_deg,height_m' or 't_s,x_ecef_m,y_ecef_m,z_ecef_m', "
-                  "optionally followed by ',roll_deg,pitch_deg,yaw_deg'");
+    fail(line_no,
+         "expected the header 't_s,lat_deg,lon_deg,height_m' or 't_s,x_ecef_m,y_ecef_m,z_ecef_m', "
+         "optionally followed by ',roll_deg,pitch_deg,yaw_deg'");
   }
   std::vector<double> times;
   std::vector<Eigen::Vector3d> positions, angles;
@@ -145,7 +150,8 @@ std::unique_ptr<Trajectory> load_csv_trajectory(std::istream& in, const std::str
       } catch (const std::exception&) {
         used = 0;
       }
-      if (used != fields[i].size() || fields[i].empty()) fail(line_no, "column '" + header[i] + "': '" + fields[i] + "' is not a number");
+      if (used != fields[i].size() || fields[i].empty())
+        fail(line_no, "column '" + header[i] + "': '" + fields[i] + "' is not a number");
       if (!std::isfinite(x)) fail(line_no, "column '" + header[i] + "': value is not finite");
       v.push_back(x);
     }
@@ -161,8 +167,9 @@ std::unique_ptr<Trajectory> load_csv_trajectory(std::istream& in, const std::str
       const double r = positions.back().norm();
       const double r_min = wgs84::kSemiMinorAxis_m + kMinHeight_m, r_max = wgs84::kSemiMajorAxis_m + kMaxHeight_m;
       if (!(r >= r_min && r <= r_max))
-        fail(line_no, fmt::format("position is {:.6g} m from the Earth's centre, not in [{:g}, {:g}] m (near the Earth)",
-                                  r, r_min, r_max));
+        fail(line_no,
+             fmt::format("position is {:.6g} m from the Earth's centre, not in [{:g}, {:g}] m (near the Earth)", r,
+                         r_min, r_max));
     }
     // Rows are samples of one motion: a jump between two of them (a wrong sign, a lost
     // digit) would make the receiver faster than anything that carries one.
@@ -170,10 +177,10 @@ std::unique_ptr<Trajectory> load_csv_trajectory(std::istream& in, const std::str
       const double dt = times.back() - times[times.size() - 2];
       const double speed = (positions.back() - positions[positions.size() - 2]).norm() / dt;
       if (!(speed <= kMaxSpeed_mps))
-        fail(line_no, fmt::format("the position moves {:.6g} m in {:g} s from the previous row ({:.4g} m/s), faster "
-                                  "than {:g} m/s",
-                                  (positions.back() - positions[positions.size() - 2]).norm(), dt, speed,
-                                  kMaxSpeed_mps));
+        fail(line_no,
+             fmt::format("the position moves {:.6g} m in {:g} s from the previous row ({:.4g} m/s), faster "
+                         "than {:g} m/s",
+                         (positions.back() - positions[positions.size() - 2]).norm(), dt, speed, kMaxSpeed_mps));
     }
     if (has_att) {
       Eigen::Vector3d e(v[4] * kDeg, v[5] * kDeg, v[6] * kDeg);

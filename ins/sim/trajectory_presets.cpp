@@ -62,7 +62,8 @@ PlanarState advance(const PlanarState& s, const PathSegment& seg, double dt) {
     // Constant speed arc: d(p)/dt = v (cos psi, sin psi), psi = psi0 + w t.
     const double v = s.speed_mps;
     const double psi1 = s.course_rad + w * dt;
-    out.p_m += (v / w) * Eigen::Vector2d(std::sin(psi1) - std::sin(s.course_rad), std::cos(s.course_rad) - std::cos(psi1));
+    out.p_m +=
+        (v / w) * Eigen::Vector2d(std::sin(psi1) - std::sin(s.course_rad), std::cos(s.course_rad) - std::cos(psi1));
     out.course_rad = psi1;
   }
   return out;
@@ -101,8 +102,9 @@ class PathTrajectory : public Trajectory {
     s.speed_mps = spec_.speed_mps;
     const auto& segs = spec_.segments;
     const PathSegment straight_on{std::numeric_limits<double>::infinity(), 0.0, 0.0};
-    if (t <= 0.0) return with_bank_rate(advance(s, segs.front(), t), segs.front().turn_rate_radps, segs.front(),
-                                        next_turn_rate(0), t, segs.front().duration_s);
+    if (t <= 0.0)
+      return with_bank_rate(advance(s, segs.front(), t), segs.front().turn_rate_radps, segs.front(), next_turn_rate(0),
+                            t, segs.front().duration_s);
     double elapsed = 0.0;
     std::size_t i = 0;
     double prev_rate = segs.front().turn_rate_radps;  // the first segment extends backwards unchanged
@@ -135,8 +137,8 @@ class PathTrajectory : public Trajectory {
 
   PlanarState with_bank_rate(PlanarState s, double prev_rate, const PathSegment& seg, double next_rate,
                              double time_in_segment, double duration) const {
-    s.bank_turn_rate_radps = blended_turn_rate(prev_rate, seg.turn_rate_radps, next_rate, time_in_segment, duration,
-                                               spec_.roll_reversal_s);
+    s.bank_turn_rate_radps =
+        blended_turn_rate(prev_rate, seg.turn_rate_radps, next_rate, time_in_segment, duration, spec_.roll_reversal_s);
     return s;
   }
 
@@ -246,7 +248,9 @@ PathSpec preset_spec(const std::string& name) {
 
 }  // namespace
 
-std::unique_ptr<Trajectory> make_path_trajectory(const PathSpec& spec) { return std::make_unique<PathTrajectory>(spec); }
+std::unique_ptr<Trajectory> make_path_trajectory(const PathSpec& spec) {
+  return std::make_unique<PathTrajectory>(spec);
+}
 
 std::unique_ptr<Trajectory> make_preset_trajectory(const std::string& name, const wgs84::Llh& start, double heading_rad,
                                                    double duration_s) {
@@ -258,9 +262,8 @@ std::unique_ptr<Trajectory> make_preset_trajectory(const std::string& name, cons
 }
 
 std::vector<std::string> preset_trajectory_names() {
-  return {"static",     "land-straight", "land-accel", "land-circle",     "land-s",          "air-circle",
-          "air-s",      "air-spiral",    "air-wingrock", "air-circle-x2", "air-s-x2",        "air-spiral-x2",
-          "air-wingrock-x2"};
+  return {"static",     "land-straight", "land-accel",    "land-circle", "land-s",        "air-circle",     "air-s",
+          "air-spiral", "air-wingrock",  "air-circle-x2", "air-s-x2",    "air-spiral-x2", "air-wingrock-x2"};
 }
 
 }  // namespace deepnav

@@ -37,8 +37,8 @@ namespace deepnav {
 
 /// One piece of the horizontal path, in the tangent plane.
 struct PathSegment {
-  double duration_s = 0.0;     ///< infinity for the last, open-ended segment
-  double accel_mps2 = 0.0;     ///< along-track acceleration (straight segments only)
+  double duration_s = 0.0;       ///< infinity for the last, open-ended segment
+  double accel_mps2 = 0.0;       ///< along-track acceleration (straight segments only)
   double turn_rate_radps = 0.0;  ///< course rate, positive turning right (clockwise seen from above)
 };
 
@@ -46,18 +46,18 @@ struct PathSegment {
 struct PathSpec {
   std::string name;
   wgs84::Llh start{};
-  double heading_rad = 0.0;      ///< initial course, clockwise from north
-  double speed_mps = 0.0;        ///< initial horizontal speed
-  double climb_mps = 0.0;        ///< constant rate of climb (up positive)
+  double heading_rad = 0.0;           ///< initial course, clockwise from north
+  double speed_mps = 0.0;             ///< initial horizontal speed
+  double climb_mps = 0.0;             ///< constant rate of climb (up positive)
   std::vector<PathSegment> segments;  ///< repeated cyclically when `repeat`
   bool repeat = false;
-  bool bank_in_turns = false;    ///< aircraft: coordinated-turn roll = atan(v * turn rate / g)
+  bool bank_in_turns = false;  ///< aircraft: coordinated-turn roll = atan(v * turn rate / g)
   /// Aircraft: time over which the bank follows a change of turn rate (quintic blend centred
   /// on the change, e.g. the S-shape's reversals); 0 makes the bank jump with the turn rate.
   double roll_reversal_s = 4.0;
   double wingrock_amplitude_rad = 0.0;
   double wingrock_period_s = 10.0;
-  double duration_s = 0.0;       ///< reported by duration_s() (the path itself is defined beyond it)
+  double duration_s = 0.0;  ///< reported by duration_s() (the path itself is defined beyond it)
 };
 
 /// A trajectory built from a PathSpec.

@@ -1,8 +1,8 @@
 #include "receiver/acquisition/acquisition.hpp"
 
-#include <boost/math/special_functions/gamma.hpp>
 #include <fftw3.h>
 #include <fmt/format.h>
+#include <boost/math/special_functions/gamma.hpp>
 
 #include <algorithm>
 #include <array>
@@ -95,15 +95,15 @@ double acquisition_threshold(int k, double cells, double pfa) {
 
 struct Acquisition::Impl {
   AcquisitionConfig cfg;
-  int n = 0;                 ///< samples per coherent block
-  int nf = 0;                ///< FFT size: n, or the next fast size (the block is stretched to it)
+  int n = 0;   ///< samples per coherent block
+  int nf = 0;  ///< FFT size: n, or the next fast size (the block is stretched to it)
   double samples_per_ms = 0;
   std::vector<double> dopplers;
   FftwBuffer in, out;
   std::optional<FftwPlan> forward, inverse;
   std::vector<std::vector<std::complex<float>>> code_spectra;  ///< conj(FFT(stretched replica)) per PRN (index prn - 1)
-  std::vector<std::vector<float>> replicas;  ///< at the sample rate, for the refinement
-  std::vector<int> stretch_source;           ///< sample of the block each of the nf FFT inputs takes
+  std::vector<std::vector<float>> replicas;                    ///< at the sample rate, for the refinement
+  std::vector<int> stretch_source;                             ///< sample of the block each of the nf FFT inputs takes
 
   explicit Impl(AcquisitionConfig c) : cfg(std::move(c)), in(1), out(1) {
     if (!(cfg.sample_rate_hz >= 1.023e6 && cfg.sample_rate_hz <= kMaxAcquisitionSampleRate_hz))
@@ -112,13 +112,15 @@ struct Acquisition::Impl {
     if (!std::isfinite(cfg.if_hz) || std::abs(cfg.if_hz) >= cfg.sample_rate_hz / 2)
       throw std::invalid_argument(fmt::format("acquisition: IF {} Hz must be below half the sample rate ({} Hz)",
                                               cfg.if_hz, cfg.sample_rate_hz / 2));
-    if (cfg.coherent_ms < 1 || cfg.coherent_ms > 10) throw std::invalid_argument("acquisition: coherent_ms must be 1..10");
+    if (cfg.coherent_ms < 1 || cfg.coherent_ms > 10)
+      throw std::invalid_argument("acquisition: coherent_ms must be 1..10");
     if (cfg.noncoherent < 1 || cfg.noncoherent > kMaxNoncoherent)
-      throw std::invalid_argument(fmt::format("acquisition: noncoherent {} must be 1..{} (the search holds every block)",
-                                              cfg.noncoherent, kMaxNoncoherent));
+      throw std::invalid_argument(
+          fmt::format("acquisition: noncoherent {} must be 1..{} (the search holds every block)", cfg.noncoherent,
+                      kMaxNoncoherent));
     if (!(cfg.doppler_step_hz >= 0.0 && cfg.doppler_step_hz <= 10000.0))
-      throw std::invalid_argument(fmt::format("acquisition: doppler_step {} Hz must be in [0, 10000] Hz (0: automatic)",
-                                              cfg.doppler_step_hz));
+      throw std::invalid_argument(
+          fmt::format("acquisition: doppler_step {} Hz must be in [0, 10000] Hz (0: automatic)", cfg.doppler_step_hz));
     if (!(cfg.pfa > 0.0 && cfg.pfa < 1.0))
       throw std::invalid_argument(fmt::format("acquisition: pfa {} must be in (0, 1)", cfg.pfa));
     if (!(cfg.doppler_max_hz >= 0.0 && cfg.doppler_max_hz <= 50000.0))
@@ -126,7 +128,8 @@ struct Acquisition::Impl {
     if (cfg.prns.empty())
       for (int p = 1; p <= gps::kMaxPrn; ++p) cfg.prns.push_back(p);
     for (int p : cfg.prns)
-      if (p < 1 || p > gps::kMaxPrn) throw std::invalid_argument("acquisition: PRN " + std::to_string(p) + " is not in 1..32");
+      if (p < 1 || p > gps::kMaxPrn)
+        throw std::invalid_argument("acquisition: PRN " + std::to_string(p) + " is not in 1..32");
     const double t_coh = cfg.coherent_ms * 1e-3;
     if (cfg.doppler_step_hz <= 0.0) cfg.doppler_step_hz = 2.0 / (3.0 * t_coh);
     n = static_cast<int>(std::floor(cfg.sample_rate_hz * t_coh));
@@ -140,9 +143,10 @@ struct Acquisition::Impl {
           std::min(n - 1, static_cast<int>(std::lround(static_cast<double>(j) * n / nf)));
     const double half_bins = std::floor(cfg.doppler_max_hz / cfg.doppler_step_hz + 1e-9);
     if (half_bins > 5000.0)
-      throw std::invalid_argument(fmt::format("acquisition: a Doppler step of {} Hz over +-{} Hz is {:g} bins, at most "
-                                              "10001",
-                                              cfg.doppler_step_hz, cfg.doppler_max_hz, 2 * half_bins + 1));
+      throw std::invalid_argument(
+          fmt::format("acquisition: a Doppler step of {} Hz over +-{} Hz is {:g} bins, at most "
+                      "10001",
+                      cfg.doppler_step_hz, cfg.doppler_max_hz, 2 * half_bins + 1));
     const int half = static_cast<int>(half_bins);
     for (int k = -half; k <= half; ++k) dopplers.push_back(k * cfg.doppler_step_hz);
     in = FftwBuffer(static_cast<std::size_t>(nf));  // nf >= n: holds a mixed block too
@@ -202,7 +206,8 @@ struct Acquisition::Impl {
       return;
     }
     mix(x, first, n, block_mean, f_hz, scratch.data());
-    for (int j = 0; j < nf; ++j) in.c()[j] = scratch[static_cast<std::size_t>(stretch_source[static_cast<std::size_t>(j)])];
+    for (int j = 0; j < nf; ++j)
+      in.c()[j] = scratch[static_cast<std::size_t>(stretch_source[static_cast<std::size_t>(j)])];
   }
 
   /// Fine Doppler search at one code phase, at the sample rate. Each block's samples are
@@ -254,7 +259,8 @@ struct Acquisition::Impl {
       const double w = -2.0 * M_PI * (f_hz - coarse_hz_) / fs_;
       double total = 0.0;
       for (int b = 0; b < blocks_; ++b) {
-        const std::complex<double>* z = chunks_.data() + static_cast<std::size_t>(b) * static_cast<std::size_t>(per_block_);
+        const std::complex<double>* z =
+            chunks_.data() + static_cast<std::size_t>(b) * static_cast<std::size_t>(per_block_);
         std::complex<double> acc = 0.0;
         for (int a = 0; a < per_block_; ++a) {
           const int len = std::min(chunk_, n_ - a * chunk_);
@@ -282,10 +288,11 @@ struct Acquisition::Impl {
     for (int p : prns)
       if (std::find(cfg.prns.begin(), cfg.prns.end(), p) == cfg.prns.end())
         throw std::invalid_argument("acquisition: PRN " + std::to_string(p) + " is not one of the configured PRNs");
-    const int blocks = static_cast<int>(std::min<std::int64_t>(cfg.noncoherent, static_cast<std::int64_t>(x.size()) / n));
+    const int blocks =
+        static_cast<int>(std::min<std::int64_t>(cfg.noncoherent, static_cast<std::int64_t>(x.size()) / n));
     if (blocks < 1) {
-      throw std::invalid_argument("acquisition: need at least " + std::to_string(n) + " samples (one coherent block), got " +
-                                  std::to_string(x.size()));
+      throw std::invalid_argument("acquisition: need at least " + std::to_string(n) +
+                                  " samples (one coherent block), got " + std::to_string(x.size()));
     }
     // Per Doppler bin, the mixed input's spectra (one per block) are made once and serve
     // every PRN while they are still in cache; each PRN's grid collects its rows.
@@ -375,8 +382,9 @@ struct Acquisition::Impl {
     const double frac = denom < 0.0 ? std::clamp(0.5 * (ym - yp) / denom, -0.5, 0.5) : 0.0;
     const double delay = (lag + frac) * n / nf;
     r.delay_samples = std::fmod(delay + samples_per_ms, samples_per_ms);
-    r.code_phase_chips = std::fmod(gps::kCodeLength_chips - r.delay_samples * gps::kCodeRate_cps / cfg.sample_rate_hz +
-                                       gps::kCodeLength_chips, static_cast<double>(gps::kCodeLength_chips));
+    r.code_phase_chips = std::fmod(
+        gps::kCodeLength_chips - r.delay_samples * gps::kCodeRate_cps / cfg.sample_rate_hz + gps::kCodeLength_chips,
+        static_cast<double>(gps::kCodeLength_chips));
     if (!r.detected) {
       // Nothing to track: the coarse bin and the grid's peak-to-floor ratio are enough (a
       // stretched block's repeated samples raise that ratio by nf / n, taken out here).
@@ -433,9 +441,10 @@ std::string if_sample_problem(std::span<const Sample> samples, bool real) {
     if (spread == 0.0)
       return fmt::format("every {} sample is {}: not IF samples (a blank file, or the wrong format)", name, mean);
     if (std::abs(mean) > spread)
-      return fmt::format("the {} samples average {:.3g} with a spread of only {:.3g}: a front end's samples are noise "
-                         "around zero, so this is not an IF file of this format (a text file? unsigned samples?)",
-                         name, mean, spread);
+      return fmt::format(
+          "the {} samples average {:.3g} with a spread of only {:.3g}: a front end's samples are noise "
+          "around zero, so this is not an IF file of this format (a text file? unsigned samples?)",
+          name, mean, spread);
   }
   return {};
 }

@@ -36,10 +36,10 @@ inline constexpr double kMaxAcquisitionSampleRate_hz = 2.0e8;
 struct AcquisitionConfig {
   double sample_rate_hz = 4.092e6;
   double if_hz = 0.0;
-  int coherent_ms = 1;          ///< 1..10
-  int noncoherent = 10;         ///< coherent blocks summed (limited by the samples given)
+  int coherent_ms = 1;   ///< 1..10
+  int noncoherent = 10;  ///< coherent blocks summed (limited by the samples given)
   double doppler_max_hz = 5000.0;
-  double doppler_step_hz = 0.0; ///< 0: 2 / (3 T_coh)
+  double doppler_step_hz = 0.0;  ///< 0: 2 / (3 T_coh)
   /// False-alarm probability per PRN search under white noise. Real captures with strong
   /// satellites have heavier floors (their cross-correlation); at 1e-3 the bundled captures
   /// show false detections, at 1e-5 none.
@@ -48,17 +48,17 @@ struct AcquisitionConfig {
   /// from that satellite's cross-correlation (C/A worst case about -21 dB with a Doppler offset,
   /// plus the noise peak's bias on the weak estimate) and is rejected.
   double cross_correlation_margin_db = 18.0;
-  std::vector<int> prns;        ///< empty: all 32
+  std::vector<int> prns;  ///< empty: all 32
 };
 
 struct AcquisitionResult {
   int prn = 0;
   bool detected = false;
-  double doppler_hz = 0.0;      ///< refined
-  double delay_samples = 0.0;   ///< where the code epoch starts after the first sample, in [0, samples per ms)
-  double code_phase_chips = 0.0;///< code phase at the first sample, in [0, 1023)
-  double cn0_dbhz = 0.0;        ///< from the peak-to-noise ratio (coherent SNR / T)
-  double statistic = 0.0;       ///< normalised peak (see above)
+  double doppler_hz = 0.0;        ///< refined
+  double delay_samples = 0.0;     ///< where the code epoch starts after the first sample, in [0, samples per ms)
+  double code_phase_chips = 0.0;  ///< code phase at the first sample, in [0, 1023)
+  double cn0_dbhz = 0.0;          ///< from the peak-to-noise ratio (coherent SNR / T)
+  double statistic = 0.0;         ///< normalised peak (see above)
   double threshold = 0.0;
   bool cross_correlation_suspect = false;  ///< over the threshold but rejected (see the config)
 };

@@ -24,10 +24,8 @@ bool AcquisitionSchedule::searchable(int prn) const {
 }
 
 void AcquisitionSchedule::keep(const SampleBlock& block, bool channel_free) {
-  if (channel_free)
-    window_.append(block.samples.data(), block.samples.size(), block.first_sample_index);
-  else
-    window_.clear();
+  if (channel_free) window_.append(block.samples.data(), block.samples.size(), block.first_sample_index);
+  else window_.clear();
 }
 
 bool AcquisitionSchedule::reacquisition_due(double t_s, bool channel_free) {

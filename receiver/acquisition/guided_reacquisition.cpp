@@ -8,10 +8,14 @@ namespace deepnav {
 
 const char* to_string(GuidedSearchRecord::Outcome outcome) {
   switch (outcome) {
-    case GuidedSearchRecord::Outcome::not_found: return "not found";
-    case GuidedSearchRecord::Outcome::cross_correlation: return "cross-correlation";
-    case GuidedSearchRecord::Outcome::confirmed: return "confirmed";
-    case GuidedSearchRecord::Outcome::dropped: return "dropped";
+    case GuidedSearchRecord::Outcome::not_found:
+      return "not found";
+    case GuidedSearchRecord::Outcome::cross_correlation:
+      return "cross-correlation";
+    case GuidedSearchRecord::Outcome::confirmed:
+      return "confirmed";
+    case GuidedSearchRecord::Outcome::dropped:
+      return "dropped";
   }
   return "?";
 }
@@ -59,9 +63,10 @@ void GuidedReacquisition::schedule(const BlockSnapshot& snapshot, int free_chann
       continue;
     }
     searches_.push_back({GuidedSearch(cfg_.search, p, fs_, if_hz_), c->ephemeris, t});
-    spdlog::debug("t = {:.2f} s: PRN {:2d}: guided search at elevation {:.1f} deg ({} cells, {:.2f} chips / {:.1f} Hz "
-                  "1-sigma)", t, p.prn, p.elevation_deg, searches_.back().search.cells(), p.code_sigma_chips,
-                  p.doppler_sigma_hz);
+    spdlog::debug(
+        "t = {:.2f} s: PRN {:2d}: guided search at elevation {:.1f} deg ({} cells, {:.2f} chips / {:.1f} Hz "
+        "1-sigma)",
+        t, p.prn, p.elevation_deg, searches_.back().search.cells(), p.code_sigma_chips, p.doppler_sigma_hz);
   }
 }
 
@@ -91,8 +96,8 @@ std::optional<GuidedChannelStart> GuidedReacquisition::conclude(const GuidedSear
                                                                 const std::vector<TrackedSignal>& tracked) {
   const double t = static_cast<double>(end) / fs_;
   const SignalPrediction& p = ended.search.prediction();
-  GuidedSearchRecord rec{p.prn, ended.started_s, t, p.elevation_deg, GuidedSearchRecord::Outcome::not_found,
-                         ended.search.detection()};
+  GuidedSearchRecord rec{
+      p.prn, ended.started_s, t, p.elevation_deg, GuidedSearchRecord::Outcome::not_found, ended.search.detection()};
   if (!rec.detection) {
     retry_later(rec, "not found");
     return std::nullopt;
@@ -112,9 +117,10 @@ std::optional<GuidedChannelStart> GuidedReacquisition::conclude(const GuidedSear
     }
   }
   const GuidedDetection& d = *rec.detection;
-  spdlog::info("t = {:.2f} s: PRN {:2d}: found by the filter-guided search ({:+.2f} chips, {:+.1f} Hz from the "
-               "prediction, {:.1f} dB-Hz after {:.1f} s)", t, p.prn, d.code_offset_chips, d.doppler_offset_hz,
-               d.cn0_dbhz, d.dwell_s);
+  spdlog::info(
+      "t = {:.2f} s: PRN {:2d}: found by the filter-guided search ({:+.2f} chips, {:+.1f} Hz from the "
+      "prediction, {:.1f} dB-Hz after {:.1f} s)",
+      t, p.prn, d.code_offset_chips, d.doppler_offset_hz, d.cn0_dbhz, d.dwell_s);
   unconfirmed_[p.prn] = Unconfirmed{rec, t, t + cfg_.confirm_within_s};
   return GuidedChannelStart{start, ended.ephemeris};
 }
@@ -135,7 +141,8 @@ bool GuidedReacquisition::settle(int prn, bool locked_by_filter, bool lost, doub
   }
   u.record.ended_s = t_s;
   spdlog::info("t = {:.2f} s: PRN {:2d}: guided channel {} ({:.1f} s after the search found it)", t_s, prn,
-               locked_by_filter ? "locked by the filter" : "not locked by the filter: dropped", t_s - u.channel_start_s);
+               locked_by_filter ? "locked by the filter" : "not locked by the filter: dropped",
+               t_s - u.channel_start_s);
   records_.push_back(u.record);
   unconfirmed_.erase(it);
   return drop;

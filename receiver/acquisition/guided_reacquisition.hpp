@@ -27,12 +27,12 @@ namespace deepnav {
 struct GuidedReacquisitionConfig {
   bool enabled = true;
   GuidedSearchConfig search;
-  double interval_s = 1.0;          ///< how often the filter is asked for predictions
-  double retry_after_s = 4.0;       ///< a satellite not found, or dropped, is searched again after this
+  double interval_s = 1.0;     ///< how often the filter is asked for predictions
+  double retry_after_s = 4.0;  ///< a satellite not found, or dropped, is searched again after this
   /// A guided channel that the filter's lock criterion (SignalLockReport) has not confirmed
   /// within this is dropped: the detection was noise or another satellite's code.
   double confirm_within_s = 8.0;
-  int max_searches = 3;             ///< at once (each costs about as much as 2-3 tracking channels)
+  int max_searches = 3;  ///< at once (each costs about as much as 2-3 tracking channels)
   /// A detection this far (dB) below a tracked satellite whose Doppler lies within two
   /// Doppler steps of it, modulo the code's 1 kHz lines, may be that satellite's
   /// cross-correlation and is rejected (the FFT acquisition's rule, for one candidate).
@@ -43,8 +43,8 @@ struct GuidedReacquisitionConfig {
 struct GuidedSearchRecord {
   enum class Outcome { not_found, cross_correlation, confirmed, dropped };
   int prn = 0;
-  double started_s = 0.0;   ///< sample time the search began
-  double ended_s = 0.0;     ///< when its outcome was known (for a found signal: confirmed or dropped)
+  double started_s = 0.0;  ///< sample time the search began
+  double ended_s = 0.0;    ///< when its outcome was known (for a found signal: confirmed or dropped)
   double elevation_deg = 0.0;
   Outcome outcome = Outcome::not_found;
   std::optional<GuidedDetection> detection;
@@ -80,8 +80,7 @@ class GuidedReacquisition {
   /// each narrow prediction for the block's end, highest first, while searches and
   /// `free_channels` (channels not in use) allow.
   void schedule(const BlockSnapshot& snapshot, int free_channels,
-                const std::function<std::vector<UntrackedSatellite>(const GpsTime&)>& untracked,
-                ChannelAiding& aiding);
+                const std::function<std::vector<UntrackedSatellite>(const GpsTime&)>& untracked, ChannelAiding& aiding);
   /// The searches under way take the next block; those it ended are handed back, in the
   /// order they began, for conclude().
   std::vector<GuidedSearchTask> advance(const SampleBlock& block);
@@ -124,8 +123,8 @@ class GuidedReacquisition {
   GuidedReacquisitionConfig cfg_;
   double fs_, if_hz_;
   std::vector<GuidedSearchTask> searches_;
-  std::map<int, Unconfirmed> unconfirmed_;   ///< by PRN
-  std::map<int, double> retry_at_s_;         ///< per PRN: not searched again before this time
+  std::map<int, Unconfirmed> unconfirmed_;  ///< by PRN
+  std::map<int, double> retry_at_s_;        ///< per PRN: not searched again before this time
   double last_asked_s_ = -std::numeric_limits<double>::infinity();
   std::vector<GuidedSearchRecord> records_;
 };

@@ -64,7 +64,8 @@ bool cross_correlation_suspect(double found_doppler_hz, double found_cn0_dbhz, d
 }
 
 bool GuidedSearch::is_narrow(const GuidedSearchConfig& c, const SignalPrediction& p) {
-  return code_half_width(c, p) <= c.max_code_half_width_chips && doppler_half_width(c, p) <= c.max_doppler_half_width_hz;
+  return code_half_width(c, p) <= c.max_code_half_width_chips &&
+         doppler_half_width(c, p) <= c.max_doppler_half_width_hz;
 }
 
 GuidedSearch::GuidedSearch(const GuidedSearchConfig& config, const SignalPrediction& prediction, double sample_rate_hz,
@@ -79,11 +80,12 @@ GuidedSearch::GuidedSearch(const GuidedSearchConfig& config, const SignalPredict
   if (!(fs_ > 0.0)) throw std::invalid_argument("guided search: sample rate must be positive");
   if (!(cfg_.doppler_step_hz > 0.0 && cfg_.check_every_s >= kBit_s && cfg_.max_dwell_s >= cfg_.check_every_s &&
         cfg_.pfa > 0.0 && cfg_.pfa < 1.0))
-    throw std::invalid_argument("guided search: Doppler step, check interval, dwell or false-alarm probability out of range");
+    throw std::invalid_argument(
+        "guided search: Doppler step, check interval, dwell or false-alarm probability out of range");
   if (!is_narrow(cfg_, prediction_))
-    throw std::invalid_argument(fmt::format(
-        "guided search: PRN {} predicted to {:.1f} chips and {:.1f} Hz (1 sigma): not a narrow window", prediction_.prn,
-        prediction_.code_sigma_chips, prediction_.doppler_sigma_hz));
+    throw std::invalid_argument(
+        fmt::format("guided search: PRN {} predicted to {:.1f} chips and {:.1f} Hz (1 sigma): not a narrow window",
+                    prediction_.prn, prediction_.code_sigma_chips, prediction_.doppler_sigma_hz));
   // Calls cover [k * 1.25 - 0.5, k * 1.25 + 0.5] chips for k in [-K, K].
   const int k = static_cast<int>(std::ceil((code_half_width(cfg_, prediction_) - 0.5) / kCallSpacing_chips));
   calls_ = 2 * std::max(k, 0) + 1;
@@ -111,13 +113,14 @@ double GuidedSearch::cell_offset_chips(int c) const {
 std::int64_t GuidedSearch::bit_edge_sample(std::int64_t m) const {
   // Bit edges are the transmit times that are whole multiples of 20 ms; the signal's time
   // advances at 1 + Doppler / L1 seconds per second of samples.
-  const double to_edge_s = (m * kBit_s - bit_phase_s_ + (bit_phase_s_ > 0.0 ? kBit_s : 0.0)) /
-                           (1.0 + prediction_.doppler_hz / gps::kL1_Hz);
+  const double to_edge_s =
+      (m * kBit_s - bit_phase_s_ + (bit_phase_s_ > 0.0 ? kBit_s : 0.0)) / (1.0 + prediction_.doppler_hz / gps::kL1_Hz);
   return prediction_.sample + static_cast<std::int64_t>(std::ceil(to_edge_s * fs_ - 1e-6));
 }
 
 std::int64_t GuidedSearch::first_bit_from(std::int64_t sample) const {
-  std::int64_t m = std::max<std::int64_t>(0, static_cast<std::int64_t>((sample - prediction_.sample) / (kBit_s * fs_)) - 1);
+  std::int64_t m =
+      std::max<std::int64_t>(0, static_cast<std::int64_t>((sample - prediction_.sample) / (kBit_s * fs_)) - 1);
   while (bit_edge_sample(m) < sample) ++m;
   return m;
 }
@@ -131,7 +134,8 @@ double GuidedSearch::code_chips_at(double offset_chips, double doppler_offset_hz
   const double dt = static_cast<double>(sample - prediction_.sample) / fs_;
   const double start_chips = std::fmod(prediction_.transmit_sow, 1e-3) * gps::kCodeRate_cps;
   // The code follows the carrier's Doppler (its rate included).
-  const double doppler_cycles = (prediction_.doppler_hz + doppler_offset_hz) * dt + 0.5 * prediction_.doppler_rate_hzps * dt * dt;
+  const double doppler_cycles =
+      (prediction_.doppler_hz + doppler_offset_hz) * dt + 0.5 * prediction_.doppler_rate_hzps * dt * dt;
   return start_chips + offset_chips + gps::kCodeRate_cps * dt + doppler_cycles * gps::kCodeRate_cps / gps::kL1_Hz;
 }
 
@@ -191,7 +195,8 @@ void GuidedSearch::correlate_span(const SampleBlock& block, std::int64_t first, 
       span.magnitude_bits = block.magnitude_bits;
       const CorrelatorSums s = correlate(input, n, span, *code_, *noise_code_);
       // Taps in order of code offset: very-late (-0.5), late, prompt, early, very-early (+0.5).
-      std::complex<double>* cell = &piece_[(bin * static_cast<std::size_t>(calls_) + static_cast<std::size_t>(call)) * kTaps];
+      std::complex<double>* cell =
+          &piece_[(bin * static_cast<std::size_t>(calls_) + static_cast<std::size_t>(call)) * kTaps];
       cell[0] += s.very_late;
       cell[1] += s.late;
       cell[2] += s.prompt;
@@ -270,7 +275,8 @@ GuidedStart GuidedSearch::start_at(std::int64_t sample, int channel) const {
   s.channel.code_phase_chips = chips - periods * gps::kCodeLength_chips;
   // Code period 0 of the channel starts `periods` periods after the one the prediction's
   // sample lies in, whose transmit time is the predicted one less its code phase.
-  const double period0_ms = std::round((prediction_.transmit_sow - std::fmod(prediction_.transmit_sow, 1e-3)) * 1e3) + periods;
+  const double period0_ms =
+      std::round((prediction_.transmit_sow - std::fmod(prediction_.transmit_sow, 1e-3)) * 1e3) + periods;
   double sow = period0_ms * 1e-3;
   if (sow >= kSecondsPerWeek) sow -= kSecondsPerWeek;
   s.period0_transmit_sow = sow;

@@ -42,15 +42,15 @@ struct SignalPrediction {
 };
 
 struct GuidedSearchConfig {
-  double sigmas = 4.0;                    ///< half-widths of the window: this many predicted sigmas ...
-  double min_code_half_width_chips = 1.0; ///< ... and at least these
+  double sigmas = 4.0;                     ///< half-widths of the window: this many predicted sigmas ...
+  double min_code_half_width_chips = 1.0;  ///< ... and at least these
   double min_doppler_half_width_hz = 20.0;
-  double max_code_half_width_chips = 8.0; ///< a wider prediction is not narrow: no guided search
+  double max_code_half_width_chips = 8.0;  ///< a wider prediction is not narrow: no guided search
   double max_doppler_half_width_hz = 200.0;
   double doppler_step_hz = 20.0;
-  double check_every_s = 1.0;             ///< test the cells this often ...
-  double max_dwell_s = 4.0;               ///< ... up to this long, then give up
-  double pfa = 1e-4;                      ///< false-alarm probability of a whole search (all cells, all checks)
+  double check_every_s = 1.0;  ///< test the cells this often ...
+  double max_dwell_s = 4.0;    ///< ... up to this long, then give up
+  double pfa = 1e-4;           ///< false-alarm probability of a whole search (all cells, all checks)
 };
 
 /// A signal found: where, against the prediction.
@@ -58,16 +58,16 @@ struct GuidedDetection {
   int prn = 0;
   double code_offset_chips = 0.0;  ///< signal minus prediction (positive: the signal is ahead)
   double doppler_offset_hz = 0.0;
-  double cn0_dbhz = 0.0;           ///< from the cell's power against the noise
-  double statistic = 0.0;          ///< the cell's normalised power sum
+  double cn0_dbhz = 0.0;   ///< from the cell's power against the noise
+  double statistic = 0.0;  ///< the cell's normalised power sum
   double threshold = 0.0;
-  double dwell_s = 0.0;            ///< signal integrated before the detection
+  double dwell_s = 0.0;  ///< signal integrated before the detection
 };
 
 /// Where to start tracking a signal found by a guided search, at a given sample.
 struct GuidedStart {
-  ChannelStart channel;                  ///< code phase, Doppler and the data-bit edge (from the transmit time)
-  double period0_transmit_sow = 0.0;     ///< transmit time at the start of the channel's code period 0 (whole ms)
+  ChannelStart channel;               ///< code phase, Doppler and the data-bit edge (from the transmit time)
+  double period0_transmit_sow = 0.0;  ///< transmit time at the start of the channel's code period 0 (whole ms)
 };
 
 /// Whether a detection at `found_doppler_hz` and `found_cn0_dbhz` may be the
@@ -120,7 +120,7 @@ class GuidedSearch {
   double fs_, if_hz_;
   const CaCodeChips* code_;
   const CaCodeChips* noise_code_;
-  int calls_ = 0;                          ///< correlate() calls per bin (code window / 1.25 chips)
+  int calls_ = 0;                           ///< correlate() calls per bin (code window / 1.25 chips)
   std::vector<double> doppler_offsets_hz_;  ///< of each bin
   static constexpr int kTaps = 5;
   static constexpr double kTapSpacing_chips = 0.25;
@@ -130,11 +130,11 @@ class GuidedSearch {
   double noise_power_sum_ = 0.0;
   long noise_terms_ = 0;
   std::vector<std::complex<double>> piece_noise_;  ///< noise taps of the piece in progress, [bin][call]
-  std::int64_t bit_ = 0;            ///< the bit (piece) in progress, counted from the prediction's sample
-  std::int64_t piece_first_ = 0;    ///< its first sample
-  std::int64_t piece_end_ = 0;      ///< one past its last sample
-  bool piece_started_ = false;      ///< samples of it were correlated
-  double bit_phase_s_ = 0.0;        ///< transmit time of the prediction past its last bit edge
+  std::int64_t bit_ = 0;          ///< the bit (piece) in progress, counted from the prediction's sample
+  std::int64_t piece_first_ = 0;  ///< its first sample
+  std::int64_t piece_end_ = 0;    ///< one past its last sample
+  bool piece_started_ = false;    ///< samples of it were correlated
+  double bit_phase_s_ = 0.0;      ///< transmit time of the prediction past its last bit edge
   std::int64_t next_sample_;
   int pieces_ = 0;
   int checks_made_ = 0;

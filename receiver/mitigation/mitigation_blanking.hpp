@@ -38,8 +38,8 @@ class PulseBlanker final : public MitigationStage {
   double noise_power_ = -1.0;
   std::vector<std::complex<float>> delay_line_;  ///< the last guard_ inputs, circular
   std::size_t delay_pos_ = 0;
-  std::int64_t position_ = 0;                    ///< inputs seen since the last reset
-  std::int64_t zero_until_ = -1;                 ///< outputs up to this input position are zeroed
+  std::int64_t position_ = 0;     ///< inputs seen since the last reset
+  std::int64_t zero_until_ = -1;  ///< outputs up to this input position are zeroed
   std::int64_t seen_ = 0, blanked_ = 0;
 };
 

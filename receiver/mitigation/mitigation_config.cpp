@@ -54,8 +54,8 @@ void validate_mitigation(const MitigationConfig& c, double sample_rate_hz) {
           "blanking_threshold_db", c.blanking_threshold_db, "3..60 dB");
   require(c.blanking_guard_samples >= 0 && c.blanking_guard_samples <= 4096, "blanking_guard_samples",
           c.blanking_guard_samples, "0..4096");
-  require(std::isfinite(c.blanking_noise_time_constant_s) && c.blanking_noise_time_constant_s * sample_rate_hz >= 16.0 &&
-              c.blanking_noise_time_constant_s <= 10.0,
+  require(std::isfinite(c.blanking_noise_time_constant_s) &&
+              c.blanking_noise_time_constant_s * sample_rate_hz >= 16.0 && c.blanking_noise_time_constant_s <= 10.0,
           "blanking_noise_time_constant_s", c.blanking_noise_time_constant_s, "at least 16 samples and at most 10 s");
   require(std::isfinite(c.notch_pole_radius) && c.notch_pole_radius > 0.0 && c.notch_pole_radius < 1.0,
           "notch_pole_radius", c.notch_pole_radius, "in (0, 1)");

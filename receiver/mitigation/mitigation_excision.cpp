@@ -35,12 +35,11 @@ FrequencyExcision::FrequencyExcision(const MitigationConfig& config, double samp
   fft_size_ = static_cast<std::size_t>(config.excision_fft_size);
   hop_ = fft_size_ / 2;
   // Median of an exponential variable is ln 2 times its mean.
-  threshold_over_median_ =
-      static_cast<float>(std::pow(10.0, config.excision_threshold_db / 10.0) / std::numbers::ln2);
+  threshold_over_median_ = static_cast<float>(std::pow(10.0, config.excision_threshold_db / 10.0) / std::numbers::ln2);
   window_.resize(fft_size_);
   for (std::size_t n = 0; n < fft_size_; ++n)  // periodic Hann: shifted copies by N/2 sum to exactly 1
-    window_[n] = static_cast<float>(0.5 - 0.5 * std::cos(2.0 * std::numbers::pi * static_cast<double>(n) /
-                                                           static_cast<double>(fft_size_)));
+    window_[n] = static_cast<float>(
+        0.5 - 0.5 * std::cos(2.0 * std::numbers::pi * static_cast<double>(n) / static_cast<double>(fft_size_)));
   power_.resize(fft_size_);
   fft_ = std::make_unique<Fft>(fft_size_);
   reset();

@@ -38,10 +38,10 @@ class FrequencyExcision final : public MitigationStage {
   std::size_t fft_size_, hop_;
   float threshold_over_median_;
   std::vector<float> window_;
-  std::vector<std::complex<float>> history_;   ///< the last fft_size_ inputs
-  std::size_t new_inputs_ = 0;                 ///< inputs since the last frame
-  std::vector<std::complex<float>> overlap_;   ///< overlap-add accumulator, fft_size_
-  std::vector<std::complex<float>> ready_;     ///< finished outputs not yet handed out
+  std::vector<std::complex<float>> history_;  ///< the last fft_size_ inputs
+  std::size_t new_inputs_ = 0;                ///< inputs since the last frame
+  std::vector<std::complex<float>> overlap_;  ///< overlap-add accumulator, fft_size_
+  std::vector<std::complex<float>> ready_;    ///< finished outputs not yet handed out
   std::size_t ready_pos_ = 0;
   std::vector<float> power_;
   std::int64_t bins_examined_ = 0, bins_excised_ = 0;

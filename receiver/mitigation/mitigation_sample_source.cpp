@@ -149,7 +149,8 @@ void MitigationSampleSource::pull() {
   }
   next_input_index_ = first + static_cast<std::int64_t>(got);
   work_.resize(got);
-  for (std::size_t k = 0; k < got; ++k) work_[k] = {static_cast<float>(raw_[k].real()), static_cast<float>(raw_[k].imag())};
+  for (std::size_t k = 0; k < got; ++k)
+    work_[k] = {static_cast<float>(raw_[k].real()), static_cast<float>(raw_[k].imag())};
   filter_into_queue(got);
 }
 

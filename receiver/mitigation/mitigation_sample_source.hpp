@@ -74,14 +74,14 @@ class MitigationSampleSource final : public SampleSource {
   std::vector<std::unique_ptr<MitigationStage>> stages_;
   std::deque<Segment> queue_;
   std::vector<Sample> raw_, piece_;
-  std::vector<Sample> held_;           ///< a piece read past a gap while gathering samples for the gain
+  std::vector<Sample> held_;  ///< a piece read past a gap while gathering samples for the gain
   std::int64_t held_first_ = 0;
   bool has_held_ = false, inner_eof_ = false;
   std::vector<std::complex<float>> work_;
-  std::int64_t next_index_ = 0;        ///< one past the last sample delivered
-  std::int64_t next_input_index_ = -1; ///< the wrapped source's next contiguous index; -1 before the first
-  std::int64_t next_output_index_ = 0; ///< index of the next sample the filters hand out
-  std::size_t to_drop_ = 0;            ///< filter outputs that precede the current stream start
+  std::int64_t next_index_ = 0;         ///< one past the last sample delivered
+  std::int64_t next_input_index_ = -1;  ///< the wrapped source's next contiguous index; -1 before the first
+  std::int64_t next_output_index_ = 0;  ///< index of the next sample the filters hand out
+  std::size_t to_drop_ = 0;             ///< filter outputs that precede the current stream start
   float gain_ = 1.0f;
   bool normalize_ = false;
   double level_power_ = 0.0, window_power_ = 0.0;  ///< filtered output power (before the gain)

@@ -77,8 +77,7 @@ void FrameSequencer::deliver_ready() {
 
 void FrameSequencer::declare_lost_until(std::uint64_t sequence) {
   if (sequence <= next_) return;
-  if (pending_lost_ && pending_lost_->second + 1 == next_)
-    pending_lost_->second = sequence - 1;
+  if (pending_lost_ && pending_lost_->second + 1 == next_) pending_lost_->second = sequence - 1;
   else {
     report_pending_lost();
     pending_lost_ = {next_, sequence - 1};

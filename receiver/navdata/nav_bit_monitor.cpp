@@ -14,11 +14,11 @@ NavBitMonitor::NavBitMonitor(Config config) : config_(config) {
   if (!(config_.alarm_threshold > 0.0) || !(config_.wrong_disagreement > config_.max_error_rate) ||
       !(config_.wrong_disagreement <= 0.5) || !(config_.min_error_rate > 0.0) ||
       !(config_.max_error_rate >= config_.min_error_rate) || config_.word_confirmations < 1) {
-    throw std::invalid_argument(fmt::format(
-        "navigation-bit monitor: expected alarm_threshold > 0, 0 < min_error_rate <= max_error_rate < "
-        "wrong_disagreement <= 0.5 and word_confirmations >= 1 (got {}, {}, {}, {}, {})",
-        config_.alarm_threshold, config_.min_error_rate, config_.max_error_rate, config_.wrong_disagreement,
-        config_.word_confirmations));
+    throw std::invalid_argument(
+        fmt::format("navigation-bit monitor: expected alarm_threshold > 0, 0 < min_error_rate <= max_error_rate < "
+                    "wrong_disagreement <= 0.5 and word_confirmations >= 1 (got {}, {}, {}, {}, {})",
+                    config_.alarm_threshold, config_.min_error_rate, config_.max_error_rate, config_.wrong_disagreement,
+                    config_.word_confirmations));
   }
 }
 
@@ -70,7 +70,8 @@ NavBitMonitor::Check NavBitMonitor::observe(NavBitPredictor& predictor, std::int
   }
 
   const std::int64_t b = ((bit % lnav::kBitsPerWeek) + lnav::kBitsPerWeek) % lnav::kBitsPerWeek;
-  if (b % lnav::kBitsPerWord == lnav::kBitsPerWord - 1) check.word_learned = try_learn_word(predictor, b, bit_error_rate);
+  if (b % lnav::kBitsPerWord == lnav::kBitsPerWord - 1)
+    check.word_learned = try_learn_word(predictor, b, bit_error_rate);
   return check;
 }
 
@@ -88,8 +89,7 @@ bool NavBitMonitor::try_learn_word(NavBitPredictor& predictor, std::int64_t b, d
   const auto data = lnav::check_word(word30, d29, d30);
   if (!data) return false;
   if (word != 1) {  // a HOW is checked against the TOW count due there instead
-    const int segment = word == 0 ? NavBitPredictor::kHeaderSegment
-                                  : NavBitPredictor::segment_of_bit(b);
+    const int segment = word == 0 ? NavBitPredictor::kHeaderSegment : NavBitPredictor::segment_of_bit(b);
     Candidate& c = candidates_[static_cast<std::size_t>(segment)][static_cast<std::size_t>(word)];
     if (c.count > 0 && c.data == *data) {
       ++c.count;

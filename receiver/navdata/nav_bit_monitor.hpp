@@ -39,15 +39,15 @@ namespace deepnav {
 class NavBitMonitor {
  public:
   struct Config {
-    double alarm_threshold = 12.0;         ///< CUSUM threshold h (nats)
-    double wrong_disagreement = 0.5;       ///< q: disagreement rate of a wrong prediction
+    double alarm_threshold = 12.0;    ///< CUSUM threshold h (nats)
+    double wrong_disagreement = 0.5;  ///< q: disagreement rate of a wrong prediction
     /// Parity-checked copies that must agree before a word is learned where the bit error
     /// rate exceeds single_copy_error_rate; at or below it one copy is enough. A word with 4 or
     /// more bit errors passes parity about once in 64: at p = 1e-2 a copy is wrong with
     /// probability 5e-6, at p = 0.1 with 6e-3.
     int word_confirmations = 2;
     double single_copy_error_rate = 1e-2;
-    double min_error_rate = 1e-4;          ///< p is clamped into [min, max]
+    double min_error_rate = 1e-4;  ///< p is clamped into [min, max]
     double max_error_rate = 0.4;
   };
 

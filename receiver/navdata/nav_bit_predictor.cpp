@@ -13,13 +13,17 @@ namespace {
 constexpr int kHeaderWords = 2;
 constexpr int kPreambleBits = 8;
 
-std::int64_t bit_of_week(std::int64_t bit) { return ((bit % lnav::kBitsPerWeek) + lnav::kBitsPerWeek) % lnav::kBitsPerWeek; }
+std::int64_t bit_of_week(std::int64_t bit) {
+  return ((bit % lnav::kBitsPerWeek) + lnav::kBitsPerWeek) % lnav::kBitsPerWeek;
+}
 
 std::int64_t subframe_in_week(std::int64_t subframe) {
   return ((subframe % lnav::kTowCountsPerWeek) + lnav::kTowCountsPerWeek) % lnav::kTowCountsPerWeek;
 }
 
-int segment_of_subframe(std::int64_t k) { return NavBitPredictor::body_segment(lnav::subframe_id_at(k), lnav::page_at(k)); }
+int segment_of_subframe(std::int64_t k) {
+  return NavBitPredictor::body_segment(lnav::subframe_id_at(k), lnav::page_at(k));
+}
 
 std::uint8_t chain_bits(bool d29, bool d30) { return static_cast<std::uint8_t>((d29 ? 2u : 0u) | (d30 ? 1u : 0u)); }
 
@@ -63,7 +67,8 @@ void NavBitPredictor::learn(const lnav::DecodedSubframe& sf) {
 
   const int segment = body_segment(th.subframe_id, sf.page);
   Body fresh;
-  for (int i = 0; i < 8; ++i) fresh.data[static_cast<std::size_t>(i)] = sf.data[static_cast<std::size_t>(i + kHeaderWords)] & lnav::kDataMask;
+  for (int i = 0; i < 8; ++i)
+    fresh.data[static_cast<std::size_t>(i)] = sf.data[static_cast<std::size_t>(i + kHeaderWords)] & lnav::kDataMask;
   set_chain(fresh, lnav::encode_words(sf.data));
   fresh.known = 0xFF;
   fresh.source = Source::broadcast;
@@ -71,7 +76,8 @@ void NavBitPredictor::learn(const lnav::DecodedSubframe& sf) {
   if (is_ephemeris_segment(segment)) {
     bool differs = false;
     for (int i = 0; i < 8; ++i) {
-      differs = differs || ((body.known >> i & 1u) && body.data[static_cast<std::size_t>(i)] != fresh.data[static_cast<std::size_t>(i)]);
+      differs = differs || ((body.known >> i & 1u) &&
+                            body.data[static_cast<std::size_t>(i)] != fresh.data[static_cast<std::size_t>(i)]);
     }
     if (differs) {
       if (body.source == Source::broadcast) ++uploads_;
@@ -115,7 +121,8 @@ bool NavBitPredictor::learn_word(std::int64_t subframe_of_week, int word, std::u
   } else {
     Body& body = bodies_[static_cast<std::size_t>(segment_of_subframe(k))];
     body.data[static_cast<std::size_t>(word - kHeaderWords)] = data24;
-    body.chain[static_cast<std::size_t>(word - kHeaderWords)] = word == kHeaderWords ? 0 : chain_bits(prev_d29, prev_d30);
+    body.chain[static_cast<std::size_t>(word - kHeaderWords)] =
+        word == kHeaderWords ? 0 : chain_bits(prev_d29, prev_d30);
     body.known = static_cast<std::uint8_t>(body.known | (1u << (word - kHeaderWords)));
     body.source = Source::broadcast;
   }
@@ -132,7 +139,8 @@ void NavBitPredictor::assist(const Ephemeris& eph, const std::optional<lnav::Tlm
     const lnav::Subframe words = lnav::encode_subframe(id, content, 1, 1);
     const auto decoded = lnav::decode_subframe(words);
     if (!decoded) throw std::logic_error("LNAV: an encoded subframe failed its own parity");
-    for (int i = 0; i < 8; ++i) body.data[static_cast<std::size_t>(i)] = decoded->data[static_cast<std::size_t>(i + kHeaderWords)];
+    for (int i = 0; i < 8; ++i)
+      body.data[static_cast<std::size_t>(i)] = decoded->data[static_cast<std::size_t>(i + kHeaderWords)];
     set_chain(body, words);
     body.known = 0xFF;
     body.source = Source::assisted;
@@ -154,7 +162,8 @@ void NavBitPredictor::assist(const Ephemeris& eph, const std::optional<lnav::Tlm
 }
 
 void NavBitPredictor::forget(int segment) {
-  if (segment < 0 || segment >= kSegments) throw std::invalid_argument(fmt::format("LNAV segment {} is not in 0..53", segment));
+  if (segment < 0 || segment >= kSegments)
+    throw std::invalid_argument(fmt::format("LNAV segment {} is not in 0..53", segment));
   if (segment == kHeaderSegment) {
     tlm_known_ = how_known_ = false;
   } else {
@@ -228,7 +237,8 @@ int NavBitPredictor::sign(std::int64_t bit) const {
 }
 
 void NavBitPredictor::signs(std::int64_t first_bit, std::span<std::int8_t> out) const {
-  for (std::size_t i = 0; i < out.size(); ++i) out[i] = static_cast<std::int8_t>(sign(first_bit + static_cast<std::int64_t>(i)));
+  for (std::size_t i = 0; i < out.size(); ++i)
+    out[i] = static_cast<std::int8_t>(sign(first_bit + static_cast<std::int64_t>(i)));
 }
 
 bool NavBitPredictor::word_data_known(std::int64_t subframe_of_week, int word) const {

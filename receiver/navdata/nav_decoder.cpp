@@ -80,8 +80,9 @@ void NavDecoder::try_decode() {
         anchor_ = Anchor{bit_start_period_.front(), decoded->tlm_how.tow_count};
         if (decoded->tlm_how.subframe_id == 1)
           // A TOW count of 0 (the next subframe starts the week): this one began 6 s before.
-          week_number_ = WeekNumber{decoded->eph.week & 0x3FF,
-                                    decoded->tlm_how.tow_count == 0 ? 604794.0 : (decoded->tlm_how.tow_count - 1) * 6.0};
+          week_number_ =
+              WeekNumber{decoded->eph.week & 0x3FF,
+                         decoded->tlm_how.tow_count == 0 ? 604794.0 : (decoded->tlm_how.tow_count - 1) * 6.0};
         polarity_ = normal ? 1 : -1;
         assembler_.add(*decoded);
         last_decoded_ = *decoded;
@@ -136,8 +137,8 @@ std::optional<double> transmit_time_sow(const NavDecoder& nav, const TrackingCha
 std::optional<double> NavDecoder::transmit_time_sow(std::int64_t period, double code_phase_chips) const {
   if (!anchor_) return std::nullopt;
   const double subframe_start_sow = (anchor_->tow_count - 1) * 6.0;
-  double t = subframe_start_sow + static_cast<double>(period - anchor_->period) * 1e-3 +
-             code_phase_chips / gps::kCodeRate_cps;
+  double t =
+      subframe_start_sow + static_cast<double>(period - anchor_->period) * 1e-3 + code_phase_chips / gps::kCodeRate_cps;
   if (t < 0.0) t += 604800.0;
   return t;
 }

@@ -53,7 +53,7 @@ class CarrierSmoother {
              std::optional<double> doppler_hz, bool loss_of_lock, double clock_jump_m);
 
   int restarts() const { return restarts_; }
-  int slips() const { return slips_; }          ///< restarts for a code-carried disagreement
+  int slips() const { return slips_; }  ///< restarts for a code-carried disagreement
   int doppler_steps() const { return doppler_steps_; }
 
  private:

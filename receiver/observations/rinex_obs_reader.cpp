@@ -29,7 +29,8 @@ int parse_int(std::string_view field, const char* what, int lo, int hi) {
   if (!v) throw std::invalid_argument(fmt::format("{} is blank", what));
   const double r = std::round(*v);
   if (std::abs(*v - r) > 1e-9 || r < lo || r > hi)
-    throw std::invalid_argument(fmt::format("{} must be a whole number in [{}, {}], got '{}'", what, lo, hi, trim(field)));
+    throw std::invalid_argument(
+        fmt::format("{} must be a whole number in [{}, {}], got '{}'", what, lo, hi, trim(field)));
   return static_cast<int>(r);
 }
 
@@ -116,8 +117,7 @@ Header read_header(LineReader& reader) {
   if (!v2 && !v3)
     reader.fail(fmt::format("unsupported RINEX version {:.2f} (supported: 2.10, 2.11, 3.00 to 3.05)", h.version));
   const char type = line.size() > 20 ? line[20] : ' ';
-  if (type != 'O')
-    reader.fail(fmt::format("not an observation file: file type '{}' in column 21, expected 'O'", type));
+  if (type != 'O') reader.fail(fmt::format("not an observation file: file type '{}' in column 21, expected 'O'", type));
   h.file_system = system_letter(line.size() > 40 ? line[40] : ' ');
 
   char continuing = 0;  // the system whose type list goes on on the next line (RINEX 3)
@@ -139,8 +139,10 @@ Header read_header(LineReader& reader) {
       for (int k = 0; k < 13 && remaining > 0; ++k, --remaining) {
         const std::string code(trim(column(line, 7 + 4 * static_cast<std::size_t>(k), 3)));
         if (code.size() != 3)
-          reader.fail(fmt::format("SYS / # / OBS TYPES of '{}': type {} (columns {}-{}) is '{}', expected a 3-character "
-                                  "code such as C1C", sys, k + 1, 8 + 4 * k, 10 + 4 * k, code));
+          reader.fail(
+              fmt::format("SYS / # / OBS TYPES of '{}': type {} (columns {}-{}) is '{}', expected a 3-character "
+                          "code such as C1C",
+                          sys, k + 1, 8 + 4 * k, 10 + 4 * k, code));
         if (sys == 'G') h.gps.all.push_back(code);
       }
       continuing = remaining > 0 ? sys : 0;
@@ -155,8 +157,10 @@ Header read_header(LineReader& reader) {
       for (int k = 0; k < 9 && remaining > 0; ++k, --remaining) {
         const std::string code(trim(column(line, 6 + 6 * static_cast<std::size_t>(k), 6)));
         if (code.size() != 2)
-          reader.fail(fmt::format("# / TYPES OF OBSERV: type {} (columns {}-{}) is '{}', expected a 2-character code "
-                                  "such as C1", k + 1, 11 + 6 * k, 12 + 6 * k, code));
+          reader.fail(
+              fmt::format("# / TYPES OF OBSERV: type {} (columns {}-{}) is '{}', expected a 2-character code "
+                          "such as C1",
+                          k + 1, 11 + 6 * k, 12 + 6 * k, code));
         h.gps.all.push_back(code);
       }
     } else if (lab == "INTERVAL") {
@@ -165,9 +169,9 @@ Header read_header(LineReader& reader) {
     } else if (lab == "APPROX POSITION XYZ") {
       Eigen::Vector3d r;
       for (int i = 0; i < 3; ++i) {
-        const auto v = with_context(reader, fmt::format("APPROX POSITION XYZ, {} (columns {}-{})", "XYZ"[i], 1 + 14 * i,
-                                                        14 + 14 * i),
-                                    [&] { return parse_number(column(line, 14 * static_cast<std::size_t>(i), 14)); });
+        const auto v = with_context(
+            reader, fmt::format("APPROX POSITION XYZ, {} (columns {}-{})", "XYZ"[i], 1 + 14 * i, 14 + 14 * i),
+            [&] { return parse_number(column(line, 14 * static_cast<std::size_t>(i), 14)); });
         r(i) = v.value_or(0.0);
       }
       if (r.norm() > 1e6) h.approx_position = r;
@@ -176,11 +180,11 @@ Header read_header(LineReader& reader) {
   if (remaining > 0) reader.fail(fmt::format("the header ends with {} observation types still announced", remaining));
   locate_l1(h.gps, v2);
   if (h.gps.all.empty())
-    reader.fail(fmt::format("no GPS observation types in the header ({}): nothing to read", v2 ? "# / TYPES OF OBSERV"
-                                                                                             : "SYS / # / OBS TYPES"));
+    reader.fail(fmt::format("no GPS observation types in the header ({}): nothing to read",
+                            v2 ? "# / TYPES OF OBSERV" : "SYS / # / OBS TYPES"));
   if (h.gps.pseudorange < 0)
-    reader.fail(fmt::format("the GPS observation types have no L1 C/A pseudorange ({}); they are: {}", v2 ? "C1" : "C1C",
-                            fmt::join(h.gps.all, " ")));
+    reader.fail(fmt::format("the GPS observation types have no L1 C/A pseudorange ({}); they are: {}",
+                            v2 ? "C1" : "C1C", fmt::join(h.gps.all, " ")));
   return h;
 }
 
@@ -195,7 +199,8 @@ Field parse_field(const LineReader& reader, std::string_view line, std::size_t s
   f.value = with_context(reader, what, [&] { return parse_number(column(line, start, 14)); });
   const std::string_view lli = column(line, start + 14, 1);
   if (!lli.empty() && lli[0] != ' ') {
-    if (lli[0] < '0' || lli[0] > '9') reader.fail(fmt::format("{}: loss-of-lock indicator '{}' is not a digit", what, lli));
+    if (lli[0] < '0' || lli[0] > '9')
+      reader.fail(fmt::format("{}: loss-of-lock indicator '{}' is not a digit", what, lli));
     f.lli = lli[0] - '0';
   }
   return f;
@@ -210,16 +215,22 @@ struct Parser {
   GpsTime epoch_time(std::string_view line, bool rinex2) {
     CalendarTime c;
     if (rinex2) {
-      const int yy = with_context(reader, "epoch year (columns 2-3)", [&] { return parse_int(column(line, 1, 2), "year", 0, 99); });
+      const int yy = with_context(reader, "epoch year (columns 2-3)",
+                                  [&] { return parse_int(column(line, 1, 2), "year", 0, 99); });
       c.year = yy < 80 ? 2000 + yy : 1900 + yy;
     } else {
-      c.year = with_context(reader, "epoch year (columns 3-6)", [&] { return parse_int(column(line, 2, 4), "year", 1980, 2200); });
+      c.year = with_context(reader, "epoch year (columns 3-6)",
+                            [&] { return parse_int(column(line, 2, 4), "year", 1980, 2200); });
     }
     const std::size_t o = rinex2 ? 4 : 7;  // month's column (0-based)
-    c.month = with_context(reader, fmt::format("epoch month (columns {}-{})", o + 1, o + 2), [&] { return parse_int(column(line, o, 2), "month", 1, 12); });
-    c.day = with_context(reader, fmt::format("epoch day (columns {}-{})", o + 4, o + 5), [&] { return parse_int(column(line, o + 3, 2), "day", 1, 31); });
-    c.hour = with_context(reader, fmt::format("epoch hour (columns {}-{})", o + 7, o + 8), [&] { return parse_int(column(line, o + 6, 2), "hour", 0, 23); });
-    c.minute = with_context(reader, fmt::format("epoch minute (columns {}-{})", o + 10, o + 11), [&] { return parse_int(column(line, o + 9, 2), "minute", 0, 59); });
+    c.month = with_context(reader, fmt::format("epoch month (columns {}-{})", o + 1, o + 2),
+                           [&] { return parse_int(column(line, o, 2), "month", 1, 12); });
+    c.day = with_context(reader, fmt::format("epoch day (columns {}-{})", o + 4, o + 5),
+                         [&] { return parse_int(column(line, o + 3, 2), "day", 1, 31); });
+    c.hour = with_context(reader, fmt::format("epoch hour (columns {}-{})", o + 7, o + 8),
+                          [&] { return parse_int(column(line, o + 6, 2), "hour", 0, 23); });
+    c.minute = with_context(reader, fmt::format("epoch minute (columns {}-{})", o + 10, o + 11),
+                            [&] { return parse_int(column(line, o + 9, 2), "minute", 0, 59); });
     c.second = with_context(reader, fmt::format("epoch second (columns {}-{})", o + 12, o + 22), [&] {
       const auto s = parse_number(column(line, o + 11, 11));
       if (!s || *s < 0.0 || *s >= 61.0) throw std::invalid_argument("expected seconds in [0, 61)");
@@ -236,13 +247,15 @@ struct Parser {
       if (keep) ++out.report.skipped_satellite_records[std::string(1, sys)];
       return;
     }
-    const int prn = with_context(reader, fmt::format("satellite '{}' number", sat), [&] { return parse_int(sat.substr(1), "PRN", 1, 32); });
+    const int prn = with_context(reader, fmt::format("satellite '{}' number", sat),
+                                 [&] { return parse_int(sat.substr(1), "PRN", 1, 32); });
     GpsL1Observation o;
     o.prn = prn;
     bool lost = false;
     for (std::size_t k = 0; k < h.gps.all.size(); ++k) {
-      const std::string what = fmt::format("G{:02d} {} (line {} columns {}-{})", prn, h.gps.all[k], line_no,
-                                           (v2 ? 1 + 16 * (k % 5) : 4 + 16 * k), (v2 ? 14 + 16 * (k % 5) : 17 + 16 * k));
+      const std::string what =
+          fmt::format("G{:02d} {} (line {} columns {}-{})", prn, h.gps.all[k], line_no,
+                      (v2 ? 1 + 16 * (k % 5) : 4 + 16 * k), (v2 ? 14 + 16 * (k % 5) : 17 + 16 * k));
       const Field f = parse_field(reader, text, 16 * k, what);
       const int i = static_cast<int>(k);
       if (i == h.gps.pseudorange) o.pseudorange_m = f.value;
@@ -274,23 +287,25 @@ struct Parser {
   void read_records(int count, const std::vector<std::string>& v2_ids, ObservationEpoch& epoch, bool keep) {
     for (int s = 0; s < count; ++s) {
       if (!v2) {
-        const std::string line = reader.require(fmt::format("satellite record {} of {} of the epoch at line {}", s + 1, count, epoch.line));
+        const std::string line =
+            reader.require(fmt::format("satellite record {} of {} of the epoch at line {}", s + 1, count, epoch.line));
         if (line.size() < 3 || line[0] == '>')
-          reader.fail(fmt::format("satellite record {} of {} of the epoch at line {} expected, got '{}' (truncated epoch?)",
-                                  s + 1, count, epoch.line, line.substr(0, 20)));
+          reader.fail(
+              fmt::format("satellite record {} of {} of the epoch at line {} expected, got '{}' (truncated epoch?)",
+                          s + 1, count, epoch.line, line.substr(0, 20)));
         const std::string text = line.size() > 3 ? line.substr(3) : std::string();
         const int n = h.type_counts.count(system_letter(line[0])) ? h.type_counts[system_letter(line[0])] : 0;
         if (system_letter(line[0]) == 'G' || n > 0)
           take_satellite(std::string_view(line).substr(0, 3), text, reader.line_no(), epoch, keep);
-        else if (keep)
-          ++out.report.skipped_satellite_records[std::string(1, line[0])];
+        else if (keep) ++out.report.skipped_satellite_records[std::string(1, line[0])];
       } else {
         const std::size_t lines = (h.gps.all.size() + 4) / 5;
         std::string text;
         int first_line = 0;
         for (std::size_t l = 0; l < lines; ++l) {
-          std::string line = reader.require(fmt::format("observations of satellite '{}' (record {} of {} of the epoch at line {})",
-                                                        v2_ids[static_cast<std::size_t>(s)], s + 1, count, epoch.line));
+          std::string line =
+              reader.require(fmt::format("observations of satellite '{}' (record {} of {} of the epoch at line {})",
+                                         v2_ids[static_cast<std::size_t>(s)], s + 1, count, epoch.line));
           if (l == 0) first_line = reader.line_no();
           line.resize(80, ' ');
           text += line;
@@ -324,20 +339,23 @@ struct Parser {
       const std::size_t flag_col = v2 ? 28 : 31;
       const int flag = with_context(reader, fmt::format("epoch flag (column {})", flag_col + 1),
                                     [&] { return parse_int(column(line, flag_col, 1), "epoch flag", 0, 6); });
-      const int count = with_context(reader, fmt::format("number of satellites (columns {}-{})", flag_col + 2, flag_col + 4),
-                                     [&] { return parse_int(column(line, flag_col + 1, 3), "number of satellites", 0, 999); });
+      const int count =
+          with_context(reader, fmt::format("number of satellites (columns {}-{})", flag_col + 2, flag_col + 4),
+                       [&] { return parse_int(column(line, flag_col + 1, 3), "number of satellites", 0, 999); });
       if (flag >= 2 && flag <= 5) {  // special records: header lines, events
         ++out.report.event_epochs;
-        for (int k = 0; k < count; ++k) reader.require(fmt::format("special record {} of {} after the event flag {} at line {}",
-                                                                   k + 1, count, flag, reader.line_no() - k));
+        for (int k = 0; k < count; ++k)
+          reader.require(fmt::format("special record {} of {} after the event flag {} at line {}", k + 1, count, flag,
+                                     reader.line_no() - k));
         continue;
       }
       ObservationEpoch epoch;
       epoch.line = reader.line_no();
       epoch.flag = flag;
       epoch.t = epoch_time(line, v2);
-      const auto clock = with_context(reader, v2 ? "receiver clock offset (columns 69-80)" : "receiver clock offset (columns 42-56)",
-                                      [&] { return parse_number(v2 ? column(line, 68, 12) : column(line, 41, 15)); });
+      const auto clock =
+          with_context(reader, v2 ? "receiver clock offset (columns 69-80)" : "receiver clock offset (columns 42-56)",
+                       [&] { return parse_number(v2 ? column(line, 68, 12) : column(line, 41, 15)); });
       epoch.receiver_clock_offset_s = clock;
       const std::vector<std::string> ids = v2 ? v2_satellites(line, count) : std::vector<std::string>{};
       if (flag == 6) {  // cycle slip records: in the observation format, not observations
@@ -350,8 +368,8 @@ struct Parser {
         const double dt = epoch.t.seconds_since(out.epochs.back().t);
         if (dt <= 0.0)
           reader.fail(epoch.line, fmt::format("epoch time {} goes {} the epoch at line {} (epochs must increase)",
-                                              fmt::format("{} {:.7f}", epoch.t.week, epoch.t.sow), dt == 0.0 ? "no further than" : "back before",
-                                              out.epochs.back().line));
+                                              fmt::format("{} {:.7f}", epoch.t.week, epoch.t.sow),
+                                              dt == 0.0 ? "no further than" : "back before", out.epochs.back().line));
       }
       out.report.power_failure_epochs += flag == 1;
       out.epochs.push_back(std::move(epoch));
@@ -395,10 +413,12 @@ void find_clock_jumps(ObservationFile& f) {
     const double dt = b.t.seconds_since(a.t);
     std::vector<double> steps;
     for (const GpsL1Observation& ob : b.gps) {
-      const auto it = std::find_if(a.gps.begin(), a.gps.end(), [&](const GpsL1Observation& o) { return o.prn == ob.prn; });
+      const auto it =
+          std::find_if(a.gps.begin(), a.gps.end(), [&](const GpsL1Observation& o) { return o.prn == ob.prn; });
       if (it == a.gps.end() || !it->pseudorange_m || !ob.pseudorange_m) continue;
       double predicted = 0.0;
-      if (it->doppler_hz && ob.doppler_hz) predicted = -gps::kL1Wavelength_m * 0.5 * (*it->doppler_hz + *ob.doppler_hz) * dt;
+      if (it->doppler_hz && ob.doppler_hz)
+        predicted = -gps::kL1Wavelength_m * 0.5 * (*it->doppler_hz + *ob.doppler_hz) * dt;
       steps.push_back(*ob.pseudorange_m - *it->pseudorange_m - predicted);
     }
     if (steps.empty()) continue;

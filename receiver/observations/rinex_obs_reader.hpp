@@ -38,24 +38,24 @@ struct GpsL1Observation {
   std::optional<double> carrier_phase_cycles;  ///< RINEX sign: grows with range
   std::optional<double> doppler_hz;            ///< positive when the satellite approaches
   std::optional<double> cn0_dbhz;
-  bool loss_of_lock = false;                   ///< LLI bit 0, or the epoch followed a power failure
+  bool loss_of_lock = false;  ///< LLI bit 0, or the epoch followed a power failure
 };
 
 struct ObservationEpoch {
-  GpsTime t;                                   ///< receiver time tag, as recorded
-  int line = 0;                                ///< line of the epoch record in the file
-  int flag = 0;                                ///< 0 OK, 1 power failure before this epoch
+  GpsTime t;     ///< receiver time tag, as recorded
+  int line = 0;  ///< line of the epoch record in the file
+  int flag = 0;  ///< 0 OK, 1 power failure before this epoch
   std::optional<double> receiver_clock_offset_s;
-  std::vector<GpsL1Observation> gps;           ///< satellites with any L1 C/A observable
+  std::vector<GpsL1Observation> gps;  ///< satellites with any L1 C/A observable
   /// The receiver clock was re-set since the previous epoch: every pseudorange moved by
   /// this much more than the Dopplers say (m; 0 when it was not). clock_jump_m / c is the
   /// step of the clock bias.
   double clock_jump_m = 0.0;
-  bool after_gap = false;                      ///< more than 1.5 nominal intervals since the previous epoch
+  bool after_gap = false;  ///< more than 1.5 nominal intervals since the previous epoch
 };
 
 struct ObservationGap {
-  int line = 0;                                ///< line of the first epoch after the gap
+  int line = 0;  ///< line of the first epoch after the gap
   GpsTime before, after;
   double seconds = 0.0;
 };
@@ -64,22 +64,22 @@ struct ClockJump {
   int line = 0;
   GpsTime t;
   double jump_m = 0.0;
-  double jump_ms = 0.0;                        ///< jump_m / (c x 1 ms), whole for a millisecond reset
+  double jump_ms = 0.0;  ///< jump_m / (c x 1 ms), whole for a millisecond reset
 };
 
 struct ObservationReport {
   double version = 0.0;
-  int epochs = 0;                              ///< epochs with observations (flags 0 and 1)
-  double nominal_interval_s = 0.0;             ///< INTERVAL, else the median epoch spacing
+  int epochs = 0;                   ///< epochs with observations (flags 0 and 1)
+  double nominal_interval_s = 0.0;  ///< INTERVAL, else the median epoch spacing
   std::optional<Eigen::Vector3d> approx_position_ecef_m;
   std::map<std::string, int> skipped_satellite_records;  ///< by system ("E", "R", "S", "C", "J", "I")
   std::map<std::string, int> skipped_gps_values;         ///< GPS observables of other signals, by type
-  int gps_satellite_records = 0;               ///< GPS satellite records with an L1 C/A observable
+  int gps_satellite_records = 0;                         ///< GPS satellite records with an L1 C/A observable
   int missing_pseudorange = 0, missing_doppler = 0, missing_phase = 0, missing_cn0 = 0;
   int loss_of_lock = 0;
-  int power_failure_epochs = 0;                ///< flag 1
-  int event_epochs = 0;                        ///< flags 2-5 (their records skipped)
-  int cycle_slip_epochs = 0;                   ///< flag 6 (their records skipped)
+  int power_failure_epochs = 0;  ///< flag 1
+  int event_epochs = 0;          ///< flags 2-5 (their records skipped)
+  int cycle_slip_epochs = 0;     ///< flag 6 (their records skipped)
   std::vector<ObservationGap> gaps;
   std::vector<ClockJump> clock_jumps;
 };

@@ -39,12 +39,13 @@ std::vector<SolutionPoint> read_rtklib_pos(const std::string& path) {
     std::vector<std::string> f;
     for (std::string s; ss >> s;) f.push_back(s);
     if (f.size() < 5)
-      throw std::runtime_error(fmt::format("{}:{}: expected time, latitude, longitude, height, Q; found {} fields", path, line, f.size()));
+      throw std::runtime_error(
+          fmt::format("{}:{}: expected time, latitude, longitude, height, Q; found {} fields", path, line, f.size()));
     SolutionPoint p;
     if (f[0].find('/') != std::string::npos) {
       CalendarTime c;
-      if (std::sscanf(f[0].c_str(), "%d/%d/%d", &c.year, &c.month, &c.day) != 3 || c.month < 1 || c.month > 12 || c.day < 1 ||
-          c.day > 31)
+      if (std::sscanf(f[0].c_str(), "%d/%d/%d", &c.year, &c.month, &c.day) != 3 || c.month < 1 || c.month > 12 ||
+          c.day < 1 || c.day > 31)
         throw std::runtime_error(fmt::format("{}:{}: date '{}' is not yyyy/mm/dd", path, line, f[0]));
       if (std::sscanf(f[1].c_str(), "%d:%d:%lf", &c.hour, &c.minute, &c.second) != 3 || c.hour < 0 || c.hour > 23 ||
           c.minute < 0 || c.minute > 59 || c.second < 0 || c.second >= 61)
@@ -57,8 +58,10 @@ std::vector<SolutionPoint> read_rtklib_pos(const std::string& path) {
     const double lat = number(path, line, f[2], "latitude");
     const double lon = number(path, line, f[3], "longitude");
     if (std::abs(lat) > 90.0 || std::abs(lon) > 360.0)
-      throw std::runtime_error(fmt::format("{}:{}: latitude/longitude {} {} out of range (is the file in ECEF? write "
-                                           "latitude/longitude/height)", path, line, f[2], f[3]));
+      throw std::runtime_error(
+          fmt::format("{}:{}: latitude/longitude {} {} out of range (is the file in ECEF? write "
+                      "latitude/longitude/height)",
+                      path, line, f[2], f[3]));
     p.llh = {lat * kDegToRad, lon * kDegToRad, number(path, line, f[4], "height")};
     if (f.size() > 5) p.quality = static_cast<int>(number(path, line, f[5], "Q"));
     if (f.size() > 6) p.satellites = static_cast<int>(number(path, line, f[6], "ns"));
@@ -68,14 +71,16 @@ std::vector<SolutionPoint> read_rtklib_pos(const std::string& path) {
   return out;
 }
 
-ReferenceErrors reference_errors(const std::vector<SolutionPoint>& solution, const std::vector<SolutionPoint>& reference) {
+ReferenceErrors reference_errors(const std::vector<SolutionPoint>& solution,
+                                 const std::vector<SolutionPoint>& reference) {
   ReferenceErrors r;
   if (reference.empty()) return r;
   const wgs84::Llh origin = reference.front().llh;
   std::vector<Eigen::Vector3d> errors;
   for (const SolutionPoint& s : solution) {
-    const auto it = std::lower_bound(reference.begin(), reference.end(), s.t,
-                                     [](const SolutionPoint& p, const GpsTime& t) { return p.t.seconds_since(t) < -kMatch_s; });
+    const auto it =
+        std::lower_bound(reference.begin(), reference.end(), s.t,
+                         [](const SolutionPoint& p, const GpsTime& t) { return p.t.seconds_since(t) < -kMatch_s; });
     if (it == reference.end() || std::abs(it->t.seconds_since(s.t)) > kMatch_s) continue;
     const Eigen::Vector3d d_ned = ecef_to_ned_vector(origin, wgs84::llh_to_ecef(s.llh) - wgs84::llh_to_ecef(it->llh));
     errors.emplace_back(d_ned.y(), d_ned.x(), -d_ned.z());
@@ -111,17 +116,18 @@ ReferenceErrors reference_errors(const std::vector<SolutionPoint>& solution, con
 
 nlohmann::json ReferenceErrors::json() const {
   const auto round = [](double v) { return std::round(v * 1000.0) / 1000.0; };
-  return {{"epochs", epochs},
-          {"mean_offset_enu_m", {round(mean_offset_enu_m.x()), round(mean_offset_enu_m.y()), round(mean_offset_enu_m.z())}},
-          {"rms_horizontal_m", round(rms_horizontal_m)},
-          {"rms_vertical_m", round(rms_vertical_m)},
-          {"rms_3d_m", round(rms_3d_m)},
-          {"about_mean_offset",
-           {{"rms_horizontal_m", round(scatter_rms_horizontal_m)},
-            {"rms_vertical_m", round(scatter_rms_vertical_m)},
-            {"p95_horizontal_m", round(scatter_p95_horizontal_m)},
-            {"max_horizontal_m", round(scatter_max_horizontal_m)},
-            {"max_3d_m", round(scatter_max_3d_m)}}}};
+  return {
+      {"epochs", epochs},
+      {"mean_offset_enu_m", {round(mean_offset_enu_m.x()), round(mean_offset_enu_m.y()), round(mean_offset_enu_m.z())}},
+      {"rms_horizontal_m", round(rms_horizontal_m)},
+      {"rms_vertical_m", round(rms_vertical_m)},
+      {"rms_3d_m", round(rms_3d_m)},
+      {"about_mean_offset",
+       {{"rms_horizontal_m", round(scatter_rms_horizontal_m)},
+        {"rms_vertical_m", round(scatter_rms_vertical_m)},
+        {"p95_horizontal_m", round(scatter_p95_horizontal_m)},
+        {"max_horizontal_m", round(scatter_max_horizontal_m)},
+        {"max_3d_m", round(scatter_max_3d_m)}}}};
 }
 
 }  // namespace deepnav

@@ -23,24 +23,25 @@ namespace deepnav {
 struct SolutionPoint {
   GpsTime t;
   wgs84::Llh llh{};
-  int quality = 0;     ///< RTKLIB Q: 1 fix, 2 float, 5 single (0: not given)
+  int quality = 0;  ///< RTKLIB Q: 1 fix, 2 float, 5 single (0: not given)
   int satellites = 0;
 };
 
 std::vector<SolutionPoint> read_rtklib_pos(const std::string& path);
 
 struct ReferenceErrors {
-  int epochs = 0;                                 ///< solution epochs matched to the reference
+  int epochs = 0;  ///< solution epochs matched to the reference
   Eigen::Vector3d mean_offset_enu_m = Eigen::Vector3d::Zero();
   double rms_horizontal_m = 0, rms_vertical_m = 0, rms_3d_m = 0;
   /// About the mean offset.
   double scatter_rms_horizontal_m = 0, scatter_rms_vertical_m = 0, scatter_p95_horizontal_m = 0;
   double scatter_max_horizontal_m = 0, scatter_max_3d_m = 0;
-  std::vector<GpsTime> matched;                   ///< the epochs compared
+  std::vector<GpsTime> matched;  ///< the epochs compared
   nlohmann::json json() const;
 };
 
 /// Errors of `solution` against `reference` (time-matched within 10 ms).
-ReferenceErrors reference_errors(const std::vector<SolutionPoint>& solution, const std::vector<SolutionPoint>& reference);
+ReferenceErrors reference_errors(const std::vector<SolutionPoint>& solution,
+                                 const std::vector<SolutionPoint>& reference);
 
 }  // namespace deepnav

@@ -35,7 +35,8 @@ void PvtCsvSink::on_epoch(const NavigationEpoch& e) {
     excluded += std::to_string(prn);
   }
   file_.write(fmt::format(
-      "{:.3f},{},{:.6f},1,{:.4f},{:.4f},{:.4f},{:.9f},{:.9f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{},{:.2f},{:.2f},{:.2f},"
+      "{:.3f},{},{:.6f},1,{:.4f},{:.4f},{:.4f},{:.9f},{:.9f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{},{:.2f},{:.2f}"
+      ",{:.2f},"
       "{:.2f},{},{},{}\n",
       e.receiver.t_s, p.t.week, p.t.sow, p.r_ecef_m.x(), p.r_ecef_m.y(), p.r_ecef_m.z(), p.llh.lat_rad * kRadToDeg,
       p.llh.lon_rad * kRadToDeg, p.llh.height_m, v_ned.x(), v_ned.y(), v_ned.z(), p.clock_bias_m, p.clock_drift_mps,
@@ -49,10 +50,10 @@ TrackingCsvSink::TrackingCsvSink(const std::string& path) : FileSink(path) {
 }
 
 void TrackingCsvSink::on_correlation(const CorrelatorEpoch& e, const ChannelSnapshot& ch) {
-  file_.write(fmt::format("{},{},{},{:.3f},{:.1f},{:.1f},{:.1f},{:.1f},{:.1f},{:.1f},{:.3f},{:.4f},{:.1f}\n", e.first_sample,
-                          e.prn, static_cast<int>(ch.state), e.integration_s, e.prompt.real(), e.prompt.imag(),
-                          e.early.real(), e.early.imag(), e.late.real(), e.late.imag(), e.carrier_doppler_hz,
-                          e.code_rate_cps, ch.cn0_dbhz));
+  file_.write(fmt::format("{},{},{},{:.3f},{:.1f},{:.1f},{:.1f},{:.1f},{:.1f},{:.1f},{:.3f},{:.4f},{:.1f}\n",
+                          e.first_sample, e.prn, static_cast<int>(ch.state), e.integration_s, e.prompt.real(),
+                          e.prompt.imag(), e.early.real(), e.early.imag(), e.late.real(), e.late.imag(),
+                          e.carrier_doppler_hz, e.code_rate_cps, ch.cn0_dbhz));
 }
 
 void NmeaSink::on_epoch(const NavigationEpoch& e) {
@@ -79,7 +80,9 @@ void TrackSink::finish(const NavData&) {
   gpx_.commit();
 }
 
-RinexObsSink::RinexObsSink(const std::string& path, double interval_s) : file_(path) { header_.interval_s = interval_s; }
+RinexObsSink::RinexObsSink(const std::string& path, double interval_s) : file_(path) {
+  header_.interval_s = interval_s;
+}
 
 void RinexObsSink::write_header(const Eigen::Vector3d& approx_position_ecef_m) {
   header_.approx_position_ecef_m = approx_position_ecef_m;

@@ -37,7 +37,8 @@ std::string nmea_checksum(const std::string& body) {
 std::string nmea_sentences(const PvtSolution& fix, const std::map<int, double>& cn0_dbhz, int leap_seconds,
                            bool dead_reckoning) {
   const CalendarTime utc = calendar_from_gps_time(fix.t.plus_seconds(-leap_seconds));
-  const std::string hms = fmt::format("{:02d}{:02d}{:05.2f}", utc.hour, utc.minute, std::floor(utc.second * 100.0) / 100.0);
+  const std::string hms =
+      fmt::format("{:02d}{:02d}{:05.2f}", utc.hour, utc.minute, std::floor(utc.second * 100.0) / 100.0);
   const double lat = fix.llh.lat_rad * kRadToDeg, lon = fix.llh.lon_rad * kRadToDeg;
   const std::string pos = angle(lat, 2, 'N', 'S') + "," + angle(lon, 3, 'E', 'W');
   std::string out;
@@ -52,7 +53,10 @@ std::string nmea_sentences(const PvtSolution& fix, const std::map<int, double>& 
                               utc.day, utc.month, utc.year % 100, dead_reckoning ? 'E' : 'A'));
   std::string prns;
   for (int i = 0; i < 12; ++i)
-    prns += (i < static_cast<int>(fix.used_prns.size()) ? fmt::format("{:02d}", fix.used_prns[static_cast<std::size_t>(i)]) : "") + ",";
+    prns +=
+        (i < static_cast<int>(fix.used_prns.size()) ? fmt::format("{:02d}", fix.used_prns[static_cast<std::size_t>(i)])
+                                                    : "") +
+        ",";
   out += sentence(fmt::format("GPGSA,A,3,{}{:.1f},{:.1f},{:.1f}", prns, fix.dops.pdop, fix.dops.hdop, fix.dops.vdop));
   // GSV: four satellites per sentence.
   const int n = static_cast<int>(fix.used_prns.size());

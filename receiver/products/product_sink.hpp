@@ -19,14 +19,14 @@ struct NavigationEpoch {
   const ReceiverEpoch& receiver;  ///< observables and the receiver's own PVT
   /// The solution the run reports: the aided filter's where it has one, else the PVT's.
   const PvtSolution& solution;
-  bool from_filter = false;       ///< `solution` is the aided filter's
-  std::string_view mode;          ///< navigation mode at this epoch ("scalar", "loose", ...)
+  bool from_filter = false;  ///< `solution` is the aided filter's
+  std::string_view mode;     ///< navigation mode at this epoch ("scalar", "loose", ...)
   /// Satellites the solution's last update took (the PVT's in scalar mode).
   int filter_satellites = 0;
   /// Satellites whose measurements the solution used: the PVT's in scalar and loose mode,
   /// observables in tight mode, discriminator measurements in ultra-tight mode.
   int gnss_measurements = 0;
-  int leap_seconds = 18;          ///< GPS - UTC (broadcast once decoded)
+  int leap_seconds = 18;  ///< GPS - UTC (broadcast once decoded)
 };
 
 class ProductSink {

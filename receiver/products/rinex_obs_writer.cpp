@@ -26,7 +26,8 @@ std::string lli_marked(std::string field, bool lost_lock) {
 
 std::string rinex3_observation_header(const RinexObsHeader& h, const std::optional<GpsTime>& first_observation) {
   std::string out;
-  out += header_line(fmt::format("{:9.2f}{:11}{:<20}{:<20}", 3.04, "", "OBSERVATION DATA", "G (GPS)"), "RINEX VERSION / TYPE");
+  out += header_line(fmt::format("{:9.2f}{:11}{:<20}{:<20}", 3.04, "", "OBSERVATION DATA", "G (GPS)"),
+                     "RINEX VERSION / TYPE");
   out += header_line(fmt::format("{:<20}{:<20}{:<20}", h.program, "", ""), "PGM / RUN BY / DATE");
   out += header_line(h.marker, "MARKER NAME");
   out += header_line("", "OBSERVER / AGENCY");
@@ -40,8 +41,9 @@ std::string rinex3_observation_header(const RinexObsHeader& h, const std::option
   out += header_line(fmt::format("{:10.3f}", h.interval_s), "INTERVAL");
   if (first_observation) {
     const CalendarTime c = calendar_from_gps_time(*first_observation);
-    out += header_line(fmt::format("{:6d}{:6d}{:6d}{:6d}{:6d}{:13.7f}     GPS", c.year, c.month, c.day, c.hour, c.minute, c.second),
-                       "TIME OF FIRST OBS");
+    out += header_line(
+        fmt::format("{:6d}{:6d}{:6d}{:6d}{:6d}{:13.7f}     GPS", c.year, c.month, c.day, c.hour, c.minute, c.second),
+        "TIME OF FIRST OBS");
   }
   out += header_line("", "END OF HEADER");
   return out;
@@ -50,8 +52,8 @@ std::string rinex3_observation_header(const RinexObsHeader& h, const std::option
 std::string rinex3_observation_epoch(const ReceiverEpoch& e) {
   if (!e.t_rx || e.observations.empty()) return "";
   const CalendarTime c = calendar_from_gps_time(*e.t_rx);
-  std::string out = fmt::format("> {:04d} {:02d} {:02d} {:02d} {:02d}{:11.7f}  0{:3d}\n", c.year, c.month, c.day, c.hour,
-                                c.minute, c.second, e.observations.size());
+  std::string out = fmt::format("> {:04d} {:02d} {:02d} {:02d} {:02d}{:11.7f}  0{:3d}\n", c.year, c.month, c.day,
+                                c.hour, c.minute, c.second, e.observations.size());
   for (const auto& o : e.observations) {
     // RINEX phase grows with range: the negative of the accumulated Doppler.
     out += fmt::format("G{:02d}{}{}{}{}\n", o.prn, obs_field(o.pseudorange_m, true),

@@ -31,8 +31,8 @@ template <typename Model, std::size_t N>
 Model parse(const ModelName<Model> (&table)[N], const std::string& name, const char* what) {
   for (const auto& m : table)
     if (name == m.name) return m.model;
-  throw std::invalid_argument(fmt::format("unknown {} model '{}': expected one of {}", what, name,
-                                          fmt::join(names_of(table), ", ")));
+  throw std::invalid_argument(
+      fmt::format("unknown {} model '{}': expected one of {}", what, name, fmt::join(names_of(table), ", ")));
 }
 
 template <typename Model, std::size_t N>

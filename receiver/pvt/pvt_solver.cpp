@@ -43,10 +43,14 @@ std::string prn_list(const std::vector<int>& prns) {
 
 std::string to_string(RaimStatus status) {
   switch (status) {
-    case RaimStatus::unavailable: return "unavailable";
-    case RaimStatus::passed: return "passed";
-    case RaimStatus::excluded: return "excluded";
-    case RaimStatus::failed: return "failed";
+    case RaimStatus::unavailable:
+      return "unavailable";
+    case RaimStatus::passed:
+      return "passed";
+    case RaimStatus::excluded:
+      return "excluded";
+    case RaimStatus::failed:
+      return "failed";
   }
   return "?";
 }
@@ -76,13 +80,14 @@ PvtSolution PvtSolver::solve(const GpsTime& t_rx, const std::vector<PseudorangeO
     if (!exclusions_left || n - 1 < 5) {
       sol.raim = RaimStatus::failed;
       sol.valid = false;
-      const std::string why =
-          !exclusions_left ? fmt::format("{} exclusion(s) allowed{}", cfg_.raim_max_exclusions,
-                                         excluded.empty() ? "" : ", excluded PRN " + prn_list(excluded))
-                           : std::string("too few satellites to exclude one and test again");
-      sol.reason = fmt::format("RAIM: fault detected (weighted residuals {:.1f} > {:.1f} with {} satellites) and not "
-                               "excluded ({}): fix not published",
-                               test.statistic, test.threshold, n, why);
+      const std::string why = !exclusions_left
+                                  ? fmt::format("{} exclusion(s) allowed{}", cfg_.raim_max_exclusions,
+                                                excluded.empty() ? "" : ", excluded PRN " + prn_list(excluded))
+                                  : std::string("too few satellites to exclude one and test again");
+      sol.reason = fmt::format(
+          "RAIM: fault detected (weighted residuals {:.1f} > {:.1f} with {} satellites) and not "
+          "excluded ({}): fix not published",
+          test.statistic, test.threshold, n, why);
       break;
     }
     const int worst_prn = sol.used_prns[static_cast<std::size_t>(test.worst_row)];
@@ -212,8 +217,8 @@ Fit solve_once(const GpsTime& t_rx, const std::vector<PseudorangeObservation>& o
     sol.reason = "solution did not converge to the Earth's surface";
   } else if (!(sol.llh.height_m >= cfg.min_height_m && sol.llh.height_m <= cfg.max_height_m)) {
     sol.valid = false;
-    sol.reason = fmt::format("implausible height {:.0f} m (accepted {:.0f} to {:.0f} m)", sol.llh.height_m, cfg.min_height_m,
-                             cfg.max_height_m);
+    sol.reason = fmt::format("implausible height {:.0f} m (accepted {:.0f} to {:.0f} m)", sol.llh.height_m,
+                             cfg.min_height_m, cfg.max_height_m);
   }
   return fit;
 }

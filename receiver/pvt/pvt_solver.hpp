@@ -35,7 +35,7 @@ namespace deepnav {
 struct PseudorangeObservation {
   int prn = 0;
   double pseudorange_m = 0.0;
-  double doppler_hz = 0.0;   ///< carrier Doppler (positive when approaching)
+  double doppler_hz = 0.0;  ///< carrier Doppler (positive when approaching)
   double cn0_dbhz = 45.0;
 };
 
@@ -54,18 +54,18 @@ std::string to_string(RaimStatus status);
 
 struct PvtSolution {
   bool valid = false;
-  std::string reason;               ///< why not valid
-  GpsTime t{};                      ///< receiver clock time of the measurements
+  std::string reason;  ///< why not valid
+  GpsTime t{};         ///< receiver clock time of the measurements
   Eigen::Vector3d r_ecef_m = Eigen::Vector3d::Zero();
   Eigen::Vector3d v_ecef_mps = Eigen::Vector3d::Zero();
   wgs84::Llh llh{};
-  double clock_bias_m = 0.0;        ///< c * receiver clock bias
-  double clock_drift_mps = 0.0;     ///< c * receiver clock drift
+  double clock_bias_m = 0.0;     ///< c * receiver clock bias
+  double clock_drift_mps = 0.0;  ///< c * receiver clock drift
   Dops dops;
   std::vector<int> used_prns, excluded_prns;  ///< excluded: by RAIM, in the order found
   RaimStatus raim = RaimStatus::unavailable;
-  double raim_statistic = 0.0;      ///< weighted residual sum of squares of the fix (last test)
-  double raim_threshold = 0.0;      ///< its chi-square bound (0: not tested)
+  double raim_statistic = 0.0;  ///< weighted residual sum of squares of the fix (last test)
+  double raim_threshold = 0.0;  ///< its chi-square bound (0: not tested)
   std::map<int, double> residuals_m;
   std::map<int, double> elevation_rad;
   std::map<int, double> azimuth_rad;
@@ -79,7 +79,7 @@ struct PvtConfig {
   double raim_false_alarm_probability = 1e-3;
   /// RAIM: satellites excluded at most per epoch before the fix is declared failed.
   int raim_max_exclusions = 2;
-  RangeErrorModel range_errors;     ///< pseudorange weights (the aided modes use the same)
+  RangeErrorModel range_errors;  ///< pseudorange weights (the aided modes use the same)
   /// A fix outside these heights (WGS-84, m) is no fix: with four satellites nothing else
   /// can catch a pseudorange off by a millisecond of transmit time, which puts a fix
   /// hundreds of kilometres up (seen in the suburban world at 612 km).
@@ -90,8 +90,7 @@ struct PvtConfig {
 class PvtSolver {
  public:
   /// `atmosphere`: the receiver's choice of models (ReceiverConfig::atmosphere).
-  explicit PvtSolver(PvtConfig config = {}, AtmosphereModels atmosphere = {})
-      : cfg_(config), atmosphere_(atmosphere) {}
+  explicit PvtSolver(PvtConfig config = {}, AtmosphereModels atmosphere = {}) : cfg_(config), atmosphere_(atmosphere) {}
   /// ephemerides by PRN; the last valid solution seeds the iteration. `iono` is used
   /// only with the Klobuchar model (and only when valid).
   PvtSolution solve(const GpsTime& t_rx, const std::vector<PseudorangeObservation>& obs,

@@ -21,11 +21,11 @@ namespace deepnav {
 double chi_square_threshold(int dof, double false_alarm_probability);
 
 struct ResidualTest {
-  int dof = 0;                     ///< n - 4
-  double statistic = 0.0;          ///< r' W r (dimensionless)
-  double threshold = 0.0;          ///< chi-square quantile at the false-alarm probability
-  bool fault_detected = false;     ///< statistic > threshold
-  Eigen::VectorXd standardised;    ///< r_i / sqrt(C_r,ii), in the rows' order
+  int dof = 0;                   ///< n - 4
+  double statistic = 0.0;        ///< r' W r (dimensionless)
+  double threshold = 0.0;        ///< chi-square quantile at the false-alarm probability
+  bool fault_detected = false;   ///< statistic > threshold
+  Eigen::VectorXd standardised;  ///< r_i / sqrt(C_r,ii), in the rows' order
   /// Row with the largest |standardised residual| (the one to exclude), -1 when none.
   Eigen::Index worst_row = -1;
 };

@@ -62,10 +62,10 @@ RangePrediction predict_range(const Ephemeris& eph, const GpsTime& t_rx, double 
   // The atmosphere's rate over +-0.5 s (both models are smooth over seconds); the carrier
   // is advanced by the ionosphere as much as the code is delayed.
   constexpr double h = 0.5;
-  const Atmosphere before = atmosphere_at(r_rx_ecef_m - h * v_rx_ecef_mps, p.r_sat_ecef_m - h * p.v_sat_ecef_mps, iono,
-                                          models, t_rx.sow - h);
-  const Atmosphere after = atmosphere_at(r_rx_ecef_m + h * v_rx_ecef_mps, p.r_sat_ecef_m + h * p.v_sat_ecef_mps, iono,
-                                         models, t_rx.sow + h);
+  const Atmosphere before =
+      atmosphere_at(r_rx_ecef_m - h * v_rx_ecef_mps, p.r_sat_ecef_m - h * p.v_sat_ecef_mps, iono, models, t_rx.sow - h);
+  const Atmosphere after =
+      atmosphere_at(r_rx_ecef_m + h * v_rx_ecef_mps, p.r_sat_ecef_m + h * p.v_sat_ecef_mps, iono, models, t_rx.sow + h);
   p.carrier_atmosphere_rate_mps = ((after.tropo_m - after.iono_m) - (before.tropo_m - before.iono_m)) / (2.0 * h);
   p.ionosphere_m = now.iono_m;
   p.ionosphere_rate_mps = (after.iono_m - before.iono_m) / (2.0 * h);

@@ -30,13 +30,13 @@ namespace deepnav {
 struct RangePrediction {
   Eigen::Vector3d r_sat_ecef_m = Eigen::Vector3d::Zero();  ///< at transmit time, in the ECEF frame of the receive time
   Eigen::Vector3d v_sat_ecef_mps = Eigen::Vector3d::Zero();
-  Eigen::Vector3d los_ecef = Eigen::Vector3d::Zero();      ///< unit vector receiver -> satellite
+  Eigen::Vector3d los_ecef = Eigen::Vector3d::Zero();  ///< unit vector receiver -> satellite
   double geometric_range_m = 0.0;
-  double satellite_clock_m = 0.0;    ///< c * satellite clock offset (subtracted from the range)
-  double satellite_drift_mps = 0.0;  ///< c * satellite clock drift
-  double atmosphere_m = 0.0;         ///< ionosphere + troposphere delay
+  double satellite_clock_m = 0.0;            ///< c * satellite clock offset (subtracted from the range)
+  double satellite_drift_mps = 0.0;          ///< c * satellite clock drift
+  double atmosphere_m = 0.0;                 ///< ionosphere + troposphere delay
   double carrier_atmosphere_rate_mps = 0.0;  ///< d(troposphere - ionosphere)/dt: the carrier's
-  double light_time_factor = 1.0;    ///< 1 / (1 + k), k the flight time's rate (see above)
+  double light_time_factor = 1.0;            ///< 1 / (1 + k), k the flight time's rate (see above)
   double elevation_rad = 0.0;
   double azimuth_rad = 0.0;
   /// The troposphere model's mapping function at the satellite's elevation and its rate as

@@ -25,9 +25,9 @@
 namespace deepnav {
 
 struct RangeErrorModel {
-  double floor_m = 0.5;           ///< a
-  double elevation_m = 0.5;       ///< b
-  double thermal_m2hz = 3e3;      ///< c^2
+  double floor_m = 0.5;       ///< a
+  double elevation_m = 0.5;   ///< b
+  double thermal_m2hz = 3e3;  ///< c^2
   double min_sin_elevation = 0.1;
 
   /// Variance (m^2) of what the range models leave: a^2 + (b / sin el)^2.

@@ -22,8 +22,8 @@ struct SampleBlock {
   std::vector<Sample> samples;
   /// What the correlator would otherwise work out per channel, computed once for the block
   /// (prepare_for_correlation()); whoever changes `samples` clears them.
-  int magnitude_bits = -1;            ///< bits of the largest |I| or |Q| in `samples`; -1: unknown
-  std::vector<std::int16_t> planar;   ///< I of every sample, then Q; empty: not prepared
+  int magnitude_bits = -1;           ///< bits of the largest |I| or |Q| in `samples`; -1: unknown
+  std::vector<std::int16_t> planar;  ///< I of every sample, then Q; empty: not prepared
 };
 
 /// Samples that never arrived (a dropped network packet, an overrun): the

@@ -57,25 +57,26 @@ nlohmann::json stats_json(const StreamSampleSource& s) {
   const StreamStats st = s.stats();
   nlohmann::json lost = nlohmann::json::array(), gaps = nlohmann::json::array();
   for (const auto& [a, b] : st.lost_frame_ranges) lost.push_back({a, b});
-  for (const auto& g : st.gaps) gaps.push_back({{"first_missing_sample", g.first_missing_index}, {"missing_samples", g.missing_count}});
+  for (const auto& g : st.gaps)
+    gaps.push_back({{"first_missing_sample", g.first_missing_index}, {"missing_samples", g.missing_count}});
   nlohmann::json out = {{"url", s.url()},
-          {"format", std::string(to_string(s.header().format))},
-          {"start_sample", s.header().start_sample_index},
-          {"bytes_received", st.bytes_received},
-          {"frames_received", st.frames_received},
-          {"frames_lost", st.frames_lost},
-          {"lost_frame_ranges", lost},
-          {"frames_duplicated", st.frames_duplicated},
-          {"frames_reordered", st.frames_reordered},
-          {"frames_late", st.frames_late},
-          {"frames_overrun", st.frames_overrun},
-          {"reconnects", st.reconnects},
-          {"partial_frame_bytes_discarded", st.partial_frame_bytes_discarded},
-          {"samples_duplicated", st.samples_duplicated},
-          {"lost_samples", s.lost_sample_count()},
-          {"gaps", gaps},
-          {"end", st.end_reason},
-          {"failed", st.failed}};
+                        {"format", std::string(to_string(s.header().format))},
+                        {"start_sample", s.header().start_sample_index},
+                        {"bytes_received", st.bytes_received},
+                        {"frames_received", st.frames_received},
+                        {"frames_lost", st.frames_lost},
+                        {"lost_frame_ranges", lost},
+                        {"frames_duplicated", st.frames_duplicated},
+                        {"frames_reordered", st.frames_reordered},
+                        {"frames_late", st.frames_late},
+                        {"frames_overrun", st.frames_overrun},
+                        {"reconnects", st.reconnects},
+                        {"partial_frame_bytes_discarded", st.partial_frame_bytes_discarded},
+                        {"samples_duplicated", st.samples_duplicated},
+                        {"lost_samples", s.lost_sample_count()},
+                        {"gaps", gaps},
+                        {"end", st.end_reason},
+                        {"failed", st.failed}};
   if (const auto* rtl = dynamic_cast<const RtlTcpSampleSource*>(&s)) {
     const rtltcp::Tuning& t = rtl->rtl_settings().tuning;
     out["dongle"] = {{"tuner", rtltcp::tuner_name(rtl->dongle().tuner_type)},
@@ -96,7 +97,8 @@ std::unique_ptr<StreamSampleSource> open_rtltcp(const SourceRequest& r, const So
   if (r.raw) throw InputError("--raw does not apply to rtltcp:// (the stream is always bare cu8)");
   if (r.format_given && r.format != "cu8")
     throw InputError(fmt::format("--format {}: an rtl_tcp server sends cu8 (leave --format out)", r.format));
-  if (r.inverted) throw InputError("--inverted-spectrum does not apply to rtltcp:// (an RTL-SDR's spectrum is upright)");
+  if (r.inverted)
+    throw InputError("--inverted-spectrum does not apply to rtltcp:// (an RTL-SDR's spectrum is upright)");
   StreamSourceSettings st;
   st.host = url.host;
   st.port = url.port;
@@ -104,7 +106,8 @@ std::unique_ptr<StreamSampleSource> open_rtltcp(const SourceRequest& r, const So
   st.raw_if_hz = r.if_hz;
   RtlTcpSettings rtl;
   const double fs = r.fs_given || r.fs_hz > 0.0 ? r.fs_hz : 2048000.0;
-  if (!(fs > 0.0) || fs != std::floor(fs) || fs > 4.0e9) throw InputError(fmt::format("--fs {}: not a sample rate in Hz", fs));
+  if (!(fs > 0.0) || fs != std::floor(fs) || fs > 4.0e9)
+    throw InputError(fmt::format("--fs {}: not a sample rate in Hz", fs));
   rtl.tuning.sample_rate_hz = static_cast<std::uint32_t>(fs);
   rtl.tuning.center_frequency_hz = gps::kL1_Hz - r.if_hz;
   if (r.rtl_gain != "auto") {
@@ -141,8 +144,10 @@ OpenedSource open_stream(const SourceRequest& r, const SourceUrl& url) {
   } else if (r.raw) {
     st.raw_format = format_flag(r.format);
     if (!stream::streamable(st.raw_format))
-      throw InputError(fmt::format("--format {}: streams carry ibyte, ishort, gr_complex, byte or cu8 (packed formats "
-                                  "are read from files)", to_string(st.raw_format)));
+      throw InputError(
+          fmt::format("--format {}: streams carry ibyte, ishort, gr_complex, byte or cu8 (packed formats "
+                      "are read from files)",
+                      to_string(st.raw_format)));
     if (!(r.fs_hz > 0.0)) throw InputError(fmt::format("--input '{}': a raw stream needs --fs", r.input));
     st.raw_sample_rate_hz = r.fs_hz;
     st.raw_if_hz = r.if_hz;
@@ -162,9 +167,10 @@ OpenedSource open_stream(const SourceRequest& r, const SourceUrl& url) {
   }
   if (!r.raw && url.scheme != StreamScheme::rtltcp && r.fs_hz > 0.0 && r.fs_hz != source->sample_rate_hz())
     throw InputError(fmt::format("--fs {} Hz disagrees with the sample rate {} Hz of the stream {}", r.fs_hz,
-                                source->sample_rate_hz(), source->url()));
+                                 source->sample_rate_hz(), source->url()));
   const std::string url_text = source->url();
-  source->set_gap_handler([url_text, fs = source->sample_rate_hz(), exact = source->gap_sizes_exact()](const SampleGap& g) {
+  source->set_gap_handler([url_text, fs = source->sample_rate_hz(),
+                           exact = source->gap_sizes_exact()](const SampleGap& g) {
     spdlog::warn("{}: {} samples {}lost at sample {} (t = {:.6f} s): {}", url_text, g.missing_count,
                  exact ? "" : "(estimated) ", g.first_missing_index, static_cast<double>(g.first_missing_index) / fs,
                  exact ? "channels coast across the gap" : "every satellite is acquired again after it");
@@ -230,9 +236,9 @@ FileSampleSourceOptions file_source_options(const SourceRequest& r) {
                 meta ? (meta->inverted_spectrum ? "true" : "false") : ""))
     so.inverted_spectrum = r.inverted;
   if (!std::filesystem::exists(so.path))
-    throw InputError(meta && r.input.empty()
-                        ? fmt::format("--metadata '{}': its sample file '{}' does not exist", r.metadata, so.path.string())
-                        : fmt::format("--input: file '{}' does not exist", so.path.string()));
+    throw InputError(meta && r.input.empty() ? fmt::format("--metadata '{}': its sample file '{}' does not exist",
+                                                           r.metadata, so.path.string())
+                                             : fmt::format("--input: file '{}' does not exist", so.path.string()));
   if (!(so.sample_rate_hz > 0.0))
     throw InputError(fmt::format("--input '{}': a file needs its sample rate (--fs, or --metadata)", so.path.string()));
   return so;

@@ -17,13 +17,13 @@
 namespace deepnav {
 
 struct SourceRequest {
-  std::string input;        ///< file path or URL
+  std::string input;  ///< file path or URL
   std::string format = "ibyte";
-  double fs_hz = 0.0;       ///< required for files and raw streams; checked against a framed stream's header
+  double fs_hz = 0.0;  ///< required for files and raw streams; checked against a framed stream's header
   double if_hz = 0.0;
-  double skip_s = 0.0;      ///< files only
+  double skip_s = 0.0;  ///< files only
   bool inverted = false;
-  bool raw = false;         ///< streams only: bare samples without the deepnav framing
+  bool raw = false;  ///< streams only: bare samples without the deepnav framing
   double reconnect_timeout_s = 30.0;
   const std::atomic<bool>* stop = nullptr;  ///< once set, the source ends (Ctrl-C)
   /// An ION GNSS SDR metadata file (XML) describing the file: its format, rate, IF,

@@ -23,7 +23,8 @@ std::optional<StreamScheme> scheme_named(std::string_view name) {
 std::uint16_t parse_port(const std::string& input, std::string_view text, bool listen) {
   unsigned long port = 0;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), port);
-  if (text.empty() || error != std::errc() || end != text.data() + text.size() || port > 65535 || (port == 0 && !listen))
+  if (text.empty() || error != std::errc() || end != text.data() + text.size() || port > 65535 ||
+      (port == 0 && !listen))
     throw InputError(fmt::format("--input '{}': port '{}' is not a number in 1..65535", input, text));
   return static_cast<std::uint16_t>(port);
 }

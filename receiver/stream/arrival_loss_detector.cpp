@@ -7,7 +7,10 @@
 namespace deepnav {
 
 ArrivalLossDetector::ArrivalLossDetector(double sample_rate_hz, double threshold_s, double horizon_s, double baseline_s)
-    : fs_(sample_rate_hz), threshold_samples_(threshold_s * sample_rate_hz), horizon_s_(horizon_s), baseline_s_(baseline_s) {}
+    : fs_(sample_rate_hz),
+      threshold_samples_(threshold_s * sample_rate_hz),
+      horizon_s_(horizon_s),
+      baseline_s_(baseline_s) {}
 
 void ArrivalLossDetector::arrived(double t_s, std::int64_t count) {
   if (!started_) {

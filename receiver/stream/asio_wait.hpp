@@ -50,8 +50,8 @@ inline Clock::time_point after(double seconds) {
 /// `why` set when nothing came for `idle_timeout_s`, `cancel` was set, the peer closed the
 /// connection or the read failed (the socket is closed on a timeout or a cancel).
 template <typename Socket>
-std::size_t read_some(boost::asio::io_context& io, Socket& socket, std::vector<std::byte>& buffer, double idle_timeout_s,
-                      const std::atomic<bool>& cancel, std::string& why) {
+std::size_t read_some(boost::asio::io_context& io, Socket& socket, std::vector<std::byte>& buffer,
+                      double idle_timeout_s, const std::atomic<bool>& cancel, std::string& why) {
   bool done = false;
   boost::system::error_code ec;
   std::size_t got = 0;

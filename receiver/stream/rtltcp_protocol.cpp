@@ -49,12 +49,18 @@ std::array<std::byte, kDongleInfoBytes> encode(const DongleInfo& info) {
 
 std::string tuner_name(std::uint32_t tuner_type) {
   switch (tuner_type) {
-    case 1: return "E4000";
-    case 2: return "FC0012";
-    case 3: return "FC0013";
-    case 4: return "FC2580";
-    case 5: return "R820T";
-    case 6: return "R828D";
+    case 1:
+      return "E4000";
+    case 2:
+      return "FC0012";
+    case 3:
+      return "FC0013";
+    case 4:
+      return "FC2580";
+    case 5:
+      return "R820T";
+    case 6:
+      return "R828D";
   }
   return fmt::format("unknown tuner {}", tuner_type);
 }
@@ -68,8 +74,8 @@ std::array<std::byte, kCommandBytes> encode_command(Command command, std::uint32
 
 void validate(const Tuning& t) {
   if (!(t.center_frequency_hz >= 24e6 && t.center_frequency_hz <= 1766e6))
-    throw std::invalid_argument(fmt::format("rtl_tcp centre frequency {} Hz is outside the tuner's 24 MHz to 1766 MHz",
-                                            t.center_frequency_hz));
+    throw std::invalid_argument(
+        fmt::format("rtl_tcp centre frequency {} Hz is outside the tuner's 24 MHz to 1766 MHz", t.center_frequency_hz));
   const double fs = t.sample_rate_hz;
   if (!((fs > 225001 && fs <= 300000) || (fs > 900001 && fs <= 3200000)))
     throw std::invalid_argument(fmt::format(
@@ -85,10 +91,12 @@ void validate(const Tuning& t) {
 std::vector<std::array<std::byte, kCommandBytes>> tuning_commands(const Tuning& t) {
   std::vector<std::array<std::byte, kCommandBytes>> out;
   out.push_back(encode_command(Command::set_sample_rate, t.sample_rate_hz));
-  out.push_back(encode_command(Command::set_frequency, static_cast<std::uint32_t>(std::llround(t.center_frequency_hz))));
+  out.push_back(
+      encode_command(Command::set_frequency, static_cast<std::uint32_t>(std::llround(t.center_frequency_hz))));
   out.push_back(encode_command(Command::set_freq_correction, static_cast<std::uint32_t>(t.ppm)));  // two's complement
   out.push_back(encode_command(Command::set_gain_mode, t.gain_db ? 1u : 0u));
-  if (t.gain_db) out.push_back(encode_command(Command::set_gain, static_cast<std::uint32_t>(std::lround(*t.gain_db * 10.0))));
+  if (t.gain_db)
+    out.push_back(encode_command(Command::set_gain, static_cast<std::uint32_t>(std::lround(*t.gain_db * 10.0))));
   out.push_back(encode_command(Command::set_agc_mode, t.rtl_agc ? 1u : 0u));
   out.push_back(encode_command(Command::set_bias_tee, t.bias_tee ? 1u : 0u));
   return out;

@@ -20,20 +20,20 @@ inline constexpr std::size_t kCommandBytes = 5;
 
 /// Command bytes of rtl_tcp (those this client sends, and the ones next to them).
 enum class Command : std::uint8_t {
-  set_frequency = 0x01,         ///< centre frequency, Hz
-  set_sample_rate = 0x02,       ///< samples/s
-  set_gain_mode = 0x03,         ///< 0: tuner AGC (automatic gain), 1: manual gain
-  set_gain = 0x04,              ///< tuner gain, tenths of a dB (the nearest step is taken)
-  set_freq_correction = 0x05,   ///< crystal correction, ppm (signed)
+  set_frequency = 0x01,        ///< centre frequency, Hz
+  set_sample_rate = 0x02,      ///< samples/s
+  set_gain_mode = 0x03,        ///< 0: tuner AGC (automatic gain), 1: manual gain
+  set_gain = 0x04,             ///< tuner gain, tenths of a dB (the nearest step is taken)
+  set_freq_correction = 0x05,  ///< crystal correction, ppm (signed)
   set_if_gain = 0x06,
   set_test_mode = 0x07,
-  set_agc_mode = 0x08,          ///< RTL2832 digital AGC: 0 off, 1 on
+  set_agc_mode = 0x08,  ///< RTL2832 digital AGC: 0 off, 1 on
   set_direct_sampling = 0x09,
   set_offset_tuning = 0x0a,
   set_rtl_crystal = 0x0b,
   set_tuner_crystal = 0x0c,
   set_gain_by_index = 0x0d,
-  set_bias_tee = 0x0e,          ///< 0 off, 1: power on the antenna input (active antennas)
+  set_bias_tee = 0x0e,  ///< 0 off, 1: power on the antenna input (active antennas)
 };
 
 struct DongleInfo {

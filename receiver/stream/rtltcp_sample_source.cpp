@@ -24,9 +24,7 @@ constexpr double kIdleTimeout_s = 10.0;  // a dongle that sends nothing this lon
 
 using asio_wait::after;
 
-double seconds_now() {
-  return std::chrono::duration<double>(Clock::now().time_since_epoch()).count();
-}
+double seconds_now() { return std::chrono::duration<double>(Clock::now().time_since_epoch()).count(); }
 
 StreamSourceSettings as_raw_cu8(StreamSourceSettings s, const RtlTcpSettings& rtl) {
   rtltcp::validate(rtl.tuning);
@@ -69,7 +67,8 @@ RtlTcpSampleSource::RtlTcpSampleSource(StreamSourceSettings settings, RtlTcpSett
     done = true;
   });
   if (!asio_wait::run_until_done(io_, done, deadline, cancel, [&] { socket_.close(); }))
-    throw std::runtime_error(fmt::format("{}: no rtl_tcp dongle header within {} s", url_, settings_.connect_timeout_s));
+    throw std::runtime_error(
+        fmt::format("{}: no rtl_tcp dongle header within {} s", url_, settings_.connect_timeout_s));
   if (ec)
     throw std::runtime_error(fmt::format("{}: the dongle header ended after {} of its {} bytes: {}", url_, got,
                                          header.size(), ec.message()));
@@ -87,12 +86,14 @@ RtlTcpSampleSource::RtlTcpSampleSource(StreamSourceSettings settings, RtlTcpSett
     done = true;
   });
   if (!asio_wait::run_until_done(io_, done, deadline, cancel, [&] { socket_.close(); }) || ec)
-    throw std::runtime_error(fmt::format("{}: cannot send the tuning commands: {}", url_, ec ? ec.message() : "timed out"));
+    throw std::runtime_error(
+        fmt::format("{}: cannot send the tuning commands: {}", url_, ec ? ec.message() : "timed out"));
   const auto& t = rtl_.tuning;
-  spdlog::info("{}: {} tuner ({} gain steps); tuned to {:.6f} MHz at {} samples/s, gain {}, RTL AGC {}, {} ppm, bias tee {}",
-               url_, rtltcp::tuner_name(dongle_.tuner_type), dongle_.gain_count, t.center_frequency_hz / 1e6,
-               t.sample_rate_hz, t.gain_db ? fmt::format("{:.1f} dB", *t.gain_db) : std::string("auto (tuner AGC)"),
-               t.rtl_agc ? "on" : "off", t.ppm, t.bias_tee ? "on" : "off");
+  spdlog::info(
+      "{}: {} tuner ({} gain steps); tuned to {:.6f} MHz at {} samples/s, gain {}, RTL AGC {}, {} ppm, bias tee {}",
+      url_, rtltcp::tuner_name(dongle_.tuner_type), dongle_.gain_count, t.center_frequency_hz / 1e6, t.sample_rate_hz,
+      t.gain_db ? fmt::format("{:.1f} dB", *t.gain_db) : std::string("auto (tuner AGC)"), t.rtl_agc ? "on" : "off",
+      t.ppm, t.bias_tee ? "on" : "off");
   start_io([this] { io_loop(); });
 }
 
@@ -134,7 +135,8 @@ void RtlTcpSampleSource::io_loop() {
     // cu8 samples are byte pairs: a read may end inside one (data keeps that byte).
     data.insert(data.end(), buffer.begin(), buffer.begin() + static_cast<std::ptrdiff_t>(got));
     if (settle_bytes > 0) {
-      const auto drop = static_cast<std::size_t>(std::min<std::int64_t>(settle_bytes, static_cast<std::int64_t>(data.size())));
+      const auto drop =
+          static_cast<std::size_t>(std::min<std::int64_t>(settle_bytes, static_cast<std::int64_t>(data.size())));
       data.erase(data.begin(), data.begin() + static_cast<std::ptrdiff_t>(drop));
       settle_bytes -= static_cast<std::int64_t>(drop);
     }

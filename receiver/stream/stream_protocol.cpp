@@ -67,9 +67,10 @@ bool streamable(const SampleFormat& format) {
 std::uint8_t format_code(const SampleFormat& format) {
   const auto at = std::find(kFormats.begin(), kFormats.end(), format);
   if (at == kFormats.end())
-    throw std::invalid_argument(fmt::format("sample format {} cannot be streamed: the stream protocol carries "
-                                            "ibyte, ishort, gr_complex, byte and cu8 (packed formats are read from files)",
-                                            to_string(format)));
+    throw std::invalid_argument(
+        fmt::format("sample format {} cannot be streamed: the stream protocol carries "
+                    "ibyte, ishort, gr_complex, byte and cu8 (packed formats are read from files)",
+                    to_string(format)));
   return static_cast<std::uint8_t>(at - kFormats.begin());
 }
 
@@ -117,8 +118,10 @@ StreamHeader decode_header(std::span<const std::byte, kHeaderBytes> bytes) {
     throw ProtocolError(fmt::format("stream header: header length is {} bytes, expected {}", n, kHeaderBytes));
   const auto code = get<std::uint8_t>(b + 8);
   if (code >= kFormats.size())
-    throw ProtocolError(fmt::format("stream header: sample format code {} is unknown (0 ibyte, 1 ishort, "
-                                    "2 gr_complex, 3 byte, 4 cu8)", code));
+    throw ProtocolError(
+        fmt::format("stream header: sample format code {} is unknown (0 ibyte, 1 ishort, "
+                    "2 gr_complex, 3 byte, 4 cu8)",
+                    code));
   const auto flags = get<std::uint8_t>(b + 9);
   if ((flags & ~(kHeaderFlagGpsTime | kHeaderFlagInverted)) != 0)
     throw ProtocolError(fmt::format("stream header: unknown flag bits 0x{:02x}", flags));
@@ -130,9 +133,10 @@ StreamHeader decode_header(std::span<const std::byte, kHeaderBytes> bytes) {
   const std::size_t bps = bytes_per_sample(h.format);
   h.max_payload_bytes = get<std::uint32_t>(b + 12);
   if (h.max_payload_bytes < bps || h.max_payload_bytes > kMaxPayloadLimit || h.max_payload_bytes % bps != 0)
-    throw ProtocolError(fmt::format("stream header: maximum payload of {} bytes must be whole {} samples of {} "
-                                    "bytes, at most {} bytes",
-                                    h.max_payload_bytes, to_string(h.format), bps, kMaxPayloadLimit));
+    throw ProtocolError(
+        fmt::format("stream header: maximum payload of {} bytes must be whole {} samples of {} "
+                    "bytes, at most {} bytes",
+                    h.max_payload_bytes, to_string(h.format), bps, kMaxPayloadLimit));
   h.sample_rate_hz = get<double>(b + 16);
   if (!std::isfinite(h.sample_rate_hz) || h.sample_rate_hz < 1e3 || h.sample_rate_hz > 1e9)
     throw ProtocolError(fmt::format("stream header: sample rate {} Hz is not in [1 kHz, 1 GHz]", h.sample_rate_hz));
@@ -146,8 +150,8 @@ StreamHeader decode_header(std::span<const std::byte, kHeaderBytes> bytes) {
   // Sample indices become times as doubles: past 2^53 they no longer hold whole samples
   // (and 2^53 samples are 71 years at 4 Msps).
   if (h.start_sample_index > kMaxSampleIndex)
-    throw ProtocolError(fmt::format("stream header: start sample index {} is beyond 2^53 ({})", h.start_sample_index,
-                                    kMaxSampleIndex));
+    throw ProtocolError(
+        fmt::format("stream header: start sample index {} is beyond 2^53 ({})", h.start_sample_index, kMaxSampleIndex));
   if ((flags & kHeaderFlagGpsTime) != 0) {
     const auto week = get<std::int32_t>(b + 40);
     const auto sow = get<double>(b + 48);
@@ -174,8 +178,8 @@ FrameHeader decode_frame_header(std::span<const std::byte, kFrameHeaderBytes> by
     throw ProtocolError(fmt::format("frame {}: payload length {} bytes exceeds the stream's maximum of {} bytes",
                                     f.sequence, f.payload_bytes, header.max_payload_bytes));
   if (f.payload_bytes % bps != 0)
-    throw ProtocolError(fmt::format("frame {}: payload length {} bytes is not whole {} samples of {} bytes",
-                                    f.sequence, f.payload_bytes, to_string(header.format), bps));
+    throw ProtocolError(fmt::format("frame {}: payload length {} bytes is not whole {} samples of {} bytes", f.sequence,
+                                    f.payload_bytes, to_string(header.format), bps));
   if (f.end_of_stream != (f.payload_bytes == 0))
     throw ProtocolError(fmt::format("frame {}: {} bytes of payload{}", f.sequence, f.payload_bytes,
                                     f.end_of_stream ? " in the end-of-stream frame (expected none)"
@@ -190,16 +194,17 @@ FrameHeader decode_frame_header(std::span<const std::byte, kFrameHeaderBytes> by
   const std::int64_t offset = f.first_sample_index - header.start_sample_index;
   const auto max_samples = static_cast<std::uint64_t>(header.max_payload_bytes / bps);
   if (f.sequence > static_cast<std::uint64_t>(offset))
-    throw ProtocolError(fmt::format("frame {}: sequence number {} is beyond what its first sample index {} allows "
-                                    "(at most {}: every earlier frame carries at least one sample from the start {})",
-                                    f.sequence, f.sequence, f.first_sample_index, offset, header.start_sample_index));
+    throw ProtocolError(
+        fmt::format("frame {}: sequence number {} is beyond what its first sample index {} allows "
+                    "(at most {}: every earlier frame carries at least one sample from the start {})",
+                    f.sequence, f.sequence, f.first_sample_index, offset, header.start_sample_index));
   if ((static_cast<std::uint64_t>(offset) + max_samples - 1) / max_samples > f.sequence ||
       f.first_sample_index > kMaxSampleIndex)
-    throw ProtocolError(fmt::format("frame {}: first sample index {} is beyond what its sequence number allows (at "
-                                    "most the start {} + {} earlier frames x {} samples of a maximum payload, and at "
-                                    "most 2^53)",
-                                    f.sequence, f.first_sample_index, header.start_sample_index, f.sequence,
-                                    max_samples));
+    throw ProtocolError(
+        fmt::format("frame {}: first sample index {} is beyond what its sequence number allows (at "
+                    "most the start {} + {} earlier frames x {} samples of a maximum payload, and at "
+                    "most 2^53)",
+                    f.sequence, f.first_sample_index, header.start_sample_index, f.sequence, max_samples));
   return f;
 }
 

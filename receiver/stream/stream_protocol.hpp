@@ -46,10 +46,10 @@ struct StreamHeader {
   SampleFormat format = SampleFormat::ibyte;
   double sample_rate_hz = 0.0;
   double if_hz = 0.0;
-  std::int64_t start_sample_index = 0;    ///< index of the first sample this session sends
-  std::optional<GpsTime> start_time;      ///< GPS time (receiver clock) of sample 0, when known
-  std::uint32_t max_payload_bytes = 0;    ///< no frame of this stream carries more
-  bool inverted_spectrum = false;         ///< the samples are I - jQ
+  std::int64_t start_sample_index = 0;  ///< index of the first sample this session sends
+  std::optional<GpsTime> start_time;    ///< GPS time (receiver clock) of sample 0, when known
+  std::uint32_t max_payload_bytes = 0;  ///< no frame of this stream carries more
+  bool inverted_spectrum = false;       ///< the samples are I - jQ
 };
 
 struct FrameHeader {

@@ -52,8 +52,7 @@ void StreamSampleSource::stop_io() {
 }
 
 void StreamSampleSource::wait_for_header() {
-  const auto deadline =
-      std::chrono::steady_clock::now() + std::chrono::duration<double>(settings_.connect_timeout_s);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(settings_.connect_timeout_s);
   std::unique_lock lock(header_mutex_);
   while (!header_known_) {
     if (stop_requested()) throw std::runtime_error(fmt::format("{}: interrupted before the stream started", url_));
@@ -155,8 +154,8 @@ std::size_t StreamSampleSource::read(std::span<Sample> out) {
       next_index_ = piece_index;
     } else if (piece_index < next_index_) {
       // Sent again after a resume: those samples were delivered already.
-      const auto skip = static_cast<std::size_t>(std::min<std::int64_t>(next_index_ - piece_index,
-                                                                         static_cast<std::int64_t>(left)));
+      const auto skip =
+          static_cast<std::size_t>(std::min<std::int64_t>(next_index_ - piece_index, static_cast<std::int64_t>(left)));
       held_offset_ += skip * bps;
       update_stats([&](StreamStats& s) { s.samples_duplicated += static_cast<std::int64_t>(skip); });
     } else {

@@ -47,14 +47,14 @@ struct StreamSourceSettings {
 struct StreamStats {
   std::int64_t bytes_received = 0;
   std::int64_t frames_received = 0;
-  std::int64_t frames_lost = 0;         ///< sequence numbers that never arrived
-  std::int64_t frames_duplicated = 0;   ///< arrived twice (the copy is dropped)
-  std::int64_t frames_reordered = 0;    ///< arrived after a later one, in time to be used
-  std::int64_t frames_late = 0;         ///< arrived after being declared lost (dropped)
-  std::int64_t frames_overrun = 0;      ///< dropped because the receiver fell behind (UDP)
+  std::int64_t frames_lost = 0;        ///< sequence numbers that never arrived
+  std::int64_t frames_duplicated = 0;  ///< arrived twice (the copy is dropped)
+  std::int64_t frames_reordered = 0;   ///< arrived after a later one, in time to be used
+  std::int64_t frames_late = 0;        ///< arrived after being declared lost (dropped)
+  std::int64_t frames_overrun = 0;     ///< dropped because the receiver fell behind (UDP)
   std::int64_t reconnects = 0;
-  std::int64_t partial_frame_bytes_discarded = 0;  ///< of frames cut by a dropped connection
-  std::int64_t samples_duplicated = 0;  ///< delivered twice after a resume (trimmed)
+  std::int64_t partial_frame_bytes_discarded = 0;                          ///< of frames cut by a dropped connection
+  std::int64_t samples_duplicated = 0;                                     ///< delivered twice after a resume (trimmed)
   std::vector<std::pair<std::uint64_t, std::uint64_t>> lost_frame_ranges;  ///< [first, last] sequence numbers
   std::vector<SampleGap> gaps;
   std::string end_reason;

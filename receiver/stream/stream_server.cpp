@@ -163,8 +163,8 @@ struct StreamServer::Impl {
       auto src = opt.open_stream();
       if (start > 0) src->seek(start);
       r.first_sample = start;
-      const std::uint32_t payload = static_cast<std::uint32_t>(
-          frame_samples(*src, opt.tcp_payload_bytes) * bytes_per_sample(src->format()));
+      const std::uint32_t payload =
+          static_cast<std::uint32_t>(frame_samples(*src, opt.tcp_payload_bytes) * bytes_per_sample(src->format()));
       spdlog::info("{}: session from sample {} ({})", client, start, opt.raw ? "raw" : "framed");
       const auto header = stream::encode(header_for(*src, start, payload));
       if (!opt.raw && !write_all(s, {asio::buffer(header)})) throw std::runtime_error("connection closed");
@@ -181,9 +181,10 @@ struct StreamServer::Impl {
           r.end = "server stopping";
           break;
         }
-        const auto frame = stream::encode(stream::FrameHeader{sequence++, first, static_cast<std::uint32_t>(bytes.size()), false});
-        const bool ok = opt.raw ? write_all(s, {asio::buffer(bytes)})
-                                : write_all(s, {asio::buffer(frame), asio::buffer(bytes)});
+        const auto frame =
+            stream::encode(stream::FrameHeader{sequence++, first, static_cast<std::uint32_t>(bytes.size()), false});
+        const bool ok =
+            opt.raw ? write_all(s, {asio::buffer(bytes)}) : write_all(s, {asio::buffer(frame), asio::buffer(bytes)});
         if (!ok) throw std::runtime_error(stopping ? "server stopping" : "the client closed the connection");
         r.samples_sent += static_cast<std::int64_t>(n);
         ++r.frames_sent;
@@ -205,22 +206,22 @@ struct StreamServer::Impl {
   void start_accept() {
     auto session = std::make_unique<Session>();
     Session* s = session.get();
-    acceptor->async_accept(s->io, [this, session = std::move(session)](const boost::system::error_code& ec,
-                                                                       tcp::socket socket) mutable {
-      if (ec) return;  // the acceptor closed
-      Session* sp = session.get();
-      sp->socket.emplace(std::move(socket));
-      boost::system::error_code e2;
-      const auto peer = sp->socket->remote_endpoint(e2);
-      const std::string client = fmt::format("tcp://{}:{}", peer.address().to_string(), peer.port());
-      ++sessions_started;
-      sp->thread = std::thread([this, sp, client] {
-        tcp_session(*sp, client);
-        sp->done = true;
-      });
-      sessions.push_back(std::move(session));
-      start_accept();
-    });
+    acceptor->async_accept(
+        s->io, [this, session = std::move(session)](const boost::system::error_code& ec, tcp::socket socket) mutable {
+          if (ec) return;  // the acceptor closed
+          Session* sp = session.get();
+          sp->socket.emplace(std::move(socket));
+          boost::system::error_code e2;
+          const auto peer = sp->socket->remote_endpoint(e2);
+          const std::string client = fmt::format("tcp://{}:{}", peer.address().to_string(), peer.port());
+          ++sessions_started;
+          sp->thread = std::thread([this, sp, client] {
+            tcp_session(*sp, client);
+            sp->done = true;
+          });
+          sessions.push_back(std::move(session));
+          start_accept();
+        });
   }
 
   // ---------------------------------------------------------------- UDP
@@ -244,8 +245,8 @@ struct StreamServer::Impl {
     try {
       auto src = opt.open_stream();
       if (start > 0) src->seek(start);
-      const std::uint32_t payload = static_cast<std::uint32_t>(
-          frame_samples(*src, opt.udp_payload_bytes) * bytes_per_sample(src->format()));
+      const std::uint32_t payload =
+          static_cast<std::uint32_t>(frame_samples(*src, opt.udp_payload_bytes) * bytes_per_sample(src->format()));
       spdlog::info("{}: session from sample {} ({})", r.client, start, opt.raw ? "raw" : "framed");
       const auto header = stream::encode(header_for(*src, start, payload));
       if (!opt.raw) udp_send({asio::buffer(header)}, client_ep);
@@ -258,7 +259,8 @@ struct StreamServer::Impl {
           r.end = "the client left";
           break;
         }
-        if (Clock::now() - Clock::time_point(Clock::duration(s.last_request.load())) > seconds(opt.udp_keepalive_timeout_s)) {
+        if (Clock::now() - Clock::time_point(Clock::duration(s.last_request.load())) >
+            seconds(opt.udp_keepalive_timeout_s)) {
           r.end = fmt::format("no request from the client for {} s", opt.udp_keepalive_timeout_s);
           break;
         }
@@ -279,7 +281,8 @@ struct StreamServer::Impl {
           r.dropped_frames.push_back(seq);
           continue;
         }
-        const auto frame = stream::encode(stream::FrameHeader{seq, first, static_cast<std::uint32_t>(bytes.size()), false});
+        const auto frame =
+            stream::encode(stream::FrameHeader{seq, first, static_cast<std::uint32_t>(bytes.size()), false});
         if (opt.raw) {
           udp_send({asio::buffer(bytes)}, client_ep);
         } else {
@@ -297,7 +300,8 @@ struct StreamServer::Impl {
     stream::ClientRequest request;
     try {
       if (bytes.size() != stream::kRequestBytes)
-        throw stream::ProtocolError(fmt::format("client request: {} bytes, expected {}", bytes.size(), stream::kRequestBytes));
+        throw stream::ProtocolError(
+            fmt::format("client request: {} bytes, expected {}", bytes.size(), stream::kRequestBytes));
       request = stream::decode_request(bytes.first<stream::kRequestBytes>());
     } catch (const stream::ProtocolError& e) {
       spdlog::warn("udp://{}:{}: datagram ignored: {}", from.address().to_string(), from.port(), e.what());
@@ -322,11 +326,12 @@ struct StreamServer::Impl {
   }
 
   void start_udp_receive(std::vector<std::byte>& buffer, udp::endpoint& from) {
-    udp_socket->async_receive_from(asio::buffer(buffer), from, [this, &buffer, &from](const boost::system::error_code& ec, std::size_t n) {
-      if (ec == asio::error::operation_aborted) return;
-      if (!ec) handle_udp_request(std::span<const std::byte>(buffer.data(), n), from);
-      start_udp_receive(buffer, from);
-    });
+    udp_socket->async_receive_from(asio::buffer(buffer), from,
+                                   [this, &buffer, &from](const boost::system::error_code& ec, std::size_t n) {
+                                     if (ec == asio::error::operation_aborted) return;
+                                     if (!ec) handle_udp_request(std::span<const std::byte>(buffer.data(), n), from);
+                                     start_udp_receive(buffer, from);
+                                   });
   }
 
   /// Joins the sessions that ended (all of them when `all`: they are ending); returns how many.
@@ -358,7 +363,8 @@ StreamServer::StreamServer(StreamServerOptions options) : impl_(std::make_unique
     throw std::invalid_argument("stream server: frame payload must be 1 byte to 1 MiB (TCP), 65000 bytes (UDP)");
   boost::system::error_code ec;
   const auto address = asio::ip::make_address(m.opt.bind_address, ec);
-  if (ec) throw std::runtime_error(fmt::format("stream server: bad bind address '{}': {}", m.opt.bind_address, ec.message()));
+  if (ec)
+    throw std::runtime_error(fmt::format("stream server: bad bind address '{}': {}", m.opt.bind_address, ec.message()));
   if (m.opt.tcp_port) {
     m.acceptor.emplace(m.io);
     const tcp::endpoint ep(address, *m.opt.tcp_port);
@@ -366,17 +372,22 @@ StreamServer::StreamServer(StreamServerOptions options) : impl_(std::make_unique
     if (!ec) m.acceptor->set_option(tcp::acceptor::reuse_address(true), ec);
     if (!ec) m.acceptor->bind(ep, ec);
     if (!ec) m.acceptor->listen(asio::socket_base::max_listen_connections, ec);
-    if (ec) throw std::runtime_error(fmt::format("cannot listen on tcp://{}:{}: {}", m.opt.bind_address, *m.opt.tcp_port, ec.message()));
+    if (ec)
+      throw std::runtime_error(
+          fmt::format("cannot listen on tcp://{}:{}: {}", m.opt.bind_address, *m.opt.tcp_port, ec.message()));
   }
   if (m.opt.udp_port) {
     m.udp_socket.emplace(m.io);
     const udp::endpoint ep(address, *m.opt.udp_port);
     m.udp_socket->open(ep.protocol(), ec);
     if (!ec) m.udp_socket->bind(ep, ec);
-    if (ec) throw std::runtime_error(fmt::format("cannot bind udp://{}:{}: {}", m.opt.bind_address, *m.opt.udp_port, ec.message()));
+    if (ec)
+      throw std::runtime_error(
+          fmt::format("cannot bind udp://{}:{}: {}", m.opt.bind_address, *m.opt.udp_port, ec.message()));
     m.udp_socket->set_option(asio::socket_base::send_buffer_size(4 << 20), ec);  // best effort
   }
-  if (!m.acceptor && !m.udp_socket) throw std::invalid_argument("stream server: neither a TCP nor a UDP port to serve on");
+  if (!m.acceptor && !m.udp_socket)
+    throw std::invalid_argument("stream server: neither a TCP nor a UDP port to serve on");
 }
 
 StreamServer::~StreamServer() {
@@ -386,9 +397,7 @@ StreamServer::~StreamServer() {
     if (s->thread.joinable()) s->thread.join();
 }
 
-std::uint16_t StreamServer::tcp_port() const {
-  return impl_->acceptor ? impl_->acceptor->local_endpoint().port() : 0;
-}
+std::uint16_t StreamServer::tcp_port() const { return impl_->acceptor ? impl_->acceptor->local_endpoint().port() : 0; }
 std::uint16_t StreamServer::udp_port() const {
   return impl_->udp_socket ? impl_->udp_socket->local_endpoint().port() : 0;
 }

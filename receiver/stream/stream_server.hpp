@@ -34,7 +34,7 @@ struct StreamServerOptions {
   std::set<std::uint64_t> drop_frames;
   double drop_probability = 0.0;
   std::uint64_t drop_seed = 1;
-  double request_timeout_s = 1.0;      ///< TCP: how long a framed session waits for the client's request
+  double request_timeout_s = 1.0;  ///< TCP: how long a framed session waits for the client's request
   double udp_keepalive_timeout_s = 5.0;
   /// Opens a fresh stream for each session (called from the session's thread).
   std::function<std::unique_ptr<IfByteStream>()> open_stream;
@@ -42,12 +42,12 @@ struct StreamServerOptions {
 
 /// What one session did, for logs and tests.
 struct ServerSessionReport {
-  std::string client;     ///< tcp://addr:port or udp://addr:port
+  std::string client;  ///< tcp://addr:port or udp://addr:port
   std::int64_t first_sample = 0;
   std::int64_t samples_sent = 0;
   std::int64_t frames_sent = 0;
   std::vector<std::uint64_t> dropped_frames;  ///< sequence numbers not sent (loss injection)
-  std::string end;        ///< why the session ended
+  std::string end;                            ///< why the session ended
 };
 
 class StreamServer {

@@ -135,7 +135,8 @@ TcpSampleSource::SessionEnd TcpSampleSource::receive_raw(tcp::socket& socket, st
     carry.insert(carry.end(), buffer.begin(), buffer.begin() + static_cast<std::ptrdiff_t>(got));
     const std::size_t whole = carry.size() / bps * bps;
     if (whole == 0) continue;
-    StreamPiece piece{raw_index_, std::vector<std::byte>(carry.begin(), carry.begin() + static_cast<std::ptrdiff_t>(whole))};
+    StreamPiece piece{raw_index_,
+                      std::vector<std::byte>(carry.begin(), carry.begin() + static_cast<std::ptrdiff_t>(whole))};
     carry.erase(carry.begin(), carry.begin() + static_cast<std::ptrdiff_t>(whole));
     raw_index_ += static_cast<std::int64_t>(whole / bps);
     if (!queue_.push(std::move(piece), cancel_)) return SessionEnd::cancelled;

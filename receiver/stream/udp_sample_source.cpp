@@ -27,8 +27,8 @@ Clock::duration seconds(double s) {
 }  // namespace
 
 UdpSampleSource::UdpSampleSource(StreamSourceSettings settings)
-    : StreamSampleSource(settings, fmt::format("udp://{}{}:{}", settings.listen ? "@" : "", settings.host,
-                                               settings.port)),
+    : StreamSampleSource(settings,
+                         fmt::format("udp://{}{}:{}", settings.listen ? "@" : "", settings.host, settings.port)),
       socket_(io_),
       sequencer_(
           kReorderWindow, [this](stream::Frame&& f) { deliver(std::move(f)); },
@@ -80,7 +80,8 @@ void UdpSampleSource::handle_datagram(std::span<const std::byte> bytes) {
     const std::size_t bps = bytes_per_sample(settings_.raw_format);
     const std::size_t whole = bytes.size() / bps * bps;
     if (whole == 0) return;
-    StreamPiece piece{raw_index_, std::vector<std::byte>(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(whole))};
+    StreamPiece piece{raw_index_,
+                      std::vector<std::byte>(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(whole))};
     raw_index_ += static_cast<std::int64_t>(whole / bps);
     if (!queue_.try_push(std::move(piece))) update_stats([](StreamStats& s) { ++s.frames_overrun; });
     return;
@@ -147,8 +148,8 @@ void UdpSampleSource::io_loop() {
     });
     const bool completed = asio_wait::run_until_done(io_, done, Clock::now() + std::chrono::milliseconds(200), cancel_,
                                                      [&] { socket_.cancel(); });
-    const double silence_limit_s = header_seen_ || settings_.raw ? settings_.reconnect_timeout_s
-                                                                 : settings_.connect_timeout_s;
+    const double silence_limit_s =
+        header_seen_ || settings_.raw ? settings_.reconnect_timeout_s : settings_.connect_timeout_s;
     if (!completed || ec) {
       if (cancel_) break;
       if (Clock::now() - last_datagram > seconds(silence_limit_s)) {

@@ -46,9 +46,9 @@ struct SignalLockReport {
 
 /// What a controller asks of its channel.
 struct ChannelDecision {
-  bool owns_epoch = false;             ///< on_epoch: this controller took the epoch; the scalar loops follow it
-  std::optional<NcoCommand> command;   ///< NCO rates (and phase jumps) from the next sample on
-  std::optional<bool> loss_detection;  ///< turn the channel's weak-signal loss detection on or off
+  bool owns_epoch = false;               ///< on_epoch: this controller took the epoch; the scalar loops follow it
+  std::optional<NcoCommand> command;     ///< NCO rates (and phase jumps) from the next sample on
+  std::optional<bool> loss_detection;    ///< turn the channel's weak-signal loss detection on or off
   std::optional<SignalLockReport> lock;  ///< on_epoch: the controller's view of the signal (none: the channel's own)
 };
 
@@ -87,7 +87,7 @@ class ScalarChannelControl final : public ChannelController {
 struct ChannelStatus {
   int prn = 0;
   ChannelState state{};
-  bool bit_synced = false;          ///< data-bit edges known
+  bool bit_synced = false;            ///< data-bit edges known
   bool decoder_synchronised = false;  ///< subframe timing known
   double cn0_dbhz = 0.0;
   std::optional<double> replica_transmit_sow;  ///< transmit time of the prompt replica at the block's end
@@ -110,8 +110,8 @@ struct BlockSnapshot {
   double sample_rate_hz = 0.0;
   std::optional<ReceiverClockReference> clock;  ///< once the receiver clock is set
   IonoParameters iono;                          ///< decoded or assisted (invalid: none yet)
-  std::vector<int> tracked_prns;                ///< channels that tracked this block, in channel order (lost ones included)
-  std::vector<ChannelStatus> channels;          ///< channels that go on tracking, in channel order
+  std::vector<int> tracked_prns;        ///< channels that tracked this block, in channel order (lost ones included)
+  std::vector<ChannelStatus> channels;  ///< channels that go on tracking, in channel order
 };
 
 /// A satellite the receiver does not track, with the ephemeris it has for it (decoded

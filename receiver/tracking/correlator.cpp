@@ -37,7 +37,8 @@ struct CarrierTable {
 CarrierTable make_carrier_table(double amplitude, double scale) {
   CarrierTable t{};
   for (int r = 0; r < 8; ++r)
-    t.quarter[static_cast<std::size_t>(r)] = static_cast<std::int16_t>(std::lround(amplitude * std::cos((r + 0.5) * M_PI / 16.0)));
+    t.quarter[static_cast<std::size_t>(r)] =
+        static_cast<std::int16_t>(std::lround(amplitude * std::cos((r + 0.5) * M_PI / 16.0)));
   for (int p = 0; p < 32; ++p) {
     const int q = p >> 3, r = p & 7;
     const std::int16_t m = t.quarter[static_cast<std::size_t>(r)], mm = t.quarter[static_cast<std::size_t>(7 - r)];
@@ -184,7 +185,8 @@ bool cpu_has(CorrelatorKernel k) {
 
 std::string available_names() {
   std::string s;
-  for (CorrelatorKernel k : available_correlator_kernels()) s += std::string(s.empty() ? "" : ", ") + correlator_kernel_name(k);
+  for (CorrelatorKernel k : available_correlator_kernels())
+    s += std::string(s.empty() ? "" : ", ") + correlator_kernel_name(k);
   return s;
 }
 
@@ -209,12 +211,12 @@ const char* correlator_kernel_name(CorrelatorKernel k) {
 }
 
 CorrelatorKernel correlator_kernel_named(const std::string& name) {
-  for (CorrelatorKernel k : {CorrelatorKernel::portable, CorrelatorKernel::avx2, CorrelatorKernel::avx512,
-                             CorrelatorKernel::neon}) {
+  for (CorrelatorKernel k :
+       {CorrelatorKernel::portable, CorrelatorKernel::avx2, CorrelatorKernel::avx512, CorrelatorKernel::neon}) {
     if (name != correlator_kernel_name(k)) continue;
     if (!cpu_has(k))
-      throw std::invalid_argument("correlator kernel '" + name + "' cannot run on this CPU (available: " +
-                                  available_names() + ")");
+      throw std::invalid_argument("correlator kernel '" + name +
+                                  "' cannot run on this CPU (available: " + available_names() + ")");
     return k;
   }
   throw std::invalid_argument("unknown correlator kernel '" + name + "' (portable, avx2, avx512, neon)");
@@ -222,8 +224,8 @@ CorrelatorKernel correlator_kernel_named(const std::string& name) {
 
 std::vector<CorrelatorKernel> available_correlator_kernels() {
   std::vector<CorrelatorKernel> k;
-  for (CorrelatorKernel c : {CorrelatorKernel::portable, CorrelatorKernel::neon, CorrelatorKernel::avx2,
-                             CorrelatorKernel::avx512})
+  for (CorrelatorKernel c :
+       {CorrelatorKernel::portable, CorrelatorKernel::neon, CorrelatorKernel::avx2, CorrelatorKernel::avx512})
     if (cpu_has(c)) k.push_back(c);
   return k;
 }

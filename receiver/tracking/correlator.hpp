@@ -44,18 +44,18 @@
 namespace deepnav {
 
 struct CorrelatorSums {
-  std::complex<double> early, prompt, late;  ///< at +spacing/2, 0, -spacing/2 chips from the prompt
+  std::complex<double> early, prompt, late;    ///< at +spacing/2, 0, -spacing/2 chips from the prompt
   std::complex<double> very_early, very_late;  ///< at +-very_spacing/2 chips; zero when disabled
-  std::complex<double> noise;  ///< prompt timing on an untracked PRN's code: noise reference
+  std::complex<double> noise;                  ///< prompt timing on an untracked PRN's code: noise reference
 };
 
 struct CorrelatorSpan {
-  double carrier_phase_cycles = 0.0;   ///< phase of the replica at the first sample (IF + Doppler)
-  double carrier_step_cycles = 0.0;    ///< per sample
-  double code_phase_chips = 0.0;       ///< prompt code phase at the first sample (any value; taken modulo 1023)
-  double code_step_chips = 0.0;        ///< per sample, in (0, 2]
-  double spacing_chips = 0.5;          ///< early-late spacing
-  double very_spacing_chips = 0.0;     ///< very-early/very-late spacing; 0 disables them
+  double carrier_phase_cycles = 0.0;  ///< phase of the replica at the first sample (IF + Doppler)
+  double carrier_step_cycles = 0.0;   ///< per sample
+  double code_phase_chips = 0.0;      ///< prompt code phase at the first sample (any value; taken modulo 1023)
+  double code_step_chips = 0.0;       ///< per sample, in (0, 2]
+  double spacing_chips = 0.5;         ///< early-late spacing
+  double very_spacing_chips = 0.0;    ///< very-early/very-late spacing; 0 disables them
   /// Bits of the largest |I| or |Q| in the span (sample_magnitude_bits()), or of a larger
   /// set of samples holding the span (one scan of a block serves all its channels); it
   /// picks the fixed-point scaling and must not be below the span's own. -1: scanned here.

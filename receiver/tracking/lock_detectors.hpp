@@ -23,10 +23,10 @@
 namespace deepnav {
 
 struct LockThresholds {
-  double pll_on = 1.5;           ///< mean|I| / mean|Q| to declare phase lock
-  double pll_off = 1.25;         ///< ... and to lose it
-  double code_on_dbhz = 26.0;    ///< C/N0 to declare code lock
-  double code_off_dbhz = 23.0;   ///< ... and to lose it
+  double pll_on = 1.5;          ///< mean|I| / mean|Q| to declare phase lock
+  double pll_off = 1.25;        ///< ... and to lose it
+  double code_on_dbhz = 26.0;   ///< C/N0 to declare code lock
+  double code_off_dbhz = 23.0;  ///< ... and to lose it
   int confirm_epochs = 5;
   /// Averaging window: this long, but at least 20 epochs. With 1 ms epochs a 200-epoch
   /// window keeps pure noise below about 20 dB-Hz (a 50-epoch one reads up to 25 dB-Hz).

@@ -30,7 +30,8 @@ TrackingChannel::TrackingChannel(const TrackingConfig& config, const ChannelStar
   if (start.prn < 1 || start.prn > gps::kMaxPrn)
     throw std::invalid_argument("tracking: PRN must be in 1..32, got " + std::to_string(start.prn));
   if (!(cfg_.spacing_chips > 0.0 && cfg_.spacing_chips < 2.0) || !(cfg_.very_spacing_chips >= 0.0))
-    throw std::invalid_argument("tracking: early-late spacing must be in (0, 2) chips and very-early/late spacing >= 0");
+    throw std::invalid_argument(
+        "tracking: early-late spacing must be in (0, 2) chips and very-early/late spacing >= 0");
   nco_.carrier_doppler_hz = start.doppler_hz;
   nco_.code_rate_cps = gps::kCodeRate_cps * (1.0 + start.doppler_hz / gps::kL1_Hz);
   if (start.bit_edge_period) {
@@ -98,7 +99,8 @@ void TrackingChannel::process(const SampleBlock& block, const std::function<void
   const double fs = cfg_.sample_rate_hz;
   while (idx < block_end) {
     const double code_step = nco_.code_rate_cps / fs;
-    const int to_period_end = std::max(1, static_cast<int>(std::ceil((kPeriod - code_phase_chips_) / code_step - 1e-9)));
+    const int to_period_end =
+        std::max(1, static_cast<int>(std::ceil((kPeriod - code_phase_chips_) / code_step - 1e-9)));
     const int n = static_cast<int>(std::min<std::int64_t>(to_period_end, block_end - idx));
     CorrelatorSpan span;
     span.carrier_phase_cycles = cfg_.if_hz * static_cast<double>(idx) / fs + carrier_phase_cycles_;

@@ -11,9 +11,9 @@
 #include <optional>
 #include <vector>
 
+#include "receiver/sources/sample_source.hpp"
 #include "receiver/tracking/bit_synchronizer.hpp"
 #include "receiver/tracking/lock_detectors.hpp"
-#include "receiver/sources/sample_source.hpp"
 #include "receiver/tracking/tracking_types.hpp"
 #include "signals/ca_code.hpp"
 
@@ -26,14 +26,14 @@ struct TrackingConfig {
   int coherent_ms_after_bit_sync = 10;  ///< 1, 2, 4, 5, 10 or 20
   double lost_cn0_dbhz = 22.0;          ///< below this for `lost_after_s`: loss of lock
   double lost_after_s = 1.0;
-  double very_spacing_chips = 0.0;      ///< very-early/very-late spacing; 0: not computed
-  double pull_in_s = 0.25;              ///< FLL-assisted pull-in time before bit synchronisation
+  double very_spacing_chips = 0.0;  ///< very-early/very-late spacing; 0: not computed
+  double pull_in_s = 0.25;          ///< FLL-assisted pull-in time before bit synchronisation
   /// The noise correlator (the C/N0 reference) runs on the first code period of each
   /// integration only: one |N|^2 per integration is what the estimate averages, whatever
   /// length it was integrated over, so longer integrations need no more (after bit sync,
   /// with 10 ms integrations, it costs a tenth). true: on every code period.
   bool noise_on_every_period = false;
-  LockThresholds lock;                  ///< PLL and code lock flags (CorrelatorEpoch::pll_lock, code_lock)
+  LockThresholds lock;  ///< PLL and code lock flags (CorrelatorEpoch::pll_lock, code_lock)
 };
 
 /// Where tracking starts: an acquisition result.
@@ -42,7 +42,7 @@ struct ChannelStart {
   double doppler_hz = 0.0;
   double code_phase_chips = 0.0;  ///< prompt code phase at sample `sample_index`, [0, 1023)
   std::int64_t sample_index = 0;
-  int channel = 0;                ///< the owner's channel number, copied into every epoch
+  int channel = 0;  ///< the owner's channel number, copied into every epoch
   /// The data-bit edge (a code period, counted from the start, at which a bit begins) when
   /// it is known beforehand (a start from a filter's prediction of the transmit time): the
   /// channel then skips pull-in and bit synchronisation and integrates along the bits at once.
@@ -52,9 +52,9 @@ struct ChannelStart {
 /// One data bit from the prompt, once the bits are synchronised: the sum of the prompt
 /// integrations over the bit's 20 code periods.
 struct PromptBit {
-  double soft = 0.0;                 ///< in-phase sum (sign = bit, up to the Costas ambiguity)
-  std::int64_t first_sample = 0;     ///< absolute sample index at which the bit starts
-  std::int64_t code_period = 0;      ///< channel code-period count at the bit start (see CorrelatorEpoch::code_period)
+  double soft = 0.0;              ///< in-phase sum (sign = bit, up to the Costas ambiguity)
+  std::int64_t first_sample = 0;  ///< absolute sample index at which the bit starts
+  std::int64_t code_period = 0;   ///< channel code-period count at the bit start (see CorrelatorEpoch::code_period)
 };
 
 enum class ChannelState { pull_in, bit_sync, tracking, lost };

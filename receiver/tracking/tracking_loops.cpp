@@ -35,8 +35,7 @@ CarrierLoopFilter::CarrierLoopFilter(int order, double pll_hz, double fll_hz, do
 void CarrierLoopFilter::set_bandwidths(int order, double pll_hz, double fll_hz) {
   if (order != 2 && order != 3)
     throw std::invalid_argument("carrier loop: PLL order must be 2 or 3, got " + std::to_string(order));
-  if (!(pll_hz >= 0.0) || !(fll_hz >= 0.0))
-    throw std::invalid_argument("carrier loop: bandwidths must be >= 0 Hz");
+  if (!(pll_hz >= 0.0) || !(fll_hz >= 0.0)) throw std::invalid_argument("carrier loop: bandwidths must be >= 0 Hz");
   order_ = order;
   pll_hz_ = pll_hz;
   fll_hz_ = fll_hz;

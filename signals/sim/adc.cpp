@@ -85,8 +85,8 @@ void validate_adc(const AdcConfig& c, const SampleFormat& format) {
                                             to_string(format), min_bits, max_bits,
                                             min_bits == 0 ? " (0 = no quantization)" : ""));
   if (!std::isfinite(c.agc_target_rms) || c.agc_target_rms < 0.0)
-    throw std::invalid_argument(fmt::format("adc.agc_target_rms = {}: expected >= 0 (0 = optimum loading)",
-                                            c.agc_target_rms));
+    throw std::invalid_argument(
+        fmt::format("adc.agc_target_rms = {}: expected >= 0 (0 = optimum loading)", c.agc_target_rms));
   if (c.agc_enabled && (!std::isfinite(c.agc_time_constant_s) || c.agc_time_constant_s <= 0.0))
     throw std::invalid_argument(fmt::format("adc.agc_time_constant_s = {}: expected > 0 s", c.agc_time_constant_s));
   if (!c.agc_enabled && (!std::isfinite(c.fixed_gain) || c.fixed_gain <= 0.0))
@@ -133,7 +133,8 @@ void quantize_pack(const float* x, std::size_t n, float gain, int bits, const Sa
   if (is_packed(format)) {
     std::vector<std::int16_t> levels(n);
     quantize_to(x, n, gain, bits, true, levels.data());
-    pack_levels(levels, format.packed, std::span<std::byte>(out, n / values_per_word(format.packed) * bytes_per_word(format)));
+    pack_levels(levels, format.packed,
+                std::span<std::byte>(out, n / values_per_word(format.packed) * bytes_per_word(format)));
     return;
   }
   if (format == SampleFormat::gr_complex) {
@@ -178,7 +179,9 @@ void unpack_levels(const std::byte* in, std::size_t n, int bits, const SampleFor
   // Full-width codes c map back to the odd level 2c + 1.
   auto level = [odd](int v) { return static_cast<float>(odd ? v : 2 * v + 1); };
   switch (format.kind) {
-    case SampleKind::gr_complex: load_little_endian(in, n, out); return;
+    case SampleKind::gr_complex:
+      load_little_endian(in, n, out);
+      return;
     case SampleKind::ishort:
       for (std::size_t k = 0; k < n; ++k) {
         std::int16_t v;

@@ -33,10 +33,10 @@ namespace deepnav {
 
 struct AdcConfig {
   int bits = 2;  ///< 1..8 for ibyte/byte/cu8, 1..16 for ishort, 0..16 for gr_complex (0 = no quantization), 1..B packed
-  double agc_target_rms = 0.0;       ///< per-component RMS at the quantizer input, in level units; 0 = optimum
-  bool agc_enabled = true;           ///< false: fixed_gain instead of the AGC
-  double agc_time_constant_s = 1e-3; ///< time constant of the AGC's power estimate
-  double fixed_gain = 1.0;           ///< gain applied when the AGC is disabled
+  double agc_target_rms = 0.0;        ///< per-component RMS at the quantizer input, in level units; 0 = optimum
+  bool agc_enabled = true;            ///< false: fixed_gain instead of the AGC
+  double agc_time_constant_s = 1e-3;  ///< time constant of the AGC's power estimate
+  double fixed_gain = 1.0;            ///< gain applied when the AGC is disabled
 };
 
 /// Optimum per-component RMS (level units) for a b-bit quantizer; 1.0 for b = 0.

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <numbers>
 
-
 namespace deepnav {
 
 double antenna_gain_db(const AntennaSpec& spec, double elevation_rad) {

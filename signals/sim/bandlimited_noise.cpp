@@ -6,7 +6,7 @@
 namespace deepnav {
 namespace {
 
-constexpr double kKaiserBeta = 5.65;           // 0.1102 (A - 8.7) for A = 60 dB
+constexpr double kKaiserBeta = 5.65;             // 0.1102 (A - 8.7) for A = 60 dB
 constexpr double kTransitionOfBandwidth = 0.25;  // transition band width / B
 constexpr float kSqrtHalf = 0.70710678118654752f;
 

@@ -88,8 +88,7 @@ void FrontEnd::process(std::span<std::complex<float>> block, std::int64_t first_
   add_thermal_noise(block, first_sample);
   if (is_complex(config_.format))
     digitize(reinterpret_cast<const float*>(block.data()), block.size(), 2, first_sample, out_bytes.data());
-  else
-    digitize(real_.data(), block.size(), 1, first_sample, out_bytes.data());
+  else digitize(real_.data(), block.size(), 1, first_sample, out_bytes.data());
 }
 
 void FrontEnd::add_thermal_noise(std::span<std::complex<float>> block, std::int64_t first_sample) {
@@ -151,8 +150,9 @@ void FrontEnd::digitize(const float* x, std::size_t n_samples, int values_per_sa
   if (packed && config_.format.packed.q_first)  // the layout stores Q before I
     for (std::size_t k = 0; k + 1 < levels_.size(); k += 2) std::swap(levels_[k], levels_[k + 1]);
   if (packed)
-    pack_levels(levels_, config_.format.packed,
-                std::span<std::byte>(out, n_samples / samples_per_word(config_.format) * bytes_per_word(config_.format)));
+    pack_levels(
+        levels_, config_.format.packed,
+        std::span<std::byte>(out, n_samples / samples_per_word(config_.format) * bytes_per_word(config_.format)));
 }
 
 }  // namespace deepnav

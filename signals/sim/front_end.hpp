@@ -16,10 +16,10 @@
 #include <span>
 #include <vector>
 
+#include "signals/sample_format.hpp"
 #include "signals/sim/adc.hpp"
 #include "signals/sim/indexed_noise.hpp"
 #include "signals/sim/jammer.hpp"
-#include "signals/sample_format.hpp"
 
 namespace deepnav {
 
@@ -30,7 +30,7 @@ struct FrontEndConfig {
   AdcConfig adc;
   double cn0_ref_dbhz = 45.0;  ///< nominal satellite C/N0 that the jammers' J/S refers to
   std::vector<JammerConfig> jammers;
-  bool thermal_noise = true;   ///< false: no noise (tests, noise-free references)
+  bool thermal_noise = true;  ///< false: no noise (tests, noise-free references)
 };
 
 class FrontEnd {
@@ -68,7 +68,7 @@ class FrontEnd {
   std::vector<IndexedNoise> noise_;
   std::vector<Jammer> jammers_;
   Agc agc_;
-  std::vector<float> real_;  ///< real-output scratch
+  std::vector<float> real_;           ///< real-output scratch
   std::vector<std::int16_t> levels_;  ///< packed output: the block's levels before packing
 };
 

@@ -132,10 +132,8 @@ void GaussianNoise::generate(float* out, std::size_t count, float sigma) {
     return static_cast<float>(finish_half(half));
   };
   auto put = [&](std::size_t k, float v) {
-    if constexpr (kAdd)
-      out[k] += sigma * v;
-    else
-      out[k] = sigma * v;
+    if constexpr (kAdd) out[k] += sigma * v;
+    else out[k] = sigma * v;
   };
   // A half word left over by the previous call is used first, so the draw sequence does
   // not depend on how the stream is cut into calls.

@@ -7,30 +7,30 @@
 #include <chrono>
 #include <cmath>
 #include <complex>
+#include <exception>
 #include <filesystem>
 #include <fstream>
-#include <exception>
+#include <future>
 #include <stdexcept>
 #include <system_error>
-#include <future>
 
 #include "ins/frames.hpp"
 #include "ins/imu_model.hpp"
+#include "ins/rotations.hpp"
 #include "ins/sim/simulated_imu_file.hpp"
 #include "ins/sim/trajectory_csv.hpp"
-#include "ins/rotations.hpp"
 #include "ins/sim/trajectory_presets.hpp"
 #include "signals/ca_code.hpp"
-#include "signals/sim/error_world.hpp"
-#include "signals/if_metadata.hpp"
-#include "signals/sim/front_end.hpp"
-#include "signals/sim/parallel_ranges.hpp"
-#include "signals/sim/if_file_writer.hpp"
 #include "signals/gps_constants.hpp"
-#include "signals/sim/line_of_sight.hpp"
+#include "signals/if_metadata.hpp"
 #include "signals/lnav_message.hpp"
+#include "signals/sim/error_world.hpp"
+#include "signals/sim/front_end.hpp"
+#include "signals/sim/if_file_writer.hpp"
+#include "signals/sim/line_of_sight.hpp"
 #include "signals/sim/lnav_broadcast.hpp"
 #include "signals/sim/multipath_channel.hpp"
+#include "signals/sim/parallel_ranges.hpp"
 #include "signals/sim/receiver_clock_model.hpp"
 #include "signals/sim/satellite_selection.hpp"
 #include "signals/sim/satellite_signal_kernel.hpp"
@@ -96,10 +96,10 @@ struct IfSynthesizer::Impl {
   std::vector<SynthesizedSatellite> info;
   std::int64_t samples_per_epoch = 0;
   std::int64_t epochs = 0;
-  std::int64_t ref_ms_abs = 0;     ///< whole ms of the start time, counted from the GPS time origin
-  double ref_frac_s = 0.0;         ///< start time minus ref_ms_abs (below 1 ms)
-  GpsTime ref_time{};              ///< the reference epoch as a GpsTime
-  std::unique_ptr<ErrorWorld> world;  ///< the truth models the signal follows
+  std::int64_t ref_ms_abs = 0;                  ///< whole ms of the start time, counted from the GPS time origin
+  double ref_frac_s = 0.0;                      ///< start time minus ref_ms_abs (below 1 ms)
+  GpsTime ref_time{};                           ///< the reference epoch as a GpsTime
+  std::unique_ptr<ErrorWorld> world;            ///< the truth models the signal follows
   std::unique_ptr<MultipathChannel> multipath;  ///< null for model none: no extra work at all
 
   Impl(Scenario s, NavData n) : sc(std::move(s)), nav(std::move(n)) {
@@ -110,9 +110,9 @@ struct IfSynthesizer::Impl {
     ref_frac_s = sc.start_time.sow - sow_ms / 1000.0;
     ref_time = GpsTime{sc.start_time.week, sow_ms / 1000.0};
     trajectory = make_trajectory();
-    world = std::make_unique<ErrorWorld>(sc.errors, AtmosphereSwitches{sc.ionosphere, sc.troposphere}, sc.seed,
-                                         sc.start_time, sc.duration_s,
-                                         wgs84::ecef_to_llh(trajectory->at(0.0).r_ecef_m));
+    world =
+        std::make_unique<ErrorWorld>(sc.errors, AtmosphereSwitches{sc.ionosphere, sc.troposphere}, sc.seed,
+                                     sc.start_time, sc.duration_s, wgs84::ecef_to_llh(trajectory->at(0.0).r_ecef_m));
     choose_satellites();
     if (sc.errors.multipath.model != MultipathSpec::Model::none) make_multipath();
   }
@@ -226,7 +226,8 @@ struct IfSynthesizer::Impl {
     if (multipath) {
       b.paths.reserve(runs.size());
       const double t_s = static_cast<double>(k) * 1e-3;
-      for (std::size_t s = 0; s < runs.size(); ++s) b.paths.push_back(multipath->paths(s, t_s, b.sats[s].elevation_rad));
+      for (std::size_t s = 0; s < runs.size(); ++s)
+        b.paths.push_back(multipath->paths(s, t_s, b.sats[s].elevation_rad));
     }
     return b;
   }
@@ -246,10 +247,11 @@ struct IfSynthesizer::Impl {
       const double range_rate_mps = (1.0 - chips_per_ms / 1023.0) * gps::kSpeedOfLight_mps;
       if (std::isfinite(range_rate_mps) && std::abs(range_rate_mps) <= limit_mps) continue;
       throw std::runtime_error(fmt::format(
-          "synthesizer: PRN {} at t = {:.3f} s: the signal implies a range rate of {:.4g} m/s (the code advanced {:.6g} "
+          "synthesizer: PRN {} at t = {:.3f} s: the signal implies a range rate of {:.4g} m/s (the code advanced "
+          "{:.6g} "
           "chips in 1 ms), beyond {:g} m/s: check the scenario's navigation file ({}, PRN {}) and trajectory ({})",
-          runs[s].eph.prn, static_cast<double>(k) * 1e-3, range_rate_mps, chips_per_ms, limit_mps,
-          sc.nav_file, runs[s].eph.prn, trajectory->description()));
+          runs[s].eph.prn, static_cast<double>(k) * 1e-3, range_rate_mps, chips_per_ms, limit_mps, sc.nav_file,
+          runs[s].eph.prn, trajectory->description()));
     }
   }
 
@@ -303,13 +305,15 @@ struct IfSynthesizer::Impl {
       const PathSet& pb = b.paths[s];
       const float direct = amp * static_cast<float>(pa.direct_gain);
       if (direct != 0.0f)
-        add_path(s, n, sa.code_chips, sb.code_chips, sa.carrier_cycles, sb.carrier_cycles, direct, i_out, q_out, scratch);
+        add_path(s, n, sa.code_chips, sb.code_chips, sa.carrier_cycles, sb.carrier_cycles, direct, i_out, q_out,
+                 scratch);
       for (int e = 0; e < pa.echo_count; ++e) {
         const EchoPath& ea = pa.echoes[static_cast<std::size_t>(e)];
         const float echo_amp = amp * static_cast<float>(ea.amplitude);
         if (echo_amp == 0.0f) continue;
         EchoPath eb = ea;
-        if (e < pb.echo_count && pb.echoes[static_cast<std::size_t>(e)].id == ea.id) eb = pb.echoes[static_cast<std::size_t>(e)];
+        if (e < pb.echo_count && pb.echoes[static_cast<std::size_t>(e)].id == ea.id)
+          eb = pb.echoes[static_cast<std::size_t>(e)];
         // Unwrapped phase change over the epoch: well below half a cycle per millisecond.
         double dphi = eb.carrier_phase_rad - ea.carrier_phase_rad;
         dphi -= kTwoPi * std::round(dphi / kTwoPi);
@@ -342,13 +346,14 @@ void write_truth_row(TextOutputFile& f, const GpsTime& start, std::int64_t k, co
   const GpsTime t = start.plus_seconds(t_s);
   const EulerAngles e = euler_from_quaternion(b.traj.q_b_n);
   const Eigen::Vector3d rpy = Eigen::Vector3d(e.roll_rad, e.pitch_rad, e.yaw_rad) * kRadToDeg;
-  f.write(fmt::format(
-      "{:.3f},{},{:.9f},{:.4f},{:.4f},{:.4f},{:.5f},{:.5f},{:.5f},{:.10f},{:.10f},{:.4f},{:.5f},{:.5f},{:.5f},{:.6f},{:.6f},"
-      "{:.6f},{:.12e},{:.6e}\n",
-      t_s, t.week, t.sow, b.rx.r_ecef_m.x(), b.rx.r_ecef_m.y(), b.rx.r_ecef_m.z(), b.rx.v_ecef_mps.x(),
-      b.rx.v_ecef_mps.y(), b.rx.v_ecef_mps.z(), b.rx.llh.lat_rad * kRadToDeg, b.rx.llh.lon_rad * kRadToDeg,
-      b.rx.llh.height_m, b.traj.v_ned_mps.x(), b.traj.v_ned_mps.y(), b.traj.v_ned_mps.z(), rpy.x(), rpy.y(), rpy.z(),
-      b.rx.clock_bias_s, b.rx.clock_drift_sps));
+  f.write(
+      fmt::format("{:.3f},{},{:.9f},{:.4f},{:.4f},{:.4f},{:.5f},{:.5f},{:.5f},{:.10f},{:.10f},{:.4f},{:.5f},{:.5f},{:."
+                  "5f},{:.6f},{:.6f},"
+                  "{:.6f},{:.12e},{:.6e}\n",
+                  t_s, t.week, t.sow, b.rx.r_ecef_m.x(), b.rx.r_ecef_m.y(), b.rx.r_ecef_m.z(), b.rx.v_ecef_mps.x(),
+                  b.rx.v_ecef_mps.y(), b.rx.v_ecef_mps.z(), b.rx.llh.lat_rad * kRadToDeg, b.rx.llh.lon_rad * kRadToDeg,
+                  b.rx.llh.height_m, b.traj.v_ned_mps.x(), b.traj.v_ned_mps.y(), b.traj.v_ned_mps.z(), rpy.x(), rpy.y(),
+                  rpy.z(), b.rx.clock_bias_s, b.rx.clock_drift_sps));
 }
 
 void write_sat_truth_header(TextOutputFile& f) {
@@ -374,7 +379,7 @@ struct IfChunkGenerator::State {
   std::vector<ClockState> clocks;
   std::vector<BoundaryState> boundaries;  ///< of the last chunk: [0] is its first epoch
   ClockState current;
-  std::int64_t k0 = 0;                    ///< first epoch of the next chunk
+  std::int64_t k0 = 0;  ///< first epoch of the next chunk
 
   State(const IfSynthesizer::Impl& impl, unsigned thread_count)
       : m(impl),
@@ -506,16 +511,14 @@ SynthesisSummary IfSynthesizer::run(const std::string& out_dir, const SynthesisO
               los_gain_db = p.direct_gain > 0.0 ? 20.0 * std::log10(p.direct_gain) : -300.0;
               echoes = p.echo_count;
             }
-            sat_truth->write(fmt::format("{:.3f},{},{:.6f},{:.4f},{:.4f},{:.2f},{:.4f},{:.4f},{:.4f},{:.4f},{:.5f},{:.4f},{:.4f},{:.4f},{},"
-                                         "{:.4f},{:.4f},{:.4f},{:.4f},{:.3f},{:.4f},{:.2f},{}\n",
-                                         t_s, m.runs[s].eph.prn,
-                                         si.code_chips - std::floor(si.code_chips / 1023.0) * 1023.0, si.doppler_hz,
-                                         m.sc.if_hz * b.rx.t_rcv_rel_s - si.carrier_cycles,
-                                         m.cn0_dbhz(s, si, t_s), si.elevation_rad * kRadToDeg,
-                                         si.azimuth_rad * kRadToDeg, si.pseudorange_m, si.range_m, si.range_rate_mps,
-                                         si.iono_m, si.tropo_m, si.sat_clock_m, on ? 1 : 0, si.iono_broadcast_m,
-                                         si.tropo_model_m, si.orbit_m, si.sat_clock_error_m, si.antenna_gain_db,
-                                         multipath_m, los_gain_db, echoes));
+            sat_truth->write(fmt::format(
+                "{:.3f},{},{:.6f},{:.4f},{:.4f},{:.2f},{:.4f},{:.4f},{:.4f},{:.4f},{:.5f},{:.4f},{:.4f},{:.4f},{},"
+                "{:.4f},{:.4f},{:.4f},{:.4f},{:.3f},{:.4f},{:.2f},{}\n",
+                t_s, m.runs[s].eph.prn, si.code_chips - std::floor(si.code_chips / 1023.0) * 1023.0, si.doppler_hz,
+                m.sc.if_hz * b.rx.t_rcv_rel_s - si.carrier_cycles, m.cn0_dbhz(s, si, t_s), si.elevation_rad * kRadToDeg,
+                si.azimuth_rad * kRadToDeg, si.pseudorange_m, si.range_m, si.range_rate_mps, si.iono_m, si.tropo_m,
+                si.sat_clock_m, on ? 1 : 0, si.iono_broadcast_m, si.tropo_model_m, si.orbit_m, si.sat_clock_error_m,
+                si.antenna_gain_db, multipath_m, los_gain_db, echoes));
           }
         }
       }

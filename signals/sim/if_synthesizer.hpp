@@ -34,7 +34,7 @@ struct SynthesizedSatellite {
 struct SynthesisSummary {
   std::string if_path, truth_path, sat_truth_path, scenario_path;
   std::string metadata_path;  ///< the ION GNSS SDR metadata file describing if_path (beside it, .xml)
-  std::string imu_path;  ///< empty when the scenario asks for no IMU
+  std::string imu_path;       ///< empty when the scenario asks for no IMU
   std::int64_t samples = 0;
   std::int64_t bytes = 0;
   double duration_s = 0.0;

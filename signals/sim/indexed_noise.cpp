@@ -40,10 +40,8 @@ void IndexedNoise::draws(float* out, std::int64_t count, std::int64_t first_draw
     const std::int64_t chunk_end = (floor_div(position_, kChunkDraws) + 1) * kChunkDraws;
     const std::int64_t n = std::min(count, chunk_end - position_);
     std::span<float> part(out, static_cast<std::size_t>(n));
-    if constexpr (kAdd)
-      stream_.add_real(part, sigma);
-    else
-      stream_.fill_real(part, sigma);
+    if constexpr (kAdd) stream_.add_real(part, sigma);
+    else stream_.fill_real(part, sigma);
     out += n;
     count -= n;
     position_ += n;

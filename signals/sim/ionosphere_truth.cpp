@@ -4,8 +4,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "signals/sim/error_seed.hpp"
 #include "signals/gps_constants.hpp"
+#include "signals/sim/error_seed.hpp"
 
 namespace deepnav {
 namespace {
@@ -53,9 +53,7 @@ double single_layer_mapping(double elevation_rad, double shell_height_m) {
   return 1.0 / std::sqrt(1.0 - x * x);
 }
 
-double l1_delay_m_from_tecu(double slant_tecu) {
-  return 40.3 * slant_tecu * kTecu / (gps::kL1_Hz * gps::kL1_Hz);
-}
+double l1_delay_m_from_tecu(double slant_tecu) { return 40.3 * slant_tecu * kTecu / (gps::kL1_Hz * gps::kL1_Hz); }
 
 IonosphereTruth::IonosphereTruth(const IonosphereTruthSpec& spec, std::uint64_t seed, const wgs84::Llh& reference,
                                  const GpsTime& reference_time)
@@ -87,7 +85,8 @@ IonosphereSample IonosphereTruth::thin_shell(const wgs84::Llh& rx, double azimut
   const double r_ratio = kEarthRadius_m / (kEarthRadius_m + spec_.shell_height_m);
   // Pierce point of the line of sight on the shell (spherical Earth).
   const double psi = kPi / 2.0 - el - std::asin(r_ratio * std::cos(el));
-  const double sin_lat = std::sin(rx.lat_rad) * std::cos(psi) + std::cos(rx.lat_rad) * std::sin(psi) * std::cos(azimuth_rad);
+  const double sin_lat =
+      std::sin(rx.lat_rad) * std::cos(psi) + std::cos(rx.lat_rad) * std::sin(psi) * std::cos(azimuth_rad);
   const double lat_ipp = std::asin(std::clamp(sin_lat, -1.0, 1.0));
   const double lon_ipp =
       rx.lon_rad + std::asin(std::clamp(std::sin(psi) * std::sin(azimuth_rad) / std::cos(lat_ipp), -1.0, 1.0));
@@ -104,7 +103,8 @@ IonosphereSample IonosphereTruth::thin_shell(const wgs84::Llh& rx, double azimut
     const double dt_s = t.seconds_since(reference_time_);
     double modulation = 0.0;
     for (const Wave& w : waves_)
-      modulation += w.amplitude * std::sin(w.k_east_radpm * east_m + w.k_north_radpm * north_m - w.omega_radps * dt_s + w.phase_rad);
+      modulation += w.amplitude *
+                    std::sin(w.k_east_radpm * east_m + w.k_north_radpm * north_m - w.omega_radps * dt_s + w.phase_rad);
     vtec *= 1.0 + modulation;
   }
 

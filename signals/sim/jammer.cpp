@@ -41,10 +41,14 @@ JammerType parse_jammer_type(const std::string& name) {
 
 std::string to_string(JammerType type) {
   switch (type) {
-    case JammerType::cw: return "cw";
-    case JammerType::chirp: return "chirp";
-    case JammerType::wideband: return "wideband";
-    case JammerType::pulsed: return "pulsed";
+    case JammerType::cw:
+      return "cw";
+    case JammerType::chirp:
+      return "chirp";
+    case JammerType::wideband:
+      return "wideband";
+    case JammerType::pulsed:
+      return "pulsed";
   }
   return "?";
 }
@@ -58,13 +62,16 @@ void validate_jammer(const JammerConfig& c, double fs, double if_hz) {
   if (!std::isfinite(c.end_s) || (c.end_s > 0.0 && c.end_s <= c.start_s))
     bad_field("end_s", c.end_s, fmt::format("<= 0 (until the end) or > start_s = {} s", c.start_s));
   switch (c.type) {
-    case JammerType::cw: break;
+    case JammerType::cw:
+      break;
     case JammerType::chirp:
       check_positive_bandwidth(c, fs);
       if (!std::isfinite(c.sweep_period_s) || c.sweep_period_s * fs < 2.0)
         bad_field("sweep_period_s", c.sweep_period_s, fmt::format("> 0 and at least 2 samples ({} s)", 2.0 / fs));
       break;
-    case JammerType::wideband: check_positive_bandwidth(c, fs); break;
+    case JammerType::wideband:
+      check_positive_bandwidth(c, fs);
+      break;
     case JammerType::pulsed:
       if (!std::isfinite(c.duty_cycle) || c.duty_cycle <= 0.0 || c.duty_cycle > 1.0)
         bad_field("duty_cycle", c.duty_cycle, "in (0, 1]");
@@ -76,18 +83,17 @@ void validate_jammer(const JammerConfig& c, double fs, double if_hz) {
   }
 }
 
-Jammer::Jammer(const JammerConfig& config, double sample_rate_hz, double if_hz, double cn0_ref_dbhz,
-               std::uint64_t seed)
+Jammer::Jammer(const JammerConfig& config, double sample_rate_hz, double if_hz, double cn0_ref_dbhz, std::uint64_t seed)
     : config_(config), sample_rate_hz_(sample_rate_hz) {
   validate_jammer(config, sample_rate_hz, if_hz);
   if (!std::isfinite(cn0_ref_dbhz)) bad_field("reference C/N0", cn0_ref_dbhz, "a finite value in dB-Hz");
   power_ = std::pow(10.0, 0.1 * cn0_ref_dbhz) * std::pow(10.0, 0.1 * config.js_db);
   first_on_sample_ = time_to_sample(config.start_s, sample_rate_hz);
-  end_sample_ = config.end_s > 0.0 ? time_to_sample(config.end_s, sample_rate_hz)
-                                   : std::numeric_limits<std::int64_t>::max();
+  end_sample_ =
+      config.end_s > 0.0 ? time_to_sample(config.end_s, sample_rate_hz) : std::numeric_limits<std::int64_t>::max();
   const double center_hz = if_hz + config.center_offset_hz;
-  const bool noise = config.type == JammerType::wideband ||
-                     (config.type == JammerType::pulsed && config.bandwidth_hz > 0.0);
+  const bool noise =
+      config.type == JammerType::wideband || (config.type == JammerType::pulsed && config.bandwidth_hz > 0.0);
   if (config.type == JammerType::chirp) {
     chirp_ = std::make_unique<ChirpGenerator>(center_hz, config.bandwidth_hz, config.sweep_period_s, sample_rate_hz);
   } else {

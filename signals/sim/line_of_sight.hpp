@@ -11,14 +11,14 @@
 namespace deepnav {
 
 struct LineOfSight {
-  GpsTime transmit_time{};                 ///< GPS time the received signal left the satellite (geometric)
-  double flight_time_s = 0.0;              ///< geometric range / c
-  double range_m = 0.0;                    ///< |r_sat(t_tx) rotated to reception frame - r_rx|
-  double range_rate_mps = 0.0;             ///< d(range)/dt at reception
-  Eigen::Vector3d r_sat_ecef_m = Eigen::Vector3d::Zero();   ///< satellite at t_tx, in the ECEF frame at reception
-  Eigen::Vector3d v_sat_ecef_mps = Eigen::Vector3d::Zero(); ///< its velocity, same frame (inertial-consistent)
+  GpsTime transmit_time{};      ///< GPS time the received signal left the satellite (geometric)
+  double flight_time_s = 0.0;   ///< geometric range / c
+  double range_m = 0.0;         ///< |r_sat(t_tx) rotated to reception frame - r_rx|
+  double range_rate_mps = 0.0;  ///< d(range)/dt at reception
+  Eigen::Vector3d r_sat_ecef_m = Eigen::Vector3d::Zero();    ///< satellite at t_tx, in the ECEF frame at reception
+  Eigen::Vector3d v_sat_ecef_mps = Eigen::Vector3d::Zero();  ///< its velocity, same frame (inertial-consistent)
   Eigen::Vector3d unit_rx_to_sat = Eigen::Vector3d::Zero();
-  SatelliteState satellite{};              ///< orbit/clock state at the transmission time
+  SatelliteState satellite{};  ///< orbit/clock state at the transmission time
 };
 
 /// Solves the light-time equation for a signal received at GPS time t_rx by a receiver

@@ -6,8 +6,8 @@
 #include <limits>
 #include <stdexcept>
 
-#include "signals/sim/gaussian_noise.hpp"
 #include "signals/gps_constants.hpp"
+#include "signals/sim/gaussian_noise.hpp"
 
 namespace deepnav {
 namespace {
@@ -209,9 +209,12 @@ EchoPath MultipathChannel::land_mobile_tap(int prn, int tap, double t_s) const {
 
 PathSet MultipathChannel::paths(std::size_t sat, double t_s, double elevation_rad) const {
   switch (spec_.model) {
-    case MultipathSpec::Model::none: return PathSet{};
-    case MultipathSpec::Model::ground: return ground_reflection_paths(spec_, elevation_rad);
-    case MultipathSpec::Model::land_mobile: break;
+    case MultipathSpec::Model::none:
+      return PathSet{};
+    case MultipathSpec::Model::ground:
+      return ground_reflection_paths(spec_, elevation_rad);
+    case MultipathSpec::Model::land_mobile:
+      break;
   }
   PathSet p;
   if (blocked(sat, t_s)) p.direct_gain = std::pow(10.0, -spec_.blocked_attenuation_db / 20.0);

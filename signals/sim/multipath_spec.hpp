@@ -26,11 +26,11 @@ struct MultipathSpec {
   double below_horizon_gain_db = -15.0;
 
   // --- land-mobile ---
-  int echoes = 3;                        ///< fading echo taps per satellite (0..kMaxEchoes)
-  double echo_power_db = -10.0;          ///< mean power of all echoes together relative to the unblocked direct signal
-  double echo_rician_k = 0.0;            ///< Rician K (linear) of each echo tap; 0 = Rayleigh
-  double mean_excess_delay_m = 30.0;     ///< mean of the exponentially distributed tap delays
-  double echo_lifetime_s = 5.0;          ///< a tap keeps its delay this long, then a new reflector takes over
+  int echoes = 3;                     ///< fading echo taps per satellite (0..kMaxEchoes)
+  double echo_power_db = -10.0;       ///< mean power of all echoes together relative to the unblocked direct signal
+  double echo_rician_k = 0.0;         ///< Rician K (linear) of each echo tap; 0 = Rayleigh
+  double mean_excess_delay_m = 30.0;  ///< mean of the exponentially distributed tap delays
+  double echo_lifetime_s = 5.0;       ///< a tap keeps its delay this long, then a new reflector takes over
   /// Long-run fraction of time a satellite at 30 degrees elevation is blocked; it scales as
   /// 2 (1 - sin(elevation)) (twice that at the horizon, never at the zenith), capped at 0.95.
   double blocked_probability = 0.1;
@@ -43,9 +43,12 @@ struct MultipathSpec {
 
 inline std::string_view to_string(MultipathSpec::Model model) {
   switch (model) {
-    case MultipathSpec::Model::none: return "none";
-    case MultipathSpec::Model::ground: return "ground";
-    case MultipathSpec::Model::land_mobile: return "land-mobile";
+    case MultipathSpec::Model::none:
+      return "none";
+    case MultipathSpec::Model::ground:
+      return "ground";
+    case MultipathSpec::Model::land_mobile:
+      return "land-mobile";
   }
   return "none";
 }

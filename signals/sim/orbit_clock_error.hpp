@@ -34,7 +34,7 @@ struct OrbitClockErrorSpec {
 /// One satellite's error at one instant.
 struct OrbitClockErrorSample {
   Eigen::Vector3d rac_m = Eigen::Vector3d::Zero();  ///< radial, along-track, cross-track
-  double clock_m = 0.0;                              ///< c (dts_true - dts_broadcast)
+  double clock_m = 0.0;                             ///< c (dts_true - dts_broadcast)
 };
 
 class OrbitClockError {

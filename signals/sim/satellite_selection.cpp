@@ -37,7 +37,8 @@ std::vector<SelectedSatellite> select_satellites(const NavData& nav, const Traje
   }
   std::sort(chosen.begin(), chosen.end(),
             [](const SelectedSatellite& a, const SelectedSatellite& b) { return a.elevation_rad > b.elevation_rad; });
-  if (static_cast<int>(chosen.size()) > request.max_satellites) chosen.resize(static_cast<std::size_t>(request.max_satellites));
+  if (static_cast<int>(chosen.size()) > request.max_satellites)
+    chosen.resize(static_cast<std::size_t>(request.max_satellites));
   return chosen;
 }
 

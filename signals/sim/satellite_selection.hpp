@@ -15,7 +15,7 @@ struct SelectionRequest {
   GpsTime start{};
   double duration_s = 0.0;
   double elevation_mask_rad = 0.0;
-  std::vector<int> prns;   ///< when not empty, only these PRNs are candidates
+  std::vector<int> prns;  ///< when not empty, only these PRNs are candidates
   int max_satellites = 12;
 };
 
@@ -24,7 +24,7 @@ struct SelectedSatellite {
   const Ephemeris* ephemeris = nullptr;  ///< points into the NavData passed in
   double elevation_rad = 0.0;            ///< at the start
   double azimuth_rad = 0.0;
-  double min_elevation_rad = 0.0;        ///< lowest over the run's check points
+  double min_elevation_rad = 0.0;  ///< lowest over the run's check points
 };
 
 /// The satellites to synthesize. Explicitly listed PRNs are kept even below the mask

@@ -44,7 +44,8 @@ SatelliteInstant evaluate_satellite(const Ephemeris& eph, const IonoParameters& 
                       : world.troposphere().delay_m(rx.llh.lat_rad, rx.llh.height_m, s.elevation_rad, rx.t_true);
   }
   s.antenna_gain_db = antenna_gain_db(world.antenna(), s.elevation_rad);
-  const double common_m = s.range_m + s.orbit_m + c * rx.clock_bias_s - (s.sat_clock_m + s.sat_clock_error_m) + s.tropo_m;
+  const double common_m =
+      s.range_m + s.orbit_m + c * rx.clock_bias_s - (s.sat_clock_m + s.sat_clock_error_m) + s.tropo_m;
   s.pseudorange_m = common_m + s.iono_m;
   const double carrier_range_m = common_m - s.iono_m;
 

@@ -19,8 +19,8 @@
 #include "ins/gps_time.hpp"
 #include "ins/wgs84.hpp"
 #include "signals/ephemeris.hpp"
-#include "signals/sim/error_world.hpp"
 #include "signals/iono_utc.hpp"
+#include "signals/sim/error_world.hpp"
 
 namespace deepnav {
 
@@ -42,12 +42,12 @@ struct SatelliteInstant {
   double doppler_hz = 0.0;      ///< -f_L1 dP_carr/dt / c (excluding the IF)
   double elevation_rad = 0.0;
   double azimuth_rad = 0.0;
-  double range_m = 0.0;         ///< geometric range to the broadcast orbit (light time, Sagnac)
+  double range_m = 0.0;  ///< geometric range to the broadcast orbit (light time, Sagnac)
   double range_rate_mps = 0.0;
-  double pseudorange_m = 0.0;   ///< code pseudorange as the receiver would measure it
-  double iono_m = 0.0;          ///< L1 group delay (the truth the signal carries)
-  double tropo_m = 0.0;         ///< troposphere delay (the truth the signal carries)
-  double sat_clock_m = 0.0;     ///< c * dts_L1 from the broadcast clock
+  double pseudorange_m = 0.0;  ///< code pseudorange as the receiver would measure it
+  double iono_m = 0.0;         ///< L1 group delay (the truth the signal carries)
+  double tropo_m = 0.0;        ///< troposphere delay (the truth the signal carries)
+  double sat_clock_m = 0.0;    ///< c * dts_L1 from the broadcast clock
   // What the receiver's models say and the error world adds (ErrorWorld):
   double iono_broadcast_m = 0.0;   ///< Klobuchar for this look (0 without broadcast parameters)
   double tropo_model_m = 0.0;      ///< the receiver's standard-atmosphere troposphere for this look

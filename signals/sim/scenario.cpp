@@ -11,8 +11,8 @@
 
 #include <cmath>
 #include <filesystem>
-#include <regex>
 #include <fstream>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -35,9 +35,7 @@ class Field {
     const std::string where = mark.line >= 0 ? fmt::format("{}:{}", *origin_, mark.line + 1) : *origin_;
     throw std::invalid_argument(fmt::format("{}: field '{}': {}", where, path_, what));
   }
-  bool has(const std::string& key) const {
-    return is_map() && node_[key].IsDefined() && !node_[key].IsNull();
-  }
+  bool has(const std::string& key) const { return is_map() && node_[key].IsDefined() && !node_[key].IsNull(); }
   Field operator[](const std::string& key) const {
     if (!node_.IsDefined()) fail("missing required field");
     return Field(node_[key], path_.empty() ? key : path_ + "." + key, origin_, node_.Mark());
@@ -68,7 +66,8 @@ class Field {
       if (!allowed.count(key)) {
         std::string list;
         for (const auto& k : allowed) list += (list.empty() ? "" : ", ") + k;
-        Field(item.first, path_.empty() ? key : path_ + "." + key, origin_).fail("unknown field (expected one of: " + list + ")");
+        Field(item.first, path_.empty() ? key : path_ + "." + key, origin_)
+            .fail("unknown field (expected one of: " + list + ")");
       }
     }
   }
@@ -92,7 +91,8 @@ class Field {
   long long integer_in(long long lo, long long hi) const {
     const double v = number();
     if (v != std::floor(v)) fail(fmt::format("expected an integer, got {}", v));
-    if (v < static_cast<double>(lo) || v > static_cast<double>(hi)) fail(fmt::format("{} is out of range [{}, {}]", v, lo, hi));
+    if (v < static_cast<double>(lo) || v > static_cast<double>(hi))
+      fail(fmt::format("{} is out of range [{}, {}]", v, lo, hi));
     return static_cast<long long>(v);
   }
   std::string text() const {
@@ -165,7 +165,8 @@ TrajectorySpec parse_trajectory(const Field& f, const std::string& base_dir, con
   if (f.has("file")) {
     spec.preset.clear();
     spec.csv_path = resolve_path(f["file"].text(), base_dir, search_root);
-    if (!std::filesystem::exists(spec.csv_path)) f["file"].fail("trajectory file '" + spec.csv_path + "' does not exist");
+    if (!std::filesystem::exists(spec.csv_path))
+      f["file"].fail("trajectory file '" + spec.csv_path + "' does not exist");
   } else if (f.has("preset")) {
     spec.preset = f["preset"].text();
   }
@@ -262,7 +263,8 @@ ImuSpec parse_imu(const Field& f, const std::string& base_dir, const std::string
   ImuSpec spec;
   spec.enabled = true;
   if (f.has("grade")) spec.grade = f["grade"].text();
-  spec.grades_file = resolve_path(f.has("grades_file") ? f["grades_file"].text() : "data/imu_grades.yaml", base_dir, search_root);
+  spec.grades_file =
+      resolve_path(f.has("grades_file") ? f["grades_file"].text() : "data/imu_grades.yaml", base_dir, search_root);
   if (!std::filesystem::exists(spec.grades_file)) f.fail("IMU grades file '" + spec.grades_file + "' does not exist");
   try {
     load_imu_grade(spec.grades_file, spec.grade);
@@ -396,12 +398,13 @@ ErrorSpec parse_errors(const Field& f) {
     if (i.has("shell_height_km")) s.shell_height_m = i["shell_height_km"].number_in(100, 2000) * 1000.0;
     if (i.has("disturbance_rms")) s.disturbance_rms = i["disturbance_rms"].number_in(0, 0.5);
     if (s.night_vtec_tecu > s.day_vtec_tecu)
-      (i.has("night_vtec_tecu") ? i["night_vtec_tecu"] : i).fail(
-          fmt::format("night_vtec_tecu {} must not exceed day_vtec_tecu {}", s.night_vtec_tecu, s.day_vtec_tecu));
+      (i.has("night_vtec_tecu") ? i["night_vtec_tecu"] : i)
+          .fail(fmt::format("night_vtec_tecu {} must not exceed day_vtec_tecu {}", s.night_vtec_tecu, s.day_vtec_tecu));
   }
   if (f.has("troposphere")) {
     const Field t = f["troposphere"];
-    t.allow_only({"model", "pressure_hpa", "temperature_c", "relative_humidity", "wet_random_walk_m_per_sqrt_h", "mapping"});
+    t.allow_only(
+        {"model", "pressure_hpa", "temperature_c", "relative_humidity", "wet_random_walk_m_per_sqrt_h", "mapping"});
     TroposphereTruthSpec& s = e.troposphere;
     if (t.has("model")) s.model = parse_choice(t["model"], kTropoModels);
     if (t.has("pressure_hpa")) s.pressure_hpa = t["pressure_hpa"].number_in(500, 1100);
@@ -429,8 +432,9 @@ ErrorSpec parse_errors(const Field& f) {
     if (a.has("gain_10deg_db")) s.gain_10deg_db = a["gain_10deg_db"].number_in(-30, 0);
     if (a.has("gain_horizon_db")) s.gain_horizon_db = a["gain_horizon_db"].number_in(-40, 0);
     if (!(s.gain_horizon_db < s.gain_10deg_db && s.gain_10deg_db < 0.0))
-      (a.has("gain_10deg_db") ? a["gain_10deg_db"] : a).fail(
-          fmt::format("need gain_horizon_db < gain_10deg_db < 0, got {} and {}", s.gain_horizon_db, s.gain_10deg_db));
+      (a.has("gain_10deg_db") ? a["gain_10deg_db"] : a)
+          .fail(fmt::format("need gain_horizon_db < gain_10deg_db < 0, got {} and {}", s.gain_horizon_db,
+                            s.gain_10deg_db));
   }
   if (f.has("multipath")) e.multipath = parse_multipath(f["multipath"]);
   return e;
@@ -459,7 +463,6 @@ bool set_oscillator_preset(ReceiverClockSpec& spec, const std::string& name) {
   return true;
 }
 
-
 Scenario parse_scenario(const std::string& yaml_text, const std::string& origin, const std::string& base_dir,
                         const std::string& search_root) {
   YAML::Node root;
@@ -471,9 +474,29 @@ Scenario parse_scenario(const std::string& yaml_text, const std::string& origin,
   const Field f(root, "", &origin);
   if (!root.IsMap()) throw std::invalid_argument(origin + ": expected a scenario mapping at the top level");
   check_unique_keys(root, origin);
-  f.allow_only({"name", "start_time", "duration_s", "sample_rate_hz", "if_hz", "format", "adc", "nav_file",
-                "trajectory", "elevation_mask_deg", "prns", "max_satellites", "cn0", "receiver_clock", "ionosphere",
-                "troposphere", "errors", "seed", "jammers", "outages", "imu", "truth_rate_hz", "sat_truth_rate_hz"});
+  f.allow_only({"name",
+                "start_time",
+                "duration_s",
+                "sample_rate_hz",
+                "if_hz",
+                "format",
+                "adc",
+                "nav_file",
+                "trajectory",
+                "elevation_mask_deg",
+                "prns",
+                "max_satellites",
+                "cn0",
+                "receiver_clock",
+                "ionosphere",
+                "troposphere",
+                "errors",
+                "seed",
+                "jammers",
+                "outages",
+                "imu",
+                "truth_rate_hz",
+                "sat_truth_rate_hz"});
   Scenario s;
   s.source_path = origin;
   s.name = f.has("name") ? f["name"].text() : std::filesystem::path(origin).stem().string();
@@ -504,7 +527,8 @@ Scenario parse_scenario(const std::string& yaml_text, const std::string& origin,
   s.nav_file = resolve_path(nav, base_dir, search_root);
   if (!std::filesystem::exists(s.nav_file)) {
     if (f.has("nav_file")) f["nav_file"].fail("navigation file '" + s.nav_file + "' does not exist");
-    throw std::invalid_argument(origin + ": default navigation file '" + s.nav_file + "' does not exist (set nav_file)");
+    throw std::invalid_argument(origin + ": default navigation file '" + s.nav_file +
+                                "' does not exist (set nav_file)");
   }
   if (f.has("trajectory")) s.trajectory = parse_trajectory(f["trajectory"], base_dir, search_root);
   if (f.has("elevation_mask_deg")) s.elevation_mask_rad = f["elevation_mask_deg"].number_in(-10, 90) * kDegToRad;
@@ -535,25 +559,28 @@ Scenario parse_scenario(const std::string& yaml_text, const std::string& origin,
 
 void validate_scenario(const Scenario& s) {
   if (!is_complex(s.format) && s.if_hz == 0.0)
-    throw std::invalid_argument(fmt::format(
-        "field 'if_hz': real sample format '{}' needs a non-zero IF (the signal would alias onto itself)",
-        to_string(s.format)));
+    throw std::invalid_argument(
+        fmt::format("field 'if_hz': real sample format '{}' needs a non-zero IF (the signal would alias onto itself)",
+                    to_string(s.format)));
   if (!is_complex(s.format) && std::abs(s.if_hz) + 1.1e6 > s.sample_rate_hz / 2)
-    throw std::invalid_argument(fmt::format("field 'if_hz': real sampling at {} Hz cannot hold the 2 MHz C/A band at IF {} Hz",
-                                            s.sample_rate_hz, s.if_hz));
+    throw std::invalid_argument(fmt::format(
+        "field 'if_hz': real sampling at {} Hz cannot hold the 2 MHz C/A band at IF {} Hz", s.sample_rate_hz, s.if_hz));
   if (s.sample_rate_hz < 1.023e6 * 1.0)
     throw std::invalid_argument("field 'sample_rate_hz': must be at least 1.023 MHz for the C/A code");
   // The synthesizer works in 1 ms epochs of a whole number of samples.
   if (std::fmod(s.sample_rate_hz, 1000.0) != 0.0)
-    throw std::invalid_argument(fmt::format("field 'sample_rate_hz': {} Hz is not a multiple of 1000 Hz", s.sample_rate_hz));
+    throw std::invalid_argument(
+        fmt::format("field 'sample_rate_hz': {} Hz is not a multiple of 1000 Hz", s.sample_rate_hz));
   if (s.duration_s < 1e-3) throw std::invalid_argument("field 'duration_s': must be at least 0.001 s");
   for (const auto& [name, rate] : {std::pair<const char*, double>{"truth_rate_hz", s.truth_rate_hz},
                                    std::pair<const char*, double>{"sat_truth_rate_hz", s.sat_truth_rate_hz}}) {
     const double stride = 1000.0 / rate;
     if (std::abs(stride - std::round(stride)) > 1e-9)
-      throw std::invalid_argument(fmt::format("field '{}': {} Hz does not divide 1000 Hz (truth rows fall on whole milliseconds)", name, rate));
+      throw std::invalid_argument(
+          fmt::format("field '{}': {} Hz does not divide 1000 Hz (truth rows fall on whole milliseconds)", name, rate));
   }
-  if (const auto spw = samples_per_word(s.format); std::llround(s.sample_rate_hz / 1000.0) % static_cast<long long>(spw) != 0)
+  if (const auto spw = samples_per_word(s.format);
+      std::llround(s.sample_rate_hz / 1000.0) % static_cast<long long>(spw) != 0)
     throw std::invalid_argument(fmt::format(
         "field 'sample_rate_hz': {} Hz gives {} samples a millisecond, not whole words of format '{}' ({} samples "
         "a word)",
@@ -657,8 +684,8 @@ std::string scenario_to_yaml(const Scenario& s) {
     out << YAML::Key << "orbit_clock" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "radial_m"
         << YAML::Value << e.orbit_clock.radial_m << YAML::Key << "along_m" << YAML::Value << e.orbit_clock.along_m
         << YAML::Key << "cross_m" << YAML::Value << e.orbit_clock.cross_m << YAML::Key << "clock_m" << YAML::Value
-        << e.orbit_clock.clock_m << YAML::Key << "correlation_time_s" << YAML::Value
-        << e.orbit_clock.correlation_time_s << YAML::EndMap;
+        << e.orbit_clock.clock_m << YAML::Key << "correlation_time_s" << YAML::Value << e.orbit_clock.correlation_time_s
+        << YAML::EndMap;
     out << YAML::Key << "antenna" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "pattern"
         << YAML::Value << choice_name(kAntennaPatterns, e.antenna.pattern) << YAML::Key << "gain_10deg_db"
         << YAML::Value << e.antenna.gain_10deg_db << YAML::Key << "gain_horizon_db" << YAML::Value

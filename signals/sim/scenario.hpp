@@ -11,9 +11,9 @@
 
 #include "ins/gps_time.hpp"
 #include "ins/wgs84.hpp"
+#include "signals/sample_format.hpp"
 #include "signals/sim/error_presets.hpp"
 #include "signals/sim/jammer.hpp"
-#include "signals/sample_format.hpp"
 
 namespace deepnav {
 
@@ -28,8 +28,8 @@ struct TrajectorySpec {
 struct Cn0Spec {
   enum class Model { fixed, elevation } model = Model::fixed;
   double fixed_dbhz = 45.0;
-  double zenith_dbhz = 50.0;   ///< elevation model: C/N0 at 90 degrees
-  double horizon_dbhz = 38.0;  ///< elevation model: C/N0 at 0 degrees (linear in sin(elevation))
+  double zenith_dbhz = 50.0;           ///< elevation model: C/N0 at 90 degrees
+  double horizon_dbhz = 38.0;          ///< elevation model: C/N0 at 0 degrees (linear in sin(elevation))
   std::map<int, double> per_prn_dbhz;  ///< overrides for single PRNs
   /// Optional linear ramp applied to every satellite: offset goes from 0 dB at
   /// ramp_start_s to ramp_delta_db at ramp_end_s and stays there (tracking-threshold runs).
@@ -60,8 +60,8 @@ struct OutageSpec {
 };
 
 struct AdcSpec {
-  int bits = 0;            ///< 0: no quantization (the format's full resolution, or float)
-  bool agc = true;         ///< automatic gain control before the quantizer
+  int bits = 0;     ///< 0: no quantization (the format's full resolution, or float)
+  bool agc = true;  ///< automatic gain control before the quantizer
   double agc_time_constant_s = 0.01;
 };
 
@@ -71,7 +71,8 @@ struct ImuSpec {
   std::string grade = "tactical";  ///< a grade name in grades_file
   std::string grades_file;         ///< resolved path (default data/imu_grades.yaml)
   double rate_hz = 100.0;
-  std::array<double, 3> lever_arm_m{0.0, 0.0, 0.0};  ///< IMU position from the antenna, body axes (x fwd, y right, z down)
+  std::array<double, 3> lever_arm_m{0.0, 0.0,
+                                    0.0};  ///< IMU position from the antenna, body axes (x fwd, y right, z down)
 };
 
 struct Scenario {
@@ -83,10 +84,10 @@ struct Scenario {
   double if_hz = 0.0;
   SampleFormat format = SampleFormat::ibyte;
   AdcSpec adc{};
-  std::string nav_file;     ///< RINEX navigation file (resolved path)
+  std::string nav_file;  ///< RINEX navigation file (resolved path)
   TrajectorySpec trajectory{};
   double elevation_mask_rad = 5.0 * 3.14159265358979323846 / 180.0;
-  std::vector<int> prns;    ///< only these PRNs (empty: every healthy satellite above the mask)
+  std::vector<int> prns;  ///< only these PRNs (empty: every healthy satellite above the mask)
   int max_satellites = 12;
   Cn0Spec cn0{};
   ReceiverClockSpec clock{};
@@ -97,8 +98,8 @@ struct Scenario {
   std::vector<JammerConfig> jammers;
   std::vector<OutageSpec> outages;
   ImuSpec imu{};
-  double truth_rate_hz = 100.0;      ///< receiver truth rows per second
-  double sat_truth_rate_hz = 10.0;   ///< per-satellite truth rows per second
+  double truth_rate_hz = 100.0;     ///< receiver truth rows per second
+  double sat_truth_rate_hz = 10.0;  ///< per-satellite truth rows per second
 };
 
 /// Reads and validates a scenario file. Relative paths inside it (nav_file, trajectory

@@ -26,7 +26,8 @@ std::complex<double> unit_phasor(double cycles) { return {std::cos(kTwoPi * cycl
 ToneGenerator::ToneGenerator(double frequency_hz, double sample_rate_hz)
     : step_(fixed_point_step(frequency_hz, sample_rate_hz)), table_re_(kTable), table_im_(kTable) {
   for (int m = 0; m < kTable; ++m) {
-    const std::complex<double> z = unit_phasor(static_cast<double>(step_ * static_cast<std::uint64_t>(m)) * kTwoPowMinus64);
+    const std::complex<double> z =
+        unit_phasor(static_cast<double>(step_ * static_cast<std::uint64_t>(m)) * kTwoPowMinus64);
     table_re_[m] = static_cast<float>(z.real());
     table_im_[m] = static_cast<float>(z.imag());
   }
@@ -83,10 +84,7 @@ void ToneGenerator::mix(std::span<std::complex<float>> out, std::int64_t first_s
 }
 
 ChirpGenerator::ChirpGenerator(double center_hz, double bandwidth_hz, double period_s, double sample_rate_hz)
-    : f_low_hz_(center_hz - 0.5 * bandwidth_hz),
-      bandwidth_hz_(bandwidth_hz),
-      period_s_(period_s),
-      fs_(sample_rate_hz) {
+    : f_low_hz_(center_hz - 0.5 * bandwidth_hz), bandwidth_hz_(bandwidth_hz), period_s_(period_s), fs_(sample_rate_hz) {
   const double per_sweep = center_hz * period_s;
   sweep_phase_frac_ = per_sweep - std::floor(per_sweep);
 }
@@ -128,8 +126,8 @@ void ChirpGenerator::generate(std::span<std::complex<float>> out, std::int64_t f
   for (std::int64_t k = 0; k < n;) {
     const std::int64_t sample = first_sample + k;
     const std::int64_t sweep = sweep_of(sample);
-    const std::int64_t end = std::min({sweep_start_sample(sweep + 1), (floor_div(sample, kSegment) + 1) * kSegment,
-                                       first_sample + n});
+    const std::int64_t end =
+        std::min({sweep_start_sample(sweep + 1), (floor_div(sample, kSegment) + 1) * kSegment, first_sample + n});
     // The recurrence always starts at the segment's own start, even when the block begins
     // inside the segment, so every sample is computed the same way.
     const std::int64_t anchor = std::max(sweep_start_sample(sweep), floor_div(sample, kSegment) * kSegment);
@@ -137,7 +135,8 @@ void ChirpGenerator::generate(std::span<std::complex<float>> out, std::int64_t f
     std::complex<double> z = unit_phasor(phase_cycles(sweep, tau)) * static_cast<double>(amplitude);
     std::complex<double> w = unit_phasor((f_low_hz_ + bandwidth_hz_ * tau / period_s_) / fs_ + 0.5 * a);
     for (std::int64_t s = anchor; s < end; ++s) {
-      if (s >= sample) out[static_cast<std::size_t>(k++)] = {static_cast<float>(z.real()), static_cast<float>(z.imag())};
+      if (s >= sample)
+        out[static_cast<std::size_t>(k++)] = {static_cast<float>(z.real()), static_cast<float>(z.imag())};
       const double zr = z.real() * w.real() - z.imag() * w.imag();
       const double zi = z.real() * w.imag() + z.imag() * w.real();
       z = {zr, zi};

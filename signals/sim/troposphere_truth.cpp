@@ -52,7 +52,7 @@ struct Meteorology {
 /// receiver's model, so the two differ only by their inputs).
 Meteorology meteorology_at(const TroposphereTruthSpec& spec, double height_m) {
   constexpr double kLapse_Kpm = 6.5e-3;
-  constexpr double kExponent = 5.25588;        // g / (R_d * lapse)
+  constexpr double kExponent = 5.25588;  // g / (R_d * lapse)
   constexpr double kGOverR_Kpm = 9.80665 / 287.053;
   const double h = std::max(height_m, -500.0);
   const double h_low = std::min(h, 11000.0);
@@ -66,9 +66,7 @@ Meteorology meteorology_at(const TroposphereTruthSpec& spec, double height_m) {
   return m;
 }
 
-double saastamoinen_wet_m(const Meteorology& m) {
-  return 0.002277 * (1255.0 / m.temperature_k + 0.05) * m.vapour_hpa;
-}
+double saastamoinen_wet_m(const Meteorology& m) { return 0.002277 * (1255.0 / m.temperature_k + 0.05) * m.vapour_hpa; }
 
 }  // namespace
 

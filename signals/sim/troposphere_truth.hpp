@@ -61,7 +61,7 @@ class TroposphereTruth {
   TroposphereTruthSpec spec_;
   GpsTime grid_start_;
   double day_of_year_ = 1.0;
-  double wet_zenith_sea_level_m_ = 0.0;   ///< from the site meteorology, without the walk
+  double wet_zenith_sea_level_m_ = 0.0;  ///< from the site meteorology, without the walk
   std::vector<double> wet_sea_level_m_;  ///< with the walk, on the grid from grid_start_
 };
 

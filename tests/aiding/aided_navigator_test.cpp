@@ -8,9 +8,9 @@
 #include <optional>
 #include <random>
 
+#include "aiding/satellite_fault_monitor.hpp"
 #include "aiding_test_fixture.hpp"
 #include "ins/gps_time.hpp"
-#include "aiding/satellite_fault_monitor.hpp"
 #include "signals/rinex_nav.hpp"
 
 namespace deepnav::aiding {
@@ -34,8 +34,8 @@ struct LooseOutcome {
 /// window's mean); tell_lag: the filter is told so.
 LooseOutcome run_loose(const SimulatedRun& run, double duration_s, std::uint64_t seed, double velocity_lag_s = 0.0,
                        bool tell_lag = false) {
-  AidedNavigator nav(run.perturbed_start({3.0, -2.0, 4.0}, {0.3, -0.2, 0.1}, {0.2 * kDeg, -0.2 * kDeg, 3.0 * kDeg}), 0.0,
-                     0.0, testing::navigator_config(run.imu_model), InitialUncertainty{});
+  AidedNavigator nav(run.perturbed_start({3.0, -2.0, 4.0}, {0.3, -0.2, 0.1}, {0.2 * kDeg, -0.2 * kDeg, 3.0 * kDeg}),
+                     0.0, 0.0, testing::navigator_config(run.imu_model), InitialUncertainty{});
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> n01;
   const Eigen::Vector3d pos_sigma{1.5, 1.5, 3.0}, vel_sigma{0.05, 0.05, 0.08};
@@ -52,7 +52,8 @@ LooseOutcome run_loose(const SimulatedRun& run, double duration_s, std::uint64_t
     const Eigen::Vector3d dv{vel_sigma(0) * n01(rng), vel_sigma(1) * n01(rng), vel_sigma(2) * n01(rng)};
     const Eigen::Vector3d v_fix = run.trajectory->at(s.t_s - velocity_lag_s).v_ecef_mps;
     nav.update_position_velocity(truth.r_ecef_m + ned_to_ecef_vector(at, dr), v_fix + ned_to_ecef_vector(at, dv),
-                                 pos_sigma, vel_sigma, 0.0, tell_lag ? std::optional<double>(-velocity_lag_s) : std::nullopt);
+                                 pos_sigma, vel_sigma, 0.0,
+                                 tell_lag ? std::optional<double>(-velocity_lag_s) : std::nullopt);
     if (s.t_s > duration_s / 2) {
       const Eigen::Vector3d e = testing::antenna_error_ned(nav, *run.trajectory);
       sum_h2 += e.head<2>().squaredNorm();
@@ -98,7 +99,8 @@ TEST(AidedNavigator, LooseVelocityIsComparedAtTheDopplersOwnTime) {
   const LooseOutcome untold = run_loose(run, 200.0, 7, 0.055, false);
   EXPECT_TRUE(told.healthy);
   EXPECT_LT(told.horizontal_rms_m, 1.2);
-  EXPECT_LT(told.horizontal_rms_m, 0.6 * untold.horizontal_rms_m) << told.horizontal_rms_m << " vs " << untold.horizontal_rms_m;
+  EXPECT_LT(told.horizontal_rms_m, 0.6 * untold.horizontal_rms_m)
+      << told.horizontal_rms_m << " vs " << untold.horizontal_rms_m;
 }
 
 TEST(AidedNavigator, AnHourOfLooseUpdatesKeepsTheCovarianceSymmetricPositiveDefinite) {
@@ -143,7 +145,8 @@ struct TightRun {
     for (int prn = 1; prn <= 32; ++prn) {
       const Ephemeris* e = nav_data.select(prn, t0);
       if (!e) continue;
-      if (predict_range(*e, t0, 0.0, r_ecef, Eigen::Vector3d::Zero(), nav_data.iono).elevation_rad > 10.0 * kDeg) out.push_back(e);
+      if (predict_range(*e, t0, 0.0, r_ecef, Eigen::Vector3d::Zero(), nav_data.iono).elevation_rad > 10.0 * kDeg)
+        out.push_back(e);
     }
     return out;
   }
@@ -242,7 +245,8 @@ StepOutcome run_tight_step(double step_m, bool monitor) {
   TightRun tr;
   const auto sats = tr.visible(run.trajectory->at(0.0).r_ecef_m);
   AidedNavigator nav(run.perturbed_start({2.0, -2.0, 3.0}, {0.1, 0.1, -0.1}, {0.1 * kDeg, 0.1 * kDeg, 1.0 * kDeg}),
-                     tr.clock_bias0_m, tr.clock_drift_mps, testing::navigator_config(run.imu_model), InitialUncertainty{});
+                     tr.clock_bias0_m, tr.clock_drift_mps, testing::navigator_config(run.imu_model),
+                     InitialUncertainty{});
   SatelliteFaultMonitor faults;
   std::mt19937_64 rng(31);
   StepOutcome out;
@@ -256,13 +260,15 @@ StepOutcome run_tight_step(double step_m, bool monitor) {
     std::vector<RangeMeasurement> used, watched;
     for (const Ephemeris* e : sats) {
       const double fault_m = e->prn == faulty && s.t_s >= 60.0 ? step_m : 0.0;
-      (monitor && faults.excluded(e->prn) ? watched : used).push_back(tr.measure(*e, nav, truth, s.t_s, 1.0, 0.05, rng, fault_m));
+      (monitor && faults.excluded(e->prn) ? watched : used)
+          .push_back(tr.measure(*e, nav, truth, s.t_s, 1.0, 0.05, rng, fault_m));
     }
     std::vector<SatelliteInnovation> rows;
     nav.update_ranges(used, monitor ? &rows : nullptr, watched);
     faults.add(s.t_s, rows);
     if (out.excluded_after_s < 0.0 && faults.excluded(faulty)) out.excluded_after_s = s.t_s - 60.0;
-    if (s.t_s >= 60.0) out.worst_h_m = std::max(out.worst_h_m, testing::antenna_error_ned(nav, *run.trajectory).head<2>().norm());
+    if (s.t_s >= 60.0)
+      out.worst_h_m = std::max(out.worst_h_m, testing::antenna_error_ned(nav, *run.trajectory).head<2>().norm());
   }
   out.healthy = nav.healthy();
   return out;

@@ -9,19 +9,19 @@
 
 #include "aiding/aided_receiver.hpp"
 #include "ins/imu_file.hpp"
-#include "receiver/sources/file_sample_source.hpp"
 #include "receiver/products/truth_file.hpp"
+#include "receiver/sources/file_sample_source.hpp"
 #include "signals/gps_constants.hpp"
-#include "signals/sim/if_synthesizer.hpp"
 #include "signals/rinex_nav.hpp"
+#include "signals/sim/if_synthesizer.hpp"
 #include "signals/sim/scenario.hpp"
 
 namespace deepnav::aiding {
 namespace {
 
 TEST(AidedReceiverClock, UltraTightClockFollowsTheReceiverClockStepsWithoutDrifting) {
-  Scenario sc = load_scenario(std::string(DEEPNAV_SOURCE_DIR) + "/data/scenarios/land_circle_aided_90s.yaml",
-                              DEEPNAV_SOURCE_DIR);
+  Scenario sc =
+      load_scenario(std::string(DEEPNAV_SOURCE_DIR) + "/data/scenarios/land_circle_aided_90s.yaml", DEEPNAV_SOURCE_DIR);
   sc.duration_s = 40.0;
   const std::string dir = (std::filesystem::temp_directory_path() / "deepnav_aided_clock_test").string();
   const NavData nav = read_rinex_nav(sc.nav_file);
@@ -37,7 +37,8 @@ TEST(AidedReceiverClock, UltraTightClockFollowsTheReceiverClockStepsWithoutDrift
   cfg.mode = NavMode::ultra;
   cfg.receiver.reference_week = sc.start_time.week;
   cfg.imu = load_imu_grade(sc.imu.grades_file, sc.imu.grade).model;
-  cfg.lever_arm_imu_to_antenna_b_m = -Eigen::Vector3d(sc.imu.lever_arm_m[0], sc.imu.lever_arm_m[1], sc.imu.lever_arm_m[2]);
+  cfg.lever_arm_imu_to_antenna_b_m =
+      -Eigen::Vector3d(sc.imu.lever_arm_m[0], sc.imu.lever_arm_m[1], sc.imu.lever_arm_m[2]);
   // The synthesized TCXO's own white frequency noise: a clock model this stiff cannot hide
   // a drift of the filter's own making.
   cfg.oscillator.h0 = 2e-21;

@@ -24,7 +24,8 @@ struct SimulatedRun {
 
   SimulatedRun(const std::string& preset, const std::string& grade, double duration_s, double imu_rate_hz,
                std::uint64_t seed) {
-    trajectory = make_preset_trajectory(preset, wgs84::Llh{37.5 * M_PI / 180, 127.0 * M_PI / 180, 50.0}, 0.0, duration_s);
+    trajectory =
+        make_preset_trajectory(preset, wgs84::Llh{37.5 * M_PI / 180, 127.0 * M_PI / 180, 50.0}, 0.0, duration_s);
     imu_model = load_imu_grade(std::string(DEEPNAV_SOURCE_DIR) + "/data/imu_grades.yaml", grade).model;
     imu_model.sample_rate_hz = imu_rate_hz;
     ImuSimConfig cfg;
@@ -75,7 +76,7 @@ inline double heading_error_rad(const AidedNavigator& nav, const Trajectory& tru
   const Eigen::Matrix3d C_est = nav.ins().q_b_n.toRotationMatrix();
   const Eigen::Matrix3d C_true = truth.at(nav.time_s()).q_b_n.toRotationMatrix();
   const Eigen::Matrix3d dC = C_est * C_true.transpose();
-  return std::atan2(dC(1, 0) - dC(0, 1), dC(0, 0) + dC(1, 1)) ;
+  return std::atan2(dC(1, 0) - dC(0, 1), dC(0, 0) + dC(1, 1));
 }
 
 }  // namespace deepnav::aiding::testing

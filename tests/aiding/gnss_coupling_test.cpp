@@ -100,7 +100,8 @@ TEST(GnssCoupling, TightRowsAreMaskedWeighedAndTheirRatesTimedByTheDoppler) {
     EXPECT_GE(m.geometry.elevation_rad, 10.0 * kDeg);
     EXPECT_NEAR(m.time_offset_s, 0.5, 1e-12);
     EXPECT_EQ(m.pseudorange_m, std::optional<double>(2.2e7));
-    EXPECT_DOUBLE_EQ(m.pseudorange_sigma_m, 1.5 * scalar_pseudorange_sigma_m(RangeErrorModel{}, m.geometry.elevation_rad, 40.0, 0.25));
+    EXPECT_DOUBLE_EQ(m.pseudorange_sigma_m,
+                     1.5 * scalar_pseudorange_sigma_m(RangeErrorModel{}, m.geometry.elevation_rad, 40.0, 0.25));
     EXPECT_DOUBLE_EQ(*m.rate_mps, -gps::kL1Wavelength_m * 1000.0);
     EXPECT_EQ(m.rate_sigma_mps, 0.07);
     // The rate's geometry is 50 ms earlier: the satellite that much further back on its orbit.

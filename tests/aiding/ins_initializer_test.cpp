@@ -63,8 +63,8 @@ TEST(InsInitializer, MovingStartAtFourFixesASecondDifferencesASecondApart) {
     worst_tilt = std::max({worst_tilt, std::abs(s.attitude.roll_rad), std::abs(s.attitude.pitch_rad)});
     worst_heading = std::max(worst_heading, std::abs(std::remainder(s.attitude.yaw_rad, 2.0 * M_PI)));
   }
-  EXPECT_GE(latest, 1.0);   // never before a second of fixes
-  EXPECT_LE(latest, 2.0);   // and soon after
+  EXPECT_GE(latest, 1.0);  // never before a second of fixes
+  EXPECT_LE(latest, 2.0);  // and soon after
   EXPECT_LT(worst_tilt, 1.2 * kDeg);
   // Heading is the current fix's direction of travel: 0.05 / 1.5 rad (1.9 deg) of noise, the
   // start's 5 deg sigma covers it.

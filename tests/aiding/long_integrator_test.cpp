@@ -31,7 +31,7 @@ std::vector<CorrelatorEpoch> steered_epochs(double cn0_dbhz, double seconds, std
   spec.fs_hz = 1.2e6;
   spec.cn0_dbhz = cn0_dbhz;
   spec.doppler_rate_hzps = 0.0;
-  spec.code0_chips = 0.0;  // bits start at code period 0
+  spec.code0_chips = 0.0;      // bits start at code period 0
   spec.carrier0_cycles = 0.0;  // and the replica's carrier phase is the signal's
   spec.seed = seed;
   spec.bit = data_bit;
@@ -173,7 +173,7 @@ TEST(DataWipeoff, ABitIsJudgedAgainstTheWipedPhaseAndWithoutItCannotCondemnAPred
   EXPECT_EQ(w.wipe_sign(first, 1), -1);   // preamble bit 1 is sent as -1
   EXPECT_EQ(w.wipe_sign(first + 1, 1), 1);
   EXPECT_EQ(w.wipe_sign(first + 8, 1), 0);
-  EXPECT_EQ(w.wipe_sign(first, -1), 1);   // an inverted channel
+  EXPECT_EQ(w.wipe_sign(first, -1), 1);  // an inverted channel
   // The carrier half a cycle off: with the wiped phase as reference the preamble agrees.
   const std::complex<double> turned = std::polar(1.0, M_PI);
   for (int b = 0; b < 8; ++b) {

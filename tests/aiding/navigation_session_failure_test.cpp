@@ -21,7 +21,8 @@ class Noise final : public SampleSource {
   double intermediate_frequency_hz() const override { return 0.0; }
   bool is_real() const override { return false; }
   std::size_t read(std::span<Sample> out) override {
-    const auto n = static_cast<std::size_t>(std::min<std::int64_t>(total_ - next_, static_cast<std::int64_t>(out.size())));
+    const auto n =
+        static_cast<std::size_t>(std::min<std::int64_t>(total_ - next_, static_cast<std::int64_t>(out.size())));
     std::normal_distribution<double> noise(0.0, 30.0);
     for (std::size_t k = 0; k < n; ++k)
       out[k] = Sample(static_cast<std::int16_t>(noise(rng_)), static_cast<std::int16_t>(noise(rng_)));
@@ -103,7 +104,8 @@ TEST_F(SessionFailure, AFailureLateInTheRunKeepsTheProductsAndSaysWhy) {
   }
   for (const char* f : {"pvt.csv", "tracking.csv", "obs.rnx", "nav.rnx", "fixes.nmea", "track.kml", "track.gpx"})
     EXPECT_TRUE(fs::exists(dir_ / f)) << f;
-  for (const auto& entry : fs::directory_iterator(dir_)) EXPECT_NE(entry.path().extension(), ".partial") << entry.path();
+  for (const auto& entry : fs::directory_iterator(dir_))
+    EXPECT_NE(entry.path().extension(), ".partial") << entry.path();
   EXPECT_TRUE(report.finished);
   ASSERT_TRUE(report.error);
   EXPECT_EQ(*report.error, "something broke at epoch 2");

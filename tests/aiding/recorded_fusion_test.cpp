@@ -95,8 +95,9 @@ class SyntheticRecording {
       GpsL1Observation o;
       o.prn = s->prn;
       o.pseudorange_m = code.pseudorange_m(bias_m) + spec_.pseudorange_sigma_m * n01(rng);
-      o.doppler_hz = -(rate.pseudorange_rate_mps(at_doppler.v_ecef_mps, kClockDrift_mps) + spec_.rate_sigma_mps * n01(rng)) /
-                     gps::kL1Wavelength_m;
+      o.doppler_hz =
+          -(rate.pseudorange_rate_mps(at_doppler.v_ecef_mps, kClockDrift_mps) + spec_.rate_sigma_mps * n01(rng)) /
+          gps::kL1Wavelength_m;
       o.cn0_dbhz = 45.0;
       e.gps.push_back(o);
     }

@@ -50,7 +50,8 @@ TEST(SteeredChannelController, CommandsGoOutOnceAndSamplesMeasureTheSignalWherev
   SteeredChannelController controller(cfg, kRigSampleRate_hz, engagement);
 
   bool every_epoch_owned = true;
-  rig.track(20, controller, [&](const CorrelatorEpoch&, const ChannelDecision& d) { every_epoch_owned &= d.owns_epoch; });
+  rig.track(20, controller,
+            [&](const CorrelatorEpoch&, const ChannelDecision& d) { every_epoch_owned &= d.owns_epoch; });
   EXPECT_TRUE(every_epoch_owned);
   EXPECT_EQ(controller.take_samples().size(), 2u);
   EXPECT_TRUE(controller.steered());
@@ -75,11 +76,13 @@ TEST(SteeredChannelController, CommandsGoOutOnceAndSamplesMeasureTheSignalWherev
       last_mid = d.mid_sample;
       ++samples;
       if (block >= 25) {  // once the loops have settled
-        worst_transmit_error_chips = std::max(worst_transmit_error_chips, std::abs(measured_transmit_error_chips(d, rig)));
+        worst_transmit_error_chips =
+            std::max(worst_transmit_error_chips, std::abs(measured_transmit_error_chips(d, rig)));
         EXPECT_TRUE(d.measurement);
         if (d.doppler_hz) {
           ++doppler_samples;
-          worst_doppler_error_hz = std::max(worst_doppler_error_hz, std::abs(*d.doppler_hz - rig.truth_doppler_hz(d.doppler_sample)));
+          worst_doppler_error_hz =
+              std::max(worst_doppler_error_hz, std::abs(*d.doppler_hz - rig.truth_doppler_hz(d.doppler_sample)));
         }
       }
     }
@@ -195,7 +198,8 @@ TEST(SteeredChannelController, WipesTheDataOffWhereTheBitsArePredicted) {
       const double start = rig.truth_transmit_sow(d.mid_sample - span), end = rig.truth_transmit_sow(d.mid_sample);
       const std::int64_t sf = subframe_of(start);
       long_ones.push_back({sf == subframe_of(end) ? sf : -1, start - 6.0 * static_cast<double>(sf),
-                           end - 6.0 * static_cast<double>(sf), d.data_wiped, d.piece_s, rig.decoder().polarity() != 0});
+                           end - 6.0 * static_cast<double>(sf), d.data_wiped, d.piece_s,
+                           rig.decoder().polarity() != 0});
     }
     controller.publish(rig.exact_command());
     rig.between_blocks(controller);

@@ -39,7 +39,7 @@ inline lnav::LnavContent broadcast_content(int prn, double sow) {
 }
 
 struct RigSignal {
-  double transmit_sow = 0.0;   ///< transmit time of the signal arriving at sample 0
+  double transmit_sow = 0.0;  ///< transmit time of the signal arriving at sample 0
   double doppler_hz = 1000.0;
   double doppler_rate_hzps = 0.5;
   double cn0_dbhz = 45.0;
@@ -66,7 +66,8 @@ class SteeredChannelRig {
 
   /// The signal's transmit time (seconds of week) at a sample.
   double truth_transmit_sow(std::int64_t sample) const {
-    return static_cast<double>(first_bit_) * 0.02 + signal_.code_chips(static_cast<double>(sample) / kRigSampleRate_hz) / gps::kCodeRate_cps;
+    return static_cast<double>(first_bit_) * 0.02 +
+           signal_.code_chips(static_cast<double>(sample) / kRigSampleRate_hz) / gps::kCodeRate_cps;
   }
   double truth_doppler_hz(std::int64_t sample) const {
     return signal_.doppler_hz(static_cast<double>(sample) / kRigSampleRate_hz);

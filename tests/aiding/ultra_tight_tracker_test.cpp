@@ -49,7 +49,8 @@ class SteeredScene {
         eph_(highest_satellite(testing::broadcast_navigation_data(), t0_, r_ecef_m_)),
         rig_(signal(), eph_, nullptr),
         tracker_(UltraTightConfig{}, kRigSampleRate_hz, RangeErrorModel{}, nullptr, atmosphere_),
-        nav_(navigator_state(), kBias0_m + navigator_bias_error_m, kDrift_mps, NavigatorConfig{}, InitialUncertainty{}) {
+        nav_(navigator_state(), kBias0_m + navigator_bias_error_m, kDrift_mps, NavigatorConfig{},
+             InitialUncertainty{}) {
     tracker_.set_engagement(Engagement::all);
   }
 
@@ -86,7 +87,8 @@ class SteeredScene {
   /// The replica's transmit time at the last block's end against the signal's (chips).
   double replica_error_chips() const {
     const std::int64_t end = rig_.end_sample();
-    return (*transmit_time_sow(rig_.decoder(), rig_.channel(), end) - rig_.truth_transmit_sow(end)) * gps::kCodeRate_cps;
+    return (*transmit_time_sow(rig_.decoder(), rig_.channel(), end) - rig_.truth_transmit_sow(end)) *
+           gps::kCodeRate_cps;
   }
 
   UltraTightTracker& tracker() { return tracker_; }
@@ -103,8 +105,8 @@ class SteeredScene {
   /// rate over the next second.
   testing::RigSignal signal() const {
     const RangePrediction now = predict_range(eph_, t0_, kBias0_m, r_ecef_m_, Eigen::Vector3d::Zero(), {}, atmosphere_);
-    const RangePrediction later =
-        predict_range(eph_, t0_.plus_seconds(1.0), kBias0_m + kDrift_mps, r_ecef_m_, Eigen::Vector3d::Zero(), {}, atmosphere_);
+    const RangePrediction later = predict_range(eph_, t0_.plus_seconds(1.0), kBias0_m + kDrift_mps, r_ecef_m_,
+                                                Eigen::Vector3d::Zero(), {}, atmosphere_);
     const auto doppler = [](const RangePrediction& p) {
       return -p.pseudorange_rate_mps(Eigen::Vector3d::Zero(), kDrift_mps) / gps::kL1Wavelength_m;
     };
@@ -144,8 +146,10 @@ TEST(UltraTightTracker, SteersItsChannelByTheFiltersPrediction) {
     ++commands;
     worst_doppler_hz = std::max(worst_doppler_hz, std::abs(d.command->carrier_doppler_hz -
                                                            scene.rig().truth_doppler_hz(scene.rig().end_sample())));
-    EXPECT_NEAR(d.command->code_rate_cps, gps::kCodeRate_cps * (1.0 + d.command->carrier_doppler_hz / gps::kL1_Hz), 1e-6);
-    if (k >= 25) worst_correction_chips = std::max(worst_correction_chips, std::abs(*d.command->code_phase_correction_chips));
+    EXPECT_NEAR(d.command->code_rate_cps, gps::kCodeRate_cps * (1.0 + d.command->carrier_doppler_hz / gps::kL1_Hz),
+                1e-6);
+    if (k >= 25)
+      worst_correction_chips = std::max(worst_correction_chips, std::abs(*d.command->code_phase_correction_chips));
   }
   EXPECT_EQ(commands, 100);
   EXPECT_LT(worst_doppler_hz, 0.05);
@@ -216,13 +220,15 @@ TEST(UltraTightTracker, PredictsAnUntrackedSignalForAGuidedSearch) {
   EXPECT_GT(p->code_sigma_chips, 3.0 / kChip_m);
   EXPECT_GT(p->doppler_sigma_hz, 0.0);
   // Below the mask, or without the receiver clock: nothing to search for.
-  EXPECT_FALSE(scene.tracker()
-                   .predict_signal(scene.ephemeris().prn, scene.ephemeris(), scene.nav(), snap, p->elevation_deg * kDeg + 0.01)
-                   .has_value());
+  EXPECT_FALSE(
+      scene.tracker()
+          .predict_signal(scene.ephemeris().prn, scene.ephemeris(), scene.nav(), snap, p->elevation_deg * kDeg + 0.01)
+          .has_value());
   BlockSnapshot no_clock = snap;
   no_clock.clock.reset();
-  EXPECT_FALSE(
-      scene.tracker().predict_signal(scene.ephemeris().prn, scene.ephemeris(), scene.nav(), no_clock, 5.0 * kDeg).has_value());
+  EXPECT_FALSE(scene.tracker()
+                   .predict_signal(scene.ephemeris().prn, scene.ephemeris(), scene.nav(), no_clock, 5.0 * kDeg)
+                   .has_value());
 }
 
 TEST(UltraTightTracker, CountsOnlyChannelsItCouldTakeOver) {
@@ -236,9 +242,10 @@ TEST(UltraTightTracker, CountsOnlyChannelsItCouldTakeOver) {
     if (ephemeris) c.ephemeris = Ephemeris{};
     return c;
   };
-  b.channels = {channel(1, ChannelState::tracking, true, true, true), channel(2, ChannelState::tracking, false, true, true),
-                channel(3, ChannelState::lost, true, true, true), channel(4, ChannelState::tracking, true, false, true),
-                channel(5, ChannelState::tracking, true, true, false), channel(6, ChannelState::tracking, true, true, true)};
+  b.channels = {
+      channel(1, ChannelState::tracking, true, true, true),  channel(2, ChannelState::tracking, false, true, true),
+      channel(3, ChannelState::lost, true, true, true),      channel(4, ChannelState::tracking, true, false, true),
+      channel(5, ChannelState::tracking, true, true, false), channel(6, ChannelState::tracking, true, true, true)};
   EXPECT_EQ(UltraTightTracker::count_steerable(b), 2);
 }
 

@@ -48,7 +48,8 @@ void BM_Jammer(benchmark::State& state) {
     benchmark::DoNotOptimize(block.data());
   }
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kBlock));
-  state.SetLabel(deepnav::to_string(c.type) + (c.bandwidth_hz > 0 ? " B=" + std::to_string(state.range(1) / 1000) + "kHz" : ""));
+  state.SetLabel(deepnav::to_string(c.type) +
+                 (c.bandwidth_hz > 0 ? " B=" + std::to_string(state.range(1) / 1000) + "kHz" : ""));
 }
 BENCHMARK(BM_Jammer)
     ->Args({0, 0})

@@ -22,8 +22,8 @@ void BM_AddSatelliteEpoch(benchmark::State& state) {
     benchmark::DoNotOptimize(q.data());
   }
   state.SetItemsProcessed(state.iterations() * n);
-  state.counters["ns_per_sample"] =
-      benchmark::Counter(static_cast<double>(state.iterations() * n), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["ns_per_sample"] = benchmark::Counter(static_cast<double>(state.iterations() * n),
+                                                       benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 BENCHMARK(BM_AddSatelliteEpoch)->Arg(4092)->Arg(16368);
 

@@ -53,8 +53,8 @@ bool guarded(Parse&& parse, Expected&& expected) {
 /// yaml-cpp message without the file is a finding).
 inline auto names_input(std::string name) {
   return [name = std::move(name)](const std::exception& e) {
-    const bool documented =
-        dynamic_cast<const std::runtime_error*>(&e) != nullptr || dynamic_cast<const std::invalid_argument*>(&e) != nullptr;
+    const bool documented = dynamic_cast<const std::runtime_error*>(&e) != nullptr ||
+                            dynamic_cast<const std::invalid_argument*>(&e) != nullptr;
     return documented && std::string_view(e.what()).find(name) != std::string_view::npos;
   };
 }

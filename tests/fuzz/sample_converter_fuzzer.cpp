@@ -29,12 +29,18 @@ PackedLayout layout_from(std::uint8_t a, std::uint8_t b) {
 
 SampleFormat format_from(std::uint8_t kind, std::uint8_t a, std::uint8_t b) {
   switch (kind % 6) {
-    case 0: return SampleFormat::ibyte;
-    case 1: return SampleFormat::ishort;
-    case 2: return SampleFormat::gr_complex;
-    case 3: return SampleFormat::byte;
-    case 4: return SampleFormat::cu8;
-    default: return SampleFormat::packed_format(layout_from(a, b));
+    case 0:
+      return SampleFormat::ibyte;
+    case 1:
+      return SampleFormat::ishort;
+    case 2:
+      return SampleFormat::gr_complex;
+    case 3:
+      return SampleFormat::byte;
+    case 4:
+      return SampleFormat::cu8;
+    default:
+      return SampleFormat::packed_format(layout_from(a, b));
   }
 }
 
@@ -70,8 +76,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::size_t words = raw.size() / deepnav::bytes_per_word(format);
   std::vector<deepnav::Sample> out(words * deepnav::samples_per_word(format));
   // A non-finite gr_complex value is the one documented error.
-  if (deepnav::fuzz::guarded([&] { converter.convert(raw, out, 0); },
-                             deepnav::fuzz::is_a<std::runtime_error>))
+  if (deepnav::fuzz::guarded([&] { converter.convert(raw, out, 0); }, deepnav::fuzz::is_a<std::runtime_error>))
     check_levels(format, out);
   return 0;
 }

@@ -27,8 +27,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
           deepnav::fuzz::names_input(kName)))
     return 0;
   // Cross-field checks name the field (the file was named above).
-  if (deepnav::fuzz::guarded([&] { deepnav::validate_scenario(scenario); },
-                             deepnav::fuzz::is_a<std::invalid_argument>))
+  if (deepnav::fuzz::guarded([&] { deepnav::validate_scenario(scenario); }, deepnav::fuzz::is_a<std::invalid_argument>))
     round_trip(scenario);
   return 0;
 }

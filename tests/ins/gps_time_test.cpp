@@ -28,9 +28,8 @@ TEST(GpsTime, KnownEpochs) {
 }
 
 TEST(GpsTime, CalendarRoundTrips) {
-  const CalendarTime cases[] = {{1980, 1, 6, 0, 0, 0.0},     {1999, 8, 21, 23, 59, 59.25},
-                                {1999, 8, 22, 0, 0, 0.0},    {2000, 2, 29, 12, 30, 15.5},
-                                {2019, 4, 6, 23, 59, 59.75}, {2019, 4, 7, 0, 0, 0.125},
+  const CalendarTime cases[] = {{1980, 1, 6, 0, 0, 0.0},     {1999, 8, 21, 23, 59, 59.25}, {1999, 8, 22, 0, 0, 0.0},
+                                {2000, 2, 29, 12, 30, 15.5}, {2019, 4, 6, 23, 59, 59.75},  {2019, 4, 7, 0, 0, 0.125},
                                 {2024, 12, 31, 23, 0, 1.0},  {2038, 1, 19, 3, 14, 7.0}};
   for (const auto& c : cases) {
     const CalendarTime back = calendar_from_gps_time(gps_time_from_calendar(c));

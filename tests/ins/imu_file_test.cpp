@@ -80,9 +80,10 @@ TEST(ImuFile, RateFormConvertsToIncrements) {
 }
 
 TEST(ImuFile, GapsAreReportedNotInterpolated) {
-  const auto path = write_text("gap.csv", "t_s,wx_radps,wy_radps,wz_radps,fx_mps2,fy_mps2,fz_mps2\n"
-                                          "0.01,1,0,0,0,0,-9.8\n0.02,1,0,0,0,0,-9.8\n0.03,1,0,0,0,0,-9.8\n"
-                                          "0.50,1,0,0,0,0,-9.8\n0.51,1,0,0,0,0,-9.8\n");
+  const auto path = write_text("gap.csv",
+                               "t_s,wx_radps,wy_radps,wz_radps,fx_mps2,fy_mps2,fz_mps2\n"
+                               "0.01,1,0,0,0,0,-9.8\n0.02,1,0,0,0,0,-9.8\n0.03,1,0,0,0,0,-9.8\n"
+                               "0.50,1,0,0,0,0,-9.8\n0.51,1,0,0,0,0,-9.8\n");
   const ImuLog log = read_imu_csv(path);
   EXPECT_NEAR(log.nominal_interval_s, 0.01, 1e-12);  // median without a rate comment
   ASSERT_EQ(log.gaps.size(), 1u);
@@ -107,8 +108,8 @@ TEST(ImuFile, BadInputNamesTheLine) {
       {"backwards", kHeader + "0.01,0,0,0,0,0,0\n0.03,0,0,0,0,0,0\n0.02,0,0,0,0,0,0\n", ":4:", "non-monotonic"},
       {"columns", kHeader + "0.01,0,0,0,0,0\n", ":2:", "expected 7"},
       {"text", kHeader + "0.01,0,0,zero,0,0,0\n", ":2:", "not a number"},
-      {"units", "t_s,dtheta_x_deg,dtheta_y_deg,dtheta_z_deg,dv_x_mps,dv_y_mps,dv_z_mps\n0.01,0,0,0,0,0,0\n", ":1:",
-       "expected 't_s,dtheta_x_rad"},
+      {"units", "t_s,dtheta_x_deg,dtheta_y_deg,dtheta_z_deg,dv_x_mps,dv_y_mps,dv_z_mps\n0.01,0,0,0,0,0,0\n",
+       ":1:", "expected 't_s,dtheta_x_rad"},
       {"blank", kHeader + "0.01,0,0,0,0,0,0\n\n0.02,0,0,0,0,0,0\n", ":3:", "empty line"},
       {"rate", "# sample_rate_hz=-1\n" + kHeader, ":1:", "sample_rate_hz"},
   };
@@ -132,8 +133,8 @@ TEST(ImuFile, SamplesBeyondAnySensorsRangeAreErrors) {
   // sample once drove the aided filter to "valid" fixes 1e8 m up, or to a failure that named
   // no file. The error names the file, line and column.
   const std::string rows = "# sample_rate_hz=100\n" + kHeader + "0.01,0,0,0,0,0,-0.098\n";
-  for (const auto& [dv, shown] : std::vector<std::pair<std::string, std::string>>{
-           {"1e100", "1e+100"}, {"1e8", "1e+08"}, {"-200", "-200"}}) {
+  for (const auto& [dv, shown] :
+       std::vector<std::pair<std::string, std::string>>{{"1e100", "1e+100"}, {"1e8", "1e+08"}, {"-200", "-200"}}) {
     const auto path = write_text("spike.csv", rows + "0.02,0,0,0," + dv + ",0,-0.098\n0.03,0,0,0,0,0,-0.098\n");
     const std::string e = read_error(path);
     EXPECT_NE(e.find("spike.csv:4: column 'dv_x_mps': " + shown + " over 0.01 s is a specific force of"),
@@ -145,8 +146,9 @@ TEST(ImuFile, SamplesBeyondAnySensorsRangeAreErrors) {
   EXPECT_NE(read_error(gyro).find("column 'dtheta_x_rad': 5 over 0.01 s is an angular rate of 500 rad/s"),
             std::string::npos)
       << read_error(gyro);
-  const auto rate = write_text("rate.csv", "t_s,wx_radps,wy_radps,wz_radps,fx_mps2,fy_mps2,fz_mps2\n0.01,0,0,0,0,0,-9.8\n"
-                                           "0.02,0,0,0,0,0,-2e4\n");
+  const auto rate = write_text("rate.csv",
+                               "t_s,wx_radps,wy_radps,wz_radps,fx_mps2,fy_mps2,fz_mps2\n0.01,0,0,0,0,0,-9.8\n"
+                               "0.02,0,0,0,0,0,-2e4\n");
   EXPECT_NE(read_error(rate).find("column 'fz_mps2': -20000 is beyond any accelerometer's range"), std::string::npos)
       << read_error(rate);
   // 100 g for 10 ms and 1000 deg/s are within what sensors measure.
@@ -155,7 +157,8 @@ TEST(ImuFile, SamplesBeyondAnySensorsRangeAreErrors) {
 }
 
 TEST(ImuFile, NotARegularFileIsAnError) {
-  EXPECT_NE(read_error("/dev/zero").find("IMU file '/dev/zero' is a device"), std::string::npos) << read_error("/dev/zero");
+  EXPECT_NE(read_error("/dev/zero").find("IMU file '/dev/zero' is a device"), std::string::npos)
+      << read_error("/dev/zero");
 }
 
 }  // namespace

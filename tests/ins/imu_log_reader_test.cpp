@@ -30,7 +30,7 @@ ImuLogOptions walk_options() {
   o.columns = "ax,ay,az,gx,gy,gz,t";
   o.accel_unit = "g";
   o.gyro_unit = "deg/s";
-  o.time_scale = 1e-3;   // millisecond ticks
+  o.time_scale = 1e-3;  // millisecond ticks
   o.time_offset_s = 100.0;
   return o;
 }
@@ -137,7 +137,8 @@ TEST(ImuLogReader, MountingTurnsImuAxesIntoBodyAxes) {
 TEST(ImuLogReader, BadFilesGiveErrorsNamingFileLineAndColumn) {
   const ImuLogOptions o = walk_options();
   const std::string good = "0,0,1,0,0,0,1000\n";
-  const std::string bad_value = write_text("bad_value.csv", good + "0,0,1,abc,0,0,1010\n" + good + "0,0,1,0,0,0,1030\n");
+  const std::string bad_value =
+      write_text("bad_value.csv", good + "0,0,1,abc,0,0,1010\n" + good + "0,0,1,0,0,0,1030\n");
   EXPECT_EQ(error_of(bad_value, o), bad_value + ":2: column 4 (gx): 'abc' is not a finite number");
   const std::string short_row = write_text("short.csv", good + "0,0,1,0,0,1010\n" + "0,0,1,0,0,0,1030\n");
   EXPECT_EQ(error_of(short_row, o), short_row + ":2: expected 7 fields (ax,ay,az,gx,gy,gz,t), found 6");

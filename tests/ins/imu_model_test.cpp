@@ -74,10 +74,10 @@ const std::string kGyroOk =
     " arw_deg_per_sqrt_h: 0.1, scale_factor_ppm: 1, misalignment_mrad: 0, quantization_rad: 0}\n";
 
 TEST(ImuGrades, MissingFieldIsNamed) {
-  const auto path = write_temp_yaml("missing",
-                                    "grades:\n  g1:\n    sample_rate_hz: 100\n" + kGyroOk +
-                                        "    accel: {bias_sigma_ug: 1, bias_instability_ug: 0, correlation_time_s: 0,"
-                                        " scale_factor_ppm: 1, misalignment_mrad: 0, quantization_mps: 0}\n");
+  const auto path =
+      write_temp_yaml("missing", "grades:\n  g1:\n    sample_rate_hz: 100\n" + kGyroOk +
+                                     "    accel: {bias_sigma_ug: 1, bias_instability_ug: 0, correlation_time_s: 0,"
+                                     " scale_factor_ppm: 1, misalignment_mrad: 0, quantization_mps: 0}\n");
   const auto msg = error_of(path);
   EXPECT_NE(msg.find(path), std::string::npos) << msg;
   EXPECT_NE(msg.find("g1"), std::string::npos) << msg;
@@ -85,16 +85,16 @@ TEST(ImuGrades, MissingFieldIsNamed) {
 }
 
 TEST(ImuGrades, MisspelledFieldIsRejected) {
-  const auto path = write_temp_yaml("typo", "grades:\n  g1:\n    sample_rate_hz: 100\n" + kGyroOk +
-                                                "    accel: {vrw_m_per_s: 1}\n");
+  const auto path =
+      write_temp_yaml("typo", "grades:\n  g1:\n    sample_rate_hz: 100\n" + kGyroOk + "    accel: {vrw_m_per_s: 1}\n");
   EXPECT_NE(error_of(path).find("accel.vrw_m_per_s"), std::string::npos) << error_of(path);
 }
 
 // The same class of input the scenario fuzzer found (a key that is a list): it escaped as
 // yaml-cpp's "bad conversion", without the file or the field.
 TEST(ImuGrades, KeyThatIsAListIsRejected) {
-  const auto path = write_temp_yaml("list_key", "grades:\n  g1:\n    sample_rate_hz: 100\n" + kGyroOk +
-                                                    "    accel: {[a, b]: 1}\n");
+  const auto path =
+      write_temp_yaml("list_key", "grades:\n  g1:\n    sample_rate_hz: 100\n" + kGyroOk + "    accel: {[a, b]: 1}\n");
   const std::string error = error_of(path);
   EXPECT_NE(error.find("imu_model_test_list_key.yaml: grade 'g1', field 'accel.'"), std::string::npos) << error;
   EXPECT_NE(error.find("expected field names as keys"), std::string::npos) << error;

@@ -4,8 +4,8 @@
 
 #include <chrono>
 #include <filesystem>
-#include <functional>
 #include <fstream>
+#include <functional>
 
 #include "ins/input_file.hpp"
 #include "ins/yaml_checks.hpp"
@@ -32,8 +32,9 @@ TEST(InputFile, RegularFilesOnlyAndWithinTheSizeLimit) {
   EXPECT_NE(error_of([&] { check_input_file(file, "test file", 11); }).find("is 12 bytes, more than the 11"),
             std::string::npos);
   EXPECT_NE(error_of([&] { check_input_file(dir.string(), "test file"); }).find("is a directory"), std::string::npos);
-  EXPECT_NE(error_of([] { check_input_file("/dev/zero", "scenario file"); }).find("scenario file '/dev/zero' is a device"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of([] { check_input_file("/dev/zero", "scenario file"); }).find("scenario file '/dev/zero' is a device"),
+      std::string::npos);
   EXPECT_NE(error_of([&] { check_input_file((dir / "missing").string(), "test file"); }).find("No such file"),
             std::string::npos);
   // A FIFO without a writer: an error at once, where opening it would block forever.
@@ -47,7 +48,8 @@ TEST(InputFile, RegularFilesOnlyAndWithinTheSizeLimit) {
 }
 
 TEST(YamlChecks, DuplicateKeysAnywhereAreErrors) {
-  EXPECT_EQ(error_of([] { check_unique_keys(YAML::Load("a: 1\nb: {c: 2, d: 3}\ne: [{f: 1}, {f: 2}]\n"), "x.yaml"); }), "");
+  EXPECT_EQ(error_of([] { check_unique_keys(YAML::Load("a: 1\nb: {c: 2, d: 3}\ne: [{f: 1}, {f: 2}]\n"), "x.yaml"); }),
+            "");
   EXPECT_EQ(error_of([] { check_unique_keys(YAML::Load("a: 1\nb: 2\na: 3\n"), "x.yaml"); }),
             "x.yaml:3: key 'a' appears twice in one mapping (lines 1 and 3)");
   EXPECT_EQ(error_of([] { check_unique_keys(YAML::Load("top:\n  k: 1\n  k: 2\n"), "x.yaml"); }),

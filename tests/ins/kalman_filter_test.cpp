@@ -48,9 +48,9 @@ TEST(KalmanFilter, JosephFormKeepsTheCovarianceSymmetricAndPositiveSemiDefinite)
   // Strongly correlated states, a wide prior and near-perfect measurements: the short
   // form (I - K H) P loses symmetry and definiteness here; the Joseph form must not.
   Filter4::Matrix A;
-  A << 1.0, 0.9, 0.0, 0.3,  //
-      0.0, 1.0, 0.99, 0.0,  //
-      0.2, 0.0, 1.0, 0.999, //
+  A << 1.0, 0.9, 0.0, 0.3,   //
+      0.0, 1.0, 0.99, 0.0,   //
+      0.2, 0.0, 1.0, 0.999,  //
       0.0, 0.1, 0.0, 1.0;
   const Filter4::Matrix P0 = 1e6 * A * A.transpose();
   Filter4 kf(Filter4::Vector::Zero(), P0);

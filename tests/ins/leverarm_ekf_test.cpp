@@ -2,8 +2,8 @@
 
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <numbers>
 #include <random>
 
@@ -102,9 +102,9 @@ TEST(LeverArmEkf, ShipScenarioReproducesPaperFinding) {
     }
   }
   const auto [lo, hi] = std::minmax_element(proposed.begin(), proposed.end());
-  EXPECT_LT(*hi, 1.15 * *lo);                    // flat across arms
+  EXPECT_LT(*hi, 1.15 * *lo);                         // flat across arms
   EXPECT_GT(conventional[3], 1.8 * conventional[0]);  // paper: +97 % from 0.25 m to 1 m
-  EXPECT_LT(*hi, conventional[0]);               // below the conventional filter's smallest error
+  EXPECT_LT(*hi, conventional[0]);                    // below the conventional filter's smallest error
 }
 
 TEST(LeverArmEkf, RateTableWithEighteenCentimetreArm) {
@@ -143,7 +143,7 @@ TEST(LeverArmEkf, FullLeverArmUnderRichMotionAndUnobservableUnderPureRoll) {
   EXPECT_GT(std::abs(roll_run.observability.directions.col(0).x()), 0.99);
   EXPECT_EQ(roll_run.observability.summary.find("not observable along body direction [1.00"), 0u)
       << roll_run.observability.summary;
-  EXPECT_GT(roll_run.final_lever_sigma_m.x(), 0.5);  // the filter never learns it: prior stays
+  EXPECT_GT(roll_run.final_lever_sigma_m.x(), 0.5);           // the filter never learns it: prior stays
   EXPECT_NEAR(roll_run.lever_b_m.back().z(), arm.z(), 0.05);  // the others it does
   EXPECT_NEAR(roll_run.lever_b_m.back().y(), arm.y(), 0.05);
 }

@@ -113,7 +113,8 @@ TEST(Strapdown, Paper003AircraftCircleEndsWithinOneMetreAndHundredthDegree) {
   RecordProperty("position_error_m", std::to_string(e.position_m));
   RecordProperty("attitude_error_deg", std::to_string(e.attitude_deg));
   EXPECT_LT(e.position_m, 1.0);
-  std::printf("air circle, 200 s at 100 Hz: position error %.3e m, attitude error %.3e deg\n", e.position_m, e.attitude_deg);
+  std::printf("air circle, 200 s at 100 Hz: position error %.3e m, attitude error %.3e deg\n", e.position_m,
+              e.attitude_deg);
   EXPECT_LT(e.attitude_deg, 0.01);
 }
 

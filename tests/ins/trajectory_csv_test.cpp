@@ -2,10 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
 #include <array>
 #include <cmath>
 #include <filesystem>
-#include <fmt/format.h>
 #include <fstream>
 #include <sstream>
 #include <utility>
@@ -25,12 +25,14 @@ std::string write_file(const std::string& name, const std::string& text) {
 
 /// Samples a preset at 10 Hz into a CSV file (geodetic form, with or without attitude).
 std::string sample_preset(const Trajectory& traj, const std::string& name, bool with_attitude) {
-  std::string text = with_attitude ? "t_s,lat_deg,lon_deg,height_m,roll_deg,pitch_deg,yaw_deg\n" : "t_s,lat_deg,lon_deg,height_m\n";
+  std::string text =
+      with_attitude ? "t_s,lat_deg,lon_deg,height_m,roll_deg,pitch_deg,yaw_deg\n" : "t_s,lat_deg,lon_deg,height_m\n";
   for (int k = 0; k <= 600; ++k) {
     const double t = k * 0.1;
     const TrajectoryState s = traj.at(t);
     const wgs84::Llh llh = wgs84::ecef_to_llh(s.r_ecef_m);
-    text += fmt::format("{:.1f},{:.12f},{:.12f},{:.6f}", t, llh.lat_rad * 180 / kPi, llh.lon_rad * 180 / kPi, llh.height_m);
+    text +=
+        fmt::format("{:.1f},{:.12f},{:.12f},{:.6f}", t, llh.lat_rad * 180 / kPi, llh.lon_rad * 180 / kPi, llh.height_m);
     if (with_attitude) {
       const Eigen::Matrix3d C = s.q_b_n.toRotationMatrix();
       const double roll = std::atan2(C(2, 1), C(2, 2)), pitch = -std::asin(C(2, 0)), yaw = std::atan2(C(1, 0), C(0, 0));
@@ -48,7 +50,7 @@ TEST(TrajectoryCsv, ReproducesASampledCircle) {
   EXPECT_NEAR(csv->duration_s(), 60.0, 1e-9);
   for (double t = 1.0; t < 59.0; t += 0.737) {
     const TrajectoryState a = circle->at(t), b = csv->at(t);
-    EXPECT_LT((a.r_ecef_m - b.r_ecef_m).norm(), 3e-3) << t;       // a few mm
+    EXPECT_LT((a.r_ecef_m - b.r_ecef_m).norm(), 3e-3) << t;  // a few mm
     EXPECT_LT((a.v_ecef_mps - b.v_ecef_mps).norm(), 1e-3) << t;
     EXPECT_LT((a.a_ecef_mps2 - b.a_ecef_mps2).norm(), 2e-3) << t;
     EXPECT_LT(a.q_b_n.angularDistance(b.q_b_n), 1e-6) << t;
@@ -139,9 +141,9 @@ TEST(TrajectoryCsv, JumpsAndPositionsNoReceiverCanHaveAreErrors) {
   }
   // An airliner (250 m/s) and a LEO satellite (7.7 km/s) are fine.
   EXPECT_NO_THROW(load_csv_trajectory(write_file("fast", h + "0,0,0,10000\n1,0,0.00225,10000\n2,0,0.0045,10000\n"
-                                                              "3,0,0.00675,10000\n")));
+                                                             "3,0,0.00675,10000\n")));
   EXPECT_NO_THROW(load_csv_trajectory(write_file("leo", h + "0,0,0,400000\n1,0,0.06,400000\n2,0,0.12,400000\n"
-                                                             "3,0,0.18,400000\n")));
+                                                            "3,0,0.18,400000\n")));
 }
 
 }  // namespace

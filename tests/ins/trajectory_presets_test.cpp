@@ -46,12 +46,11 @@ TEST_P(EveryPreset, DerivativesAreConsistent) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Presets, EveryPreset, ::testing::ValuesIn(preset_trajectory_names()),
-                         [](const auto& info) {
-                           std::string n = info.param;
-                           for (auto& c : n) c = (c == '-') ? '_' : c;
-                           return n;
-                         });
+INSTANTIATE_TEST_SUITE_P(Presets, EveryPreset, ::testing::ValuesIn(preset_trajectory_names()), [](const auto& info) {
+  std::string n = info.param;
+  for (auto& c : n) c = (c == '-') ? '_' : c;
+  return n;
+});
 
 /// Horizontal distance of the path's points from their centroid over one full turn.
 void expect_circle(const std::string& name, double radius_m, double speed_mps) {

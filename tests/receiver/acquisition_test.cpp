@@ -10,8 +10,8 @@
 #include <set>
 
 #include "receiver/sources/file_sample_source.hpp"
-#include "signals/sim/gaussian_noise.hpp"
 #include "signals/gps_constants.hpp"
+#include "signals/sim/gaussian_noise.hpp"
 #include "signals/sim/satellite_signal_kernel.hpp"
 
 namespace deepnav {
@@ -55,7 +55,8 @@ void check_capture(const std::string& file, SampleFormat format, double fs, doub
   const auto results = acq.search(read_all(o, acq.samples_needed()));
   for (const auto& r : results) {
     if (const auto it = expected.find(r.prn); it != expected.end()) {
-      EXPECT_TRUE(r.detected) << file << " PRN " << r.prn << " statistic " << r.statistic << " threshold " << r.threshold;
+      EXPECT_TRUE(r.detected) << file << " PRN " << r.prn << " statistic " << r.statistic << " threshold "
+                              << r.threshold;
       EXPECT_NEAR(r.doppler_hz, it->second.doppler_hz, 250.0) << file << " PRN " << r.prn;
       double d = std::abs(r.delay_samples - it->second.delay_samples);
       d = std::min(d, fs / 1000.0 - d);
@@ -68,8 +69,8 @@ void check_capture(const std::string& file, SampleFormat format, double fs, doub
 }
 
 // Expected values: data/README.md.
-const std::map<int, Expected> k4MHz{{31, {-190, 1159}}, {26, {650, 3599}}, {29, {-2220, 1653}},
-                                     {16, {2600, 3958}}, {32, {-3380, 2766}}};
+const std::map<int, Expected> k4MHz{
+    {31, {-190, 1159}}, {26, {650, 3599}}, {29, {-2220, 1653}}, {16, {2600, 3958}}, {32, {-3380, 2766}}};
 // PRN 18 is in the 4 MHz capture too, weakly (about 37 dB-Hz at every coherent length, so it
 // is not a cross-correlation): the broadcast orbits, shifted by the sidereal repeat, put it
 // 16 deg above the Tokyo horizon at a Doppler matching the other satellites' clock offset.
@@ -85,8 +86,8 @@ TEST(Acquisition, RealSky4MHzWithAFifteenKilohertzSearch) {
 }
 
 TEST(Acquisition, RealSky12MHzRealIf) {
-  const std::map<int, Expected> expected{{5, {140, 5611}},    {13, {-230, 6004}},  {20, {-1370, 8172}},
-                                         {15, {1730, 9317}},  {2, {-2740, 5328}},  {30, {-1880, 4719}},
+  const std::map<int, Expected> expected{{5, {140, 5611}},     {13, {-230, 6004}}, {20, {-1370, 8172}},
+                                         {15, {1730, 9317}},   {2, {-2740, 5328}}, {30, {-1880, 4719}},
                                          {11, {-3280, 11004}}, {18, {3280, 6580}}, {29, {-2030, 9075}}};
   check_capture("L1_20211125_004000_12MHz_I.bin", SampleFormat::byte, 12e6, 3e6, false, expected, {}, 5000.0);
 }
@@ -118,7 +119,8 @@ std::vector<Sample> synthetic(int prn, double cn0_dbhz, double doppler_hz, doubl
   const float scale = 64.0f / sigma;
   std::vector<Sample> out(i.size());
   for (std::size_t k = 0; k < out.size(); ++k)
-    out[k] = {static_cast<std::int16_t>(std::lround(i[k] * scale)), static_cast<std::int16_t>(std::lround(q[k] * scale))};
+    out[k] = {static_cast<std::int16_t>(std::lround(i[k] * scale)),
+              static_cast<std::int16_t>(std::lround(q[k] * scale))};
   return out;
 }
 

@@ -50,7 +50,8 @@ TEST(CarrierSmoothing, LossOfLockIsCarriedByTheDopplersForAtMostTheBridge) {
   c.max_doppler_bridge_s = 0.5;  // two epochs
   CarrierSmoother s(c, kInterval, kLambda);
   Sat sat;
-  for (int k = 0; k < 20; ++k) s.add(3, k * kInterval, sat.range(k * kInterval) + 2.0, sat.phase(k * kInterval), sat.doppler(), false, 0.0);
+  for (int k = 0; k < 20; ++k)
+    s.add(3, k * kInterval, sat.range(k * kInterval) + 2.0, sat.phase(k * kInterval), sat.doppler(), false, 0.0);
   // A slip of 1000 cycles with the loss-of-lock indicator set, then two more flagged epochs:
   // the first two are carried by the Dopplers (the code offset of 2 m stays smoothed), the
   // third is beyond the bridge and restarts from the raw code.
@@ -78,7 +79,8 @@ TEST(CarrierSmoothing, LossOfLockIsCarriedByTheDopplersForAtMostTheBridge) {
 TEST(CarrierSmoothing, RestartsOnAnUnflaggedSlipAGapOrNoDoppler) {
   CarrierSmoother s({}, kInterval, kLambda);
   Sat sat;
-  for (int k = 0; k < 8; ++k) s.add(5, k * kInterval, sat.range(k * kInterval), sat.phase(k * kInterval), sat.doppler(), false, 0.0);
+  for (int k = 0; k < 8; ++k)
+    s.add(5, k * kInterval, sat.range(k * kInterval), sat.phase(k * kInterval), sat.doppler(), false, 0.0);
   // A 100 m jump of the phase that the receiver did not flag: code and carrier disagree.
   double t = 8 * kInterval;
   CarrierSmoother::Result r = s.add(5, t, sat.range(t), sat.phase(t) + 100.0 / kLambda, sat.doppler(), false, 0.0);
@@ -106,7 +108,8 @@ TEST(CarrierSmoothing, FollowsAReceiverClockReset) {
   CarrierSmoother s({}, kInterval, kLambda);
   Sat sat;
   const double jump_m = 299792.458;  // 1 ms
-  for (int k = 0; k < 8; ++k) s.add(2, k * kInterval, sat.range(k * kInterval), sat.phase(k * kInterval), sat.doppler(), false, 0.0);
+  for (int k = 0; k < 8; ++k)
+    s.add(2, k * kInterval, sat.range(k * kInterval), sat.phase(k * kInterval), sat.doppler(), false, 0.0);
   // The code steps by c x 1 ms, the phase does not: carried by the Dopplers plus the step.
   const double t = 8 * kInterval;
   const CarrierSmoother::Result r = s.add(2, t, sat.range(t) + jump_m, sat.phase(t), sat.doppler(), false, jump_m);

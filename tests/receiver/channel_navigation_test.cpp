@@ -22,7 +22,7 @@ constexpr double kFs = 2.5e6;
 
 struct Source {
   lnav::LnavContent content;
-  std::int64_t first_bit = 0;        ///< week bit index of the signal's bit 0
+  std::int64_t first_bit = 0;  ///< week bit index of the signal's bit 0
   std::vector<std::uint8_t> bits;
 };
 

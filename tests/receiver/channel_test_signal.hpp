@@ -10,8 +10,8 @@
 
 #include "receiver/sources/sample_source.hpp"
 #include "signals/ca_code.hpp"
-#include "signals/sim/gaussian_noise.hpp"
 #include "signals/gps_constants.hpp"
+#include "signals/sim/gaussian_noise.hpp"
 #include "signals/sim/satellite_signal_kernel.hpp"
 
 namespace deepnav::testing {
@@ -22,7 +22,7 @@ struct ChannelSignalSpec {
   double cn0_dbhz = 45.0;
   double doppler0_hz = 2000.0;
   double doppler_rate_hzps = 1.0;
-  double code0_chips = 100.3;       ///< unwrapped code phase at t = 0 (chips of period 0)
+  double code0_chips = 100.3;  ///< unwrapped code phase at t = 0 (chips of period 0)
   double carrier0_cycles = 0.3;
   std::uint64_t seed = 3;
   /// From this time on the C/N0 is cn0_after_dbhz (a fade); negative: never.
@@ -70,7 +70,8 @@ class ChannelSignal {
     b.first_sample_index = static_cast<std::int64_t>(ms_done_) * per_ms;
     b.samples.resize(total);
     for (std::size_t k = 0; k < total; ++k)
-      b.samples[k] = {static_cast<std::int16_t>(std::lround(i_[k] * scale)), static_cast<std::int16_t>(std::lround(q_[k] * scale))};
+      b.samples[k] = {static_cast<std::int16_t>(std::lround(i_[k] * scale)),
+                      static_cast<std::int16_t>(std::lround(q_[k] * scale))};
     ms_done_ += ms;
     return b;
   }

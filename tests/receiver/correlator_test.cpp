@@ -17,7 +17,8 @@ namespace {
 /// n samples of PRN `prn` at code phase `code0` with amplitude `a` plus uniform int noise.
 std::vector<Sample> make_signal(int prn, int n, double code0, double code_step, double carrier_step, float a,
                                 std::uint64_t seed) {
-  std::vector<float> i(static_cast<std::size_t>(n)), q(static_cast<std::size_t>(n)), scratch(static_cast<std::size_t>(n));
+  std::vector<float> i(static_cast<std::size_t>(n)), q(static_cast<std::size_t>(n)),
+      scratch(static_cast<std::size_t>(n));
   SignalSegment sg;
   sg.code_phase_chips = code0;
   sg.code_step_chips = code_step;
@@ -29,7 +30,8 @@ std::vector<Sample> make_signal(int prn, int n, double code0, double code_step, 
   std::uniform_int_distribution<int> noise(-40, 40);
   std::vector<Sample> out(static_cast<std::size_t>(n));
   for (std::size_t k = 0; k < out.size(); ++k)
-    out[k] = {static_cast<std::int16_t>(std::lround(i[k]) + noise(rng)), static_cast<std::int16_t>(std::lround(q[k]) + noise(rng))};
+    out[k] = {static_cast<std::int16_t>(std::lround(i[k]) + noise(rng)),
+              static_cast<std::int16_t>(std::lround(q[k]) + noise(rng))};
   return out;
 }
 
@@ -82,7 +84,9 @@ RandomCase random_case(std::mt19937_64& rng, int n) {
       i += sigma[kind] * noise(rng);
       q += sigma[kind] * noise(rng);
     }
-    const auto clamp16 = [](double v) { return static_cast<std::int16_t>(std::clamp(std::lround(v), -32768L, 32767L)); };
+    const auto clamp16 = [](double v) {
+      return static_cast<std::int16_t>(std::clamp(std::lround(v), -32768L, 32767L));
+    };
     c.x[static_cast<std::size_t>(k)] = {clamp16(i), clamp16(q)};
   }
   if (kind == 4 && n > 2) {  // the extremes of int16 must not overflow anything
@@ -274,7 +278,9 @@ TEST(Correlator, AGivenMagnitudeBoundGivesTheScannedResultOrOneWithinTolerance) 
       EXPECT_EQ(same.noise, scanned.noise);
       given.magnitude_bits = std::min(16, bits + 1 + trial % 3);
       const CorrelatorSums bound = correlate(k, c.x.data(), n, given, code, noise);
-      const auto tol = [&](std::complex<double> r) { return 0.105 * std::abs(r) + 0.36 * std::sqrt(power) + 4.0 * peak; };
+      const auto tol = [&](std::complex<double> r) {
+        return 0.105 * std::abs(r) + 0.36 * std::sqrt(power) + 4.0 * peak;
+      };
       EXPECT_LE(std::abs(bound.prompt - ref.prompt), tol(ref.prompt));
       EXPECT_LE(std::abs(bound.late - ref.late), tol(ref.late));
     }
@@ -348,7 +354,8 @@ TEST(Correlator, CarrierPhaseAndAmplitudeErrorsAreWithinTheTableResolution) {
         for (CorrelatorKernel k : available_correlator_kernels()) {
           const CorrelatorSums s = correlate(k, x.data(), n, span, code, ca_code_chips(6));
           const double err_deg = std::abs(std::arg(s.prompt / ref.prompt)) * 180.0 / M_PI;
-          EXPECT_LT(err_deg, 5.625 + 0.35) << "amplitude " << amplitude << " phase " << phase0 << " doppler " << doppler;
+          EXPECT_LT(err_deg, 5.625 + 0.35)
+              << "amplitude " << amplitude << " phase " << phase0 << " doppler " << doppler;
           EXPECT_NEAR(std::abs(s.prompt) / std::abs(ref.prompt), 1.0, 0.01) << "amplitude " << amplitude;
         }
       }
@@ -406,7 +413,8 @@ TEST(Correlator, TriangleResponseAndZeroEarlyMinusLateAtAlignment) {
   sg.amplitude = a;
   add_satellite_segment(i.data(), q.data(), n, sg, ca_code_chips(12), scratch.data());
   std::vector<Sample> x(n);
-  for (int k = 0; k < n; ++k) x[k] = {static_cast<std::int16_t>(std::lround(i[k])), static_cast<std::int16_t>(std::lround(q[k]))};
+  for (int k = 0; k < n; ++k)
+    x[k] = {static_cast<std::int16_t>(std::lround(i[k])), static_cast<std::int16_t>(std::lround(q[k]))};
 
   CorrelatorSpan span;
   span.code_step_chips = step;

@@ -191,8 +191,10 @@ TEST(FileSampleSource, ScalesGrComplexFromTheFirstBlockRms) {
   const auto s = read_all(source, 4096);
   ASSERT_EQ(s.size(), 1001u);
   const float k = source.float_scale();
-  EXPECT_EQ(s[0], Sample(static_cast<std::int16_t>(std::lround(0.3f * k)), static_cast<std::int16_t>(std::lround(-0.4f * k))));
-  EXPECT_EQ(s[1], Sample(static_cast<std::int16_t>(std::lround(-0.3f * k)), static_cast<std::int16_t>(std::lround(0.4f * k))));
+  EXPECT_EQ(s[0], Sample(static_cast<std::int16_t>(std::lround(0.3f * k)),
+                         static_cast<std::int16_t>(std::lround(-0.4f * k))));
+  EXPECT_EQ(s[1], Sample(static_cast<std::int16_t>(std::lround(-0.3f * k)),
+                         static_cast<std::int16_t>(std::lround(0.4f * k))));
   EXPECT_EQ(s[1000], Sample(32767, -32768));
 }
 

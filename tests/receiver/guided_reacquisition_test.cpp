@@ -47,7 +47,7 @@ class PredictingFilter final : public ChannelAiding {
   }
 
   std::map<int, SignalPrediction> predictions;
-  std::int64_t sample_offset = 0;        ///< predictions made for another sample than asked
+  std::int64_t sample_offset = 0;         ///< predictions made for another sample than asked
   std::vector<std::vector<int>> offered;  ///< the satellites of every request
 };
 

@@ -190,8 +190,8 @@ TEST(GuidedSearch, ACrossCorrelationIsWhatTheSuspicionGuardsAgainst) {
   ASSERT_EQ(search.outcome(), GuidedSearch::Outcome::found);
   const GuidedDetection& d = *search.detection();
   EXPECT_LT(d.cn0_dbhz, 50.0 - 18.0);
-  EXPECT_TRUE(cross_correlation_suspect(p.doppler_hz + d.doppler_offset_hz, d.cn0_dbhz, sig.doppler_hz(0.0), 50.0,
-                                        40.0, 18.0));
+  EXPECT_TRUE(
+      cross_correlation_suspect(p.doppler_hz + d.doppler_offset_hz, d.cn0_dbhz, sig.doppler_hz(0.0), 50.0, 40.0, 18.0));
 }
 
 }  // namespace

@@ -7,10 +7,10 @@
 #include <stdexcept>
 #include <string>
 
+#include "mitigation_test_signal.hpp"
 #include "receiver/mitigation/mitigation_blanking.hpp"
 #include "receiver/mitigation/mitigation_excision.hpp"
 #include "receiver/mitigation/mitigation_sample_source.hpp"
-#include "mitigation_test_signal.hpp"
 
 namespace deepnav {
 namespace {
@@ -56,9 +56,9 @@ TEST(Mitigation, ExcisionRemovesA40DbCwAndKeepsTheCorrelationPeak) {
   RecordProperty("snr_jammed_db", std::to_string(snr_jammed));
   RecordProperty("snr_excised_db", std::to_string(snr_excised));
   RecordProperty("cw_suppression_db", std::to_string(10 * std::log10(tone_in / tone_out)));
-  EXPECT_NEAR(snr_clean, 15.0, 1.5);         // 45 dB-Hz over 1 ms
-  EXPECT_LT(snr_jammed, snr_clean - 10.0);   // the CW costs far more than 10 dB unmitigated
-  EXPECT_GT(snr_excised, snr_clean - 1.0);   // within 1 dB of the clean peak after excision
+  EXPECT_NEAR(snr_clean, 15.0, 1.5);        // 45 dB-Hz over 1 ms
+  EXPECT_LT(snr_jammed, snr_clean - 10.0);  // the CW costs far more than 10 dB unmitigated
+  EXPECT_GT(snr_excised, snr_clean - 1.0);  // within 1 dB of the clean peak after excision
   // Stated residual: the CW, 19 dB above the noise power in the band, is left at least
   // 20 dB below it (suppressed by more than 39 dB).
   EXPECT_LT(tone_out, noise_power * 0.01);
@@ -167,8 +167,8 @@ TEST(Mitigation, BlankingZeroesPulsesAndLeavesCleanSamplesUntouched) {
     off_far_identical += blanked[k] == jammed[k];
   }
   EXPECT_NEAR(static_cast<double>(on) / kSamples, 0.1, 0.01);
-  EXPECT_EQ(on_zeroed, on);                   // every pulse sample is zeroed
-  EXPECT_EQ(off_far_identical, off_far);      // every clean sample passes bit-exact
+  EXPECT_EQ(on_zeroed, on);               // every pulse sample is zeroed
+  EXPECT_EQ(off_far_identical, off_far);  // every clean sample passes bit-exact
   // The correlation with pulses blanked loses about the duty cycle's 0.9 dB, not 20+ dB.
   const double snr_clean = test::correlation_snr_db(clean);
   EXPECT_LT(test::correlation_snr_db(jammed), snr_clean - 10.0);

@@ -48,7 +48,6 @@ constexpr int kSamples = 40000;  // one code period
 constexpr double kCodeStep = gps::kCodeRate_cps / kFs;
 constexpr double kCodePhase0 = 300.37;
 
-
 double closed_form(double alpha, double d, double tau, bool in_phase) {
   if (in_phase) {
     if (tau <= d * (1 + alpha) / 2) return alpha * tau / (1 + alpha);
@@ -139,7 +138,8 @@ void check_envelope(double alpha, double d_nominal, double tau_step) {
   const Envelope e = measure(alpha, d_nominal, 1.5, tau_step);
   const double peak = alpha * d / 2.0;
   double max_in = 0.0, min_out = 0.0, tau_max_in = 0.0, tau_min_out = 0.0;
-  std::printf("d = %.2f chip, alpha = %.2f: tau (chips)  in phase (chips, m)  out of phase (chips, m)\n", d_nominal, alpha);
+  std::printf("d = %.2f chip, alpha = %.2f: tau (chips)  in phase (chips, m)  out of phase (chips, m)\n", d_nominal,
+              alpha);
   for (std::size_t k = 0; k < e.tau.size(); ++k) {
     const double tau = e.tau[k], ip = e.in_phase[k], op = e.out_of_phase[k];
     if (ip > max_in) {
@@ -178,9 +178,10 @@ void check_envelope(double alpha, double d_nominal, double tau_step) {
       EXPECT_LT(std::abs(op), 0.03 * peak) << tau;
     }
   }
-  std::printf("  peak in phase %+.5f chip (%+.2f m) at tau %.3f; out of phase %+.5f chip (%+.2f m) at tau %.3f; "
-              "alpha d / 2 = %.5f chip (%.2f m)\n",
-              max_in, max_in * kChip_m, tau_max_in, min_out, min_out * kChip_m, tau_min_out, peak, peak * kChip_m);
+  std::printf(
+      "  peak in phase %+.5f chip (%+.2f m) at tau %.3f; out of phase %+.5f chip (%+.2f m) at tau %.3f; "
+      "alpha d / 2 = %.5f chip (%.2f m)\n",
+      max_in, max_in * kChip_m, tau_max_in, min_out, min_out * kChip_m, tau_min_out, peak, peak * kChip_m);
   EXPECT_NEAR(max_in, peak, 0.05 * peak);
   EXPECT_NEAR(min_out, -peak, 0.05 * peak);
   // The peak is reached at d (1 +- alpha) / 2 and held over the plateau.

@@ -48,7 +48,8 @@ lnav::DecodedSubframe decoded(const LnavSignTable& table, std::int64_t subframe)
   lnav::Subframe words{};
   for (int i = 0; i < kSfBits; ++i) {
     const int bit = table.sign_of_bit(subframe * kSfBits + i) < 0 ? 1 : 0;
-    words[static_cast<std::size_t>(i / 30)] = (words[static_cast<std::size_t>(i / 30)] << 1) | static_cast<std::uint32_t>(bit);
+    words[static_cast<std::size_t>(i / 30)] =
+        (words[static_cast<std::size_t>(i / 30)] << 1) | static_cast<std::uint32_t>(bit);
   }
   const auto d = lnav::decode_subframe(words);
   if (!d) throw std::runtime_error("test stream failed to decode");
@@ -62,7 +63,8 @@ struct Tally {
   std::int64_t known = 0, unknown = 0, wrong = 0;
 };
 
-Tally compare(const NavBitPredictor& p, const LnavSignTable& table, std::int64_t first_subframe, std::int64_t n_subframes) {
+Tally compare(const NavBitPredictor& p, const LnavSignTable& table, std::int64_t first_subframe,
+              std::int64_t n_subframes) {
   Tally t;
   std::vector<std::int8_t> signs(static_cast<std::size_t>(n_subframes * kSfBits));
   p.signs(first_subframe * kSfBits, signs);
@@ -245,8 +247,9 @@ TEST(NavBitMonitor, CorrectPredictionsRaiseNoAlarm) {
     NavBitPredictor copy = predictor;
     NavBitMonitor monitor;
     std::mt19937_64 rng(11);
-    const auto alarms = observe(monitor, copy, [&](std::int64_t b) { return table.sign_of_bit(b); },
-                                (s0 + kCycleSubframes) * kSfBits, (s0 + 2 * kCycleSubframes) * kSfBits, p, rng);
+    const auto alarms = observe(
+        monitor, copy, [&](std::int64_t b) { return table.sign_of_bit(b); }, (s0 + kCycleSubframes) * kSfBits,
+        (s0 + 2 * kCycleSubframes) * kSfBits, p, rng);
     EXPECT_TRUE(alarms.empty()) << p;
     EXPECT_EQ(monitor.bits_tested(), kCycleSubframes * kSfBits);
     EXPECT_NEAR(static_cast<double>(monitor.disagreements()) / static_cast<double>(monitor.bits_tested()), p, 0.2 * p);
@@ -262,7 +265,9 @@ TEST(NavBitMonitor, NewUploadDetectedWithinAFewBitsAndRelearned) {
   const std::int64_t last = cutover + 60;  // 12 frames after the upload
   const LnavSignTable before = stream(old_eph, first, last);
   const LnavSignTable after = stream(new_eph, first, last);
-  const auto truth = [&](std::int64_t b) { return b < cutover * kSfBits ? before.sign_of_bit(b) : after.sign_of_bit(b); };
+  const auto truth = [&](std::int64_t b) {
+    return b < cutover * kSfBits ? before.sign_of_bit(b) : after.sign_of_bit(b);
+  };
 
   NavBitPredictor learned;
   for (std::int64_t s = first; s < first + 5; ++s) learned.learn(decoded(before, s));
@@ -283,7 +288,8 @@ TEST(NavBitMonitor, NewUploadDetectedWithinAFewBitsAndRelearned) {
     ASSERT_EQ(alarms.size(), 1u) << seed;
     const std::int64_t delay = alarms[0] - first_wrong;
     std::int64_t wrong_used = 0;
-    for (std::int64_t b = first_wrong; b <= alarms[0]; ++b) wrong_used += learned.sign(b) != 0 && learned.sign(b) != truth(b) ? 1 : 0;
+    for (std::int64_t b = first_wrong; b <= alarms[0]; ++b)
+      wrong_used += learned.sign(b) != 0 && learned.sign(b) != truth(b) ? 1 : 0;
     EXPECT_GE(delay, 0) << seed;
     worst_delay = std::max(worst_delay, delay);
     worst_wrong_used = std::max(worst_wrong_used, wrong_used);
@@ -292,9 +298,10 @@ TEST(NavBitMonitor, NewUploadDetectedWithinAFewBitsAndRelearned) {
     EXPECT_EQ(t.wrong, 0) << seed;
     for (int segment = 1; segment <= 3; ++segment) EXPECT_EQ(predictor.body_words_known(segment), 8) << seed;
   }
-  std::printf("upload at p = %.0e: alarm at most %lld bits after the first wrong prediction, "
-              "at most %lld wrongly predicted bits used\n",
-              p, static_cast<long long>(worst_delay), static_cast<long long>(worst_wrong_used));
+  std::printf(
+      "upload at p = %.0e: alarm at most %lld bits after the first wrong prediction, "
+      "at most %lld wrongly predicted bits used\n",
+      p, static_cast<long long>(worst_delay), static_cast<long long>(worst_wrong_used));
   EXPECT_LE(worst_delay, 40);
   EXPECT_LE(worst_wrong_used, 8);
 }
@@ -340,8 +347,9 @@ TEST(NavBitPredictor, AssistedSubframesFromTheNavigationFile) {
   EXPECT_FALSE(stale.tlm_known());
   NavBitMonitor monitor;
   std::mt19937_64 rng(5);
-  const auto alarms = observe(monitor, stale, [&](std::int64_t b) { return table.sign_of_bit(b); }, s0 * kSfBits,
-                              (s0 + 5 * 30) * kSfBits, 1e-2, rng);
+  const auto alarms = observe(
+      monitor, stale, [&](std::int64_t b) { return table.sign_of_bit(b); }, s0 * kSfBits, (s0 + 5 * 30) * kSfBits, 1e-2,
+      rng);
   ASSERT_GE(alarms.size(), 1u);
   EXPECT_LT(alarms[0], (s0 + 1) * kSfBits);  // in the first subframe 1
   EXPECT_TRUE(stale.tlm_known());
@@ -364,8 +372,9 @@ TEST(NavBitMonitor, LearnsEveryPageFromAWeakStream) {
     NavBitPredictor predictor;
     NavBitMonitor monitor;
     std::mt19937_64 rng(17);
-    const auto alarms = observe(monitor, predictor, [&](std::int64_t b) { return table.sign_of_bit(b); },
-                                s0 * kSfBits, (s0 + 3 * kCycleSubframes) * kSfBits, p, rng);
+    const auto alarms = observe(
+        monitor, predictor, [&](std::int64_t b) { return table.sign_of_bit(b); }, s0 * kSfBits,
+        (s0 + 3 * kCycleSubframes) * kSfBits, p, rng);
     EXPECT_TRUE(alarms.empty()) << p;
     const Tally t = compare(predictor, table, s0 + 3 * kCycleSubframes, kCycleSubframes);
     EXPECT_EQ(t.wrong, 0) << p;

@@ -41,7 +41,8 @@ ReceiverEpoch epoch_at(double t_s, bool with_fix) {
 class ProductSinks : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("deepnav_sinks_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+    dir_ = fs::temp_directory_path() /
+           ("deepnav_sinks_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }

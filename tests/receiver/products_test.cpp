@@ -58,8 +58,9 @@ TEST(Tracks, KmlAndGpxCarryEveryFix) {
   const std::string kml = kml_track(fixes, "run");
   EXPECT_NE(kml.find("126.978000000,37.566500000,40.250"), std::string::npos);
   const std::string gpx = gpx_track(fixes, "run", 18);
-  EXPECT_NE(gpx.find("<trkpt lat=\"37.566500000\" lon=\"126.978000000\"><ele>40.250</ele><time>2022-01-01T02:00:00.000Z"),
-            std::string::npos)
+  EXPECT_NE(
+      gpx.find("<trkpt lat=\"37.566500000\" lon=\"126.978000000\"><ele>40.250</ele><time>2022-01-01T02:00:00.000Z"),
+      std::string::npos)
       << gpx;
 }
 
@@ -69,7 +70,8 @@ TEST(RinexObs, HeaderAndEpochLayout) {
   e.observations.push_back({7, 21000000.1234, -1234.5, 1000.25, 45.5, 10.0});
   RinexObsHeader h;
   const std::string text = rinex3_observation_file(h, {e});
-  EXPECT_NE(text.find("     3.04           OBSERVATION DATA    G (GPS)             RINEX VERSION / TYPE\n"), std::string::npos);
+  EXPECT_NE(text.find("     3.04           OBSERVATION DATA    G (GPS)             RINEX VERSION / TYPE\n"),
+            std::string::npos);
   EXPECT_NE(text.find("G    4 C1C L1C D1C S1C"), std::string::npos);
   EXPECT_NE(text.find("> 2022 01 01 02 00 18.5000000  0  1\n"), std::string::npos) << text;
   EXPECT_NE(text.find("G07  21000000.123       -1000.250       -1234.500          45.500"), std::string::npos) << text;

@@ -214,10 +214,11 @@ TEST(PvtSolverRaim, AStepFaultIsExcludedAtItsFirstEpoch) {
   }
   const double n = kEpochs - kStep;
   const double rms_fde_m = std::sqrt(sum2_fde / n), rms_without_m = std::sqrt(sum2_without / n);
-  std::printf("30 m step on PRN %d (%.0f deg) from epoch %d: excluded at %d of %.0f epochs (%d other exclusions; %d "
-              "epochs with an exclusion before the step); 3-D error RMS/max %.2f/%.2f m with FDE, %.2f/%.2f m without\n",
-              faulty, s.elevation_deg(faulty), kStep, excluded_after_step, n, other_exclusions, excluded_before_step,
-              rms_fde_m, worst_fde_m, rms_without_m, worst_without_m);
+  std::printf(
+      "30 m step on PRN %d (%.0f deg) from epoch %d: excluded at %d of %.0f epochs (%d other exclusions; %d "
+      "epochs with an exclusion before the step); 3-D error RMS/max %.2f/%.2f m with FDE, %.2f/%.2f m without\n",
+      faulty, s.elevation_deg(faulty), kStep, excluded_after_step, n, other_exclusions, excluded_before_step, rms_fde_m,
+      worst_fde_m, rms_without_m, worst_without_m);
   EXPECT_EQ(excluded_after_step, kEpochs - kStep);
   EXPECT_LE(excluded_before_step, 2);
   // The noise is up to 2 m (1 sigma) on low satellites with a PDOP near 2: metres.
@@ -253,9 +254,10 @@ TEST(PvtSolverRaim, TwoFaultsAreBothExcluded) {
     worst_m = std::max(worst_m, s.error_3d_m(p));
     sum2 += std::pow(s.error_3d_m(p), 2);
   }
-  std::printf("faults on PRN %d (+30 m) and %d (-40 m): both excluded at %d of 100 epochs, 3-D error RMS/max "
-              "%.2f/%.2f m\n",
-              a, b, both, std::sqrt(sum2 / 100), worst_m);
+  std::printf(
+      "faults on PRN %d (+30 m) and %d (-40 m): both excluded at %d of 100 epochs, 3-D error RMS/max "
+      "%.2f/%.2f m\n",
+      a, b, both, std::sqrt(sum2 / 100), worst_m);
   EXPECT_EQ(both, 100);
   EXPECT_LT(std::sqrt(sum2 / 100), 4.0);
 }

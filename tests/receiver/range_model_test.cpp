@@ -61,8 +61,8 @@ TEST(RangeModel, PredictedRateMatchesTheSynthesizedCarrierRate) {
         const Ephemeris* e = nav.select(prn, rx.t0_rcv);
         if (!e || !e->healthy()) continue;
         const ReceiverInstant now = rx.at(0.0);
-        const RangePrediction p =
-            predict_range(*e, rx.t0_rcv, gps::kSpeedOfLight_mps * now.clock_bias_s, now.r_ecef_m, now.v_ecef_mps, nav.iono);
+        const RangePrediction p = predict_range(*e, rx.t0_rcv, gps::kSpeedOfLight_mps * now.clock_bias_s, now.r_ecef_m,
+                                                now.v_ecef_mps, nav.iono);
         if (p.elevation_rad < 5.0 * kDeg) continue;
         const double predicted = p.pseudorange_rate_mps(now.v_ecef_mps, gps::kSpeedOfLight_mps * now.clock_drift_sps);
         const double measured = measured_rate_mps(*e, nav.iono, rx, 1.25e6);

@@ -48,7 +48,8 @@ TEST(SampleHistory, HoldsTheLastSamplesInOrderAcrossWrapsAndOversizedBlocks) {
     const auto n = static_cast<std::size_t>(len(rng));
     std::vector<Sample> block(n);
     for (std::size_t k = 0; k < n; ++k)
-      block[k] = {static_cast<std::int16_t>((index + static_cast<std::int64_t>(k)) % 30000), static_cast<std::int16_t>(b)};
+      block[k] = {static_cast<std::int16_t>((index + static_cast<std::int64_t>(k)) % 30000),
+                  static_cast<std::int16_t>(b)};
     h.append(block.data(), n, index);
     stream.insert(stream.end(), block.begin(), block.end());
     index += static_cast<std::int64_t>(n);

@@ -162,7 +162,8 @@ TEST(Acquisition, SamplesThatAreNotIfDataAreRecognised) {
   std::mt19937 rng(1);
   std::normal_distribution<double> noise(0.0, 3.0);
   std::vector<Sample> iq(4092);
-  for (auto& s : iq) s = Sample(static_cast<std::int16_t>(std::lround(noise(rng))), static_cast<std::int16_t>(std::lround(noise(rng))));
+  for (auto& s : iq)
+    s = Sample(static_cast<std::int16_t>(std::lround(noise(rng))), static_cast<std::int16_t>(std::lround(noise(rng))));
   EXPECT_EQ(if_sample_problem(iq, false), "");
   for (auto& s : iq) s = Sample(s.real(), 0);
   EXPECT_EQ(if_sample_problem(iq, true), "");

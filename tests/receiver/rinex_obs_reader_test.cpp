@@ -16,7 +16,8 @@ std::string pad(const std::string& content, const std::string& label) {
 }
 
 std::string header3(const std::string& types = "G    4 C1C L1C D1C S1C", const std::string& version = "3.04") {
-  std::string h = pad(fmt::format("{:>9}{:11}{:<20}{:<20}", version, "", "OBSERVATION DATA", "M: Mixed"), "RINEX VERSION / TYPE");
+  std::string h =
+      pad(fmt::format("{:>9}{:11}{:<20}{:<20}", version, "", "OBSERVATION DATA", "M: Mixed"), "RINEX VERSION / TYPE");
   h += pad("test", "PGM / RUN BY / DATE");
   h += pad(" -1276965.2487 -4717231.7278  4087230.1460", "APPROX POSITION XYZ");
   h += pad(types, "SYS / # / OBS TYPES");
@@ -26,9 +27,7 @@ std::string header3(const std::string& types = "G    4 C1C L1C D1C S1C", const s
   return h;
 }
 
-std::string obs(double v, char lli = ' ') {
-  return fmt::format("{:14.3f}{} ", v, lli);
-}
+std::string obs(double v, char lli = ' ') { return fmt::format("{:14.3f}{} ", v, lli); }
 
 std::string epoch3(double sec, int n, int flag = 0) {
   return fmt::format("> 2025 08 28 17 30 {:10.7f}  {}{:3d}\n", sec, flag, n);
@@ -213,7 +212,8 @@ TEST(RinexObsReader, BadFilesGiveErrorsNamingFileLineAndField) {
   std::string nav = header3();
   nav[20] = 'N';
   EXPECT_NE(error_of(nav).find("test.obs:1: not an observation file"), std::string::npos);
-  EXPECT_NE(error_of(header3("G    4 C1C L1C D1C S1C", "4.00")).find("unsupported RINEX version 4.00"), std::string::npos);
+  EXPECT_NE(error_of(header3("G    4 C1C L1C D1C S1C", "4.00")).find("unsupported RINEX version 4.00"),
+            std::string::npos);
   EXPECT_NE(error_of(header3("G    2 L1C D1C")).find("no L1 C/A pseudorange (C1C)"), std::string::npos);
   std::string no_end = header3();
   no_end.resize(no_end.find(fmt::format("{:<60}END OF HEADER", "")));
@@ -229,10 +229,13 @@ TEST(RinexObsReader, BadFilesGiveErrorsNamingFileLineAndField) {
             std::string::npos);
   // Fewer satellite records than announced (a truncated file).
   std::string cut = header3() + epoch3(0.0, 2) + sat3("G01", 2.1e7, 1.0, 0.0, 45.0);
-  EXPECT_NE(error_of(cut).find("test.obs:10: file ends where satellite record 2 of 2 of the epoch at line 8 was expected"),
+  EXPECT_NE(
+      error_of(cut).find("test.obs:10: file ends where satellite record 2 of 2 of the epoch at line 8 was expected"),
+      std::string::npos);
+  std::string cut2 = header3() + epoch3(0.0, 2) + sat3("G01", 2.1e7, 1.0, 0.0, 45.0) + epoch3(0.25, 1) +
+                     sat3("G01", 2.1e7, 1.0, 0.0, 45.0);
+  EXPECT_NE(error_of(cut2).find("test.obs:10: satellite record 2 of 2 of the epoch at line 8 expected"),
             std::string::npos);
-  std::string cut2 = header3() + epoch3(0.0, 2) + sat3("G01", 2.1e7, 1.0, 0.0, 45.0) + epoch3(0.25, 1) + sat3("G01", 2.1e7, 1.0, 0.0, 45.0);
-  EXPECT_NE(error_of(cut2).find("test.obs:10: satellite record 2 of 2 of the epoch at line 8 expected"), std::string::npos);
   // Time going backwards.
   std::string back = header3() + epoch3(1.0, 1) + sat3("G01", 2.1e7, 1.0, 0.0, 45.0) + epoch3(0.5, 1) +
                      sat3("G01", 2.1e7, 1.0, 0.0, 45.0);

@@ -121,14 +121,16 @@ TEST(ArrivalLossDetector, JitterDelaysSlowClocksAreNoLoss) {
   EXPECT_EQ(stall.lost(), 0);
   // A dongle clock 100 ppm slow for 100 s: the lag grows by 10 ms, slowly.
   Feed slow;
-  slow.run(100.0, [](double) { return 0.0; }, 0.003, 1.0 - 100e-6);
+  slow.run(
+      100.0, [](double) { return 0.0; }, 0.003, 1.0 - 100e-6);
   EXPECT_EQ(slow.lost(), 0);
 }
 
 TEST(ArrivalLossDetector, ADroppedStretchIsLostBeforeTheRightPiece) {
   Feed f;
   const std::int64_t drop_at = 10 * 16384 * 125, drop = 16384 * 12;  // ~96 ms after ~10 s
-  f.run(20.0, [](double) { return 0.0; }, 0.003, 1.0, drop_at, drop);
+  f.run(
+      20.0, [](double) { return 0.0; }, 0.003, 1.0, drop_at, drop);
   EXPECT_NEAR(static_cast<double>(f.lost()), static_cast<double>(drop), 0.004 * f.fs);
   // The loss is reported before the first piece after the hole, and only there.
   std::int64_t delivered = 0;
@@ -208,7 +210,8 @@ TEST(RtlTcpSource, TunesTheDongleAndStreamsItsSamples) {
   ASSERT_EQ(all.size(), 2000u);
   for (std::size_t k = 0; k < all.size(); ++k) {
     const int u = static_cast<int>((k + 1000) % 256);
-    ASSERT_EQ(all[k], Sample(static_cast<std::int16_t>(2 * u - 255), static_cast<std::int16_t>(2 * (255 - u) - 255))) << k;
+    ASSERT_EQ(all[k], Sample(static_cast<std::int16_t>(2 * u - 255), static_cast<std::int16_t>(2 * (255 - u) - 255)))
+        << k;
   }
   EXPECT_EQ(source.lost_sample_count(), 0);
   EXPECT_EQ(source.stats().end_reason, "the server closed the connection");

@@ -146,7 +146,8 @@ TEST(FileSourceOptions, MissingPiecesAreNamed) {
   SourceRequest bad_format = no_rate;
   bad_format.fs_hz = 4.0e6;
   bad_format.format = "int7";
-  EXPECT_EQ(options_error(bad_format).rfind("--format: unknown sample format 'int7'", 0), 0u) << options_error(bad_format);
+  EXPECT_EQ(options_error(bad_format).rfind("--format: unknown sample format 'int7'", 0), 0u)
+      << options_error(bad_format);
 }
 
 TEST(FileSourceOptions, MetadataProblemsAreNamed) {
@@ -155,9 +156,9 @@ TEST(FileSourceOptions, MetadataProblemsAreNamed) {
             "--metadata '" + no_file.string() + "' names no <file>: give the samples with --input");
 
   const auto elsewhere = edited_metadata("elsewhere.xml", "  <file><url>gone.bin</url><lane id=\"L1\"/></file>\n");
-  EXPECT_EQ(options_error(metadata_request(elsewhere)),
-            "--metadata '" + elsewhere.string() + "': its sample file '" +
-                (elsewhere.parent_path() / "gone.bin").string() + "' does not exist");
+  EXPECT_EQ(options_error(metadata_request(elsewhere)), "--metadata '" + elsewhere.string() + "': its sample file '" +
+                                                            (elsewhere.parent_path() / "gone.bin").string() +
+                                                            "' does not exist");
 
   // Not metadata at all: the reader's own message, naming the file, as an InputError.
   const std::string not_xml = options_error(metadata_request(kIqCapture));
@@ -205,8 +206,7 @@ TEST(OpenSampleSource, RefusesRtlTcpFlagsThatDoNotApply) {
   EXPECT_EQ(open_error(format), "--format ibyte: an rtl_tcp server sends cu8 (leave --format out)");
   SourceRequest inverted = rtl;
   inverted.inverted = true;
-  EXPECT_EQ(open_error(inverted),
-            "--inverted-spectrum does not apply to rtltcp:// (an RTL-SDR's spectrum is upright)");
+  EXPECT_EQ(open_error(inverted), "--inverted-spectrum does not apply to rtltcp:// (an RTL-SDR's spectrum is upright)");
   SourceRequest fractional_rate = rtl;
   fractional_rate.fs_hz = 2048000.5;
   fractional_rate.fs_given = true;

@@ -52,7 +52,8 @@ TEST(SolutionFile, BadFilesGiveErrorsNamingFileLineAndField) {
   const std::string good = "2025/08/28 17:30:39.750   40.096704347 -105.147073712  1592.8589   5   6\n";
   const std::string fields = write_text("fields.pos", good + "2025/08/28 17:30:40.000   40.0967 -105.1470\n");
   EXPECT_EQ(error_of(fields), fields + ":2: expected time, latitude, longitude, height, Q; found 4 fields");
-  const std::string date = write_text("date.pos", std::string(kHeader) + "2025/13/28 17:30:39.750 40.1 -105.1 1592.9 5 6\n");
+  const std::string date =
+      write_text("date.pos", std::string(kHeader) + "2025/13/28 17:30:39.750 40.1 -105.1 1592.9 5 6\n");
   EXPECT_EQ(error_of(date), date + ":3: date '2025/13/28' is not yyyy/mm/dd");
   const std::string week = write_text("week.pos", "2381x 408640.0 40.1 -105.1 1592.9 5 6\n");
   EXPECT_EQ(error_of(week), week + ":1: GPS week: '2381x' is not a number");
@@ -82,7 +83,8 @@ TEST(SolutionFile, ErrorsAboutTheMeanOffset) {
     SolutionPoint s = r;
     s.t = r.t.plus_seconds(0.001);  // within the 10 ms match
     const double east = 3.0 + (k % 2 == 0 ? 0.5 : -0.5);
-    s.llh = wgs84::ecef_to_llh(wgs84::llh_to_ecef(r.llh) + ned_to_ecef_vector(origin, Eigen::Vector3d(-2.0, east, -5.0)));
+    s.llh =
+        wgs84::ecef_to_llh(wgs84::llh_to_ecef(r.llh) + ned_to_ecef_vector(origin, Eigen::Vector3d(-2.0, east, -5.0)));
     sol.push_back(s);
   }
   SolutionPoint far = sol.back();

@@ -50,9 +50,9 @@ TEST(SourceUrl, ListenFormBindsAndMayOmitHostAndPort) {
 
 TEST(SourceUrl, FilePathsAreNotStreams) {
   EXPECT_FALSE(parse_source_url("data/L1_20211202_084700_4MHz_IQ.bin"));
-  EXPECT_FALSE(parse_source_url("/tmp/capture:1.bin"));  // a ':' alone makes no URL
+  EXPECT_FALSE(parse_source_url("/tmp/capture:1.bin"));     // a ':' alone makes no URL
   EXPECT_FALSE(parse_source_url("http://example.com:80"));  // not a scheme a source reads
-  EXPECT_FALSE(parse_source_url("TCP://host:1"));  // schemes are lower case
+  EXPECT_FALSE(parse_source_url("TCP://host:1"));           // schemes are lower case
   EXPECT_FALSE(parse_source_url(""));
 }
 

@@ -99,21 +99,27 @@ TEST(StreamProtocol, BadHeadersAreClearErrors) {
 
 TEST(StreamProtocol, BadFramesAreClearErrors) {
   const StreamHeader h = test_header();
-  EXPECT_NE(error_of([&] { decode_frame_header(encode(FrameHeader{3, 5000, 1u << 30, false}), h); })
-                .find("payload length 1073741824 bytes exceeds the stream's maximum of 4096"),
+  EXPECT_NE(error_of([&] {
+              decode_frame_header(encode(FrameHeader{3, 5000, 1u << 30, false}), h);
+            }).find("payload length 1073741824 bytes exceeds the stream's maximum of 4096"),
             std::string::npos);
-  EXPECT_NE(error_of([&] { decode_frame_header(encode(FrameHeader{3, 5000, 6, false}), h); }).find("not whole"),
+  EXPECT_NE(error_of([&] {
+              decode_frame_header(encode(FrameHeader{3, 5000, 6, false}), h);
+            }).find("not whole"),
             std::string::npos);
-  EXPECT_NE(error_of([&] { decode_frame_header(encode(FrameHeader{3, 10, 8, false}), h); }).find("before the stream's start"),
+  EXPECT_NE(error_of([&] {
+              decode_frame_header(encode(FrameHeader{3, 10, 8, false}), h);
+            }).find("before the stream's start"),
             std::string::npos);
-  EXPECT_NE(error_of([&] { decode_frame_header(encode(FrameHeader{3, 5000, 0, false}), h); }).find("may be empty"),
+  EXPECT_NE(error_of([&] {
+              decode_frame_header(encode(FrameHeader{3, 5000, 0, false}), h);
+            }).find("may be empty"),
             std::string::npos);
   StreamParser parser;
   std::vector<Frame> frames;
   const std::string garbage = "GET / HTTP/1.1\r\nHost: x\r\n\r\n";
-  const std::string e = error_of([&] {
-    parser.feed(std::as_bytes(std::span<const char>(garbage.data(), garbage.size())), frames);
-  });
+  const std::string e =
+      error_of([&] { parser.feed(std::as_bytes(std::span<const char>(garbage.data(), garbage.size())), frames); });
   EXPECT_NE(e.find("magic is \"GET \", expected \"DNIF\""), std::string::npos) << e;
 }
 
@@ -127,21 +133,29 @@ TEST(StreamProtocol, SequenceNumberAndSampleIndexBoundEachOther) {
   // A sequence number of 2^63 (the loss accounting would count 9e18 frames lost).
   const std::string seq = error_of([&] { decode_frame_header(encode(FrameHeader{1ULL << 63, 1000000, 4, false}), h); });
   EXPECT_NE(seq.find("sequence number 9223372036854775808 is beyond what its first sample index 1000000 allows"),
-            std::string::npos) << seq;
-  EXPECT_NE(error_of([&] { decode_frame_header(encode(FrameHeader{11, 4096 + 10, 4, false}), h); }).find("sequence number"),
+            std::string::npos)
+      << seq;
+  EXPECT_NE(error_of([&] {
+              decode_frame_header(encode(FrameHeader{11, 4096 + 10, 4, false}), h);
+            }).find("sequence number"),
             std::string::npos);
   // A sample index 1e15 ahead of what 500 frames can carry (the receiver would wait for it).
-  const std::string idx =
-      error_of([&] { decode_frame_header(encode(FrameHeader{500, 1000000000000000 + 500 * 1024, 4, false}), h); });
+  const std::string idx = error_of([&] {
+    decode_frame_header(encode(FrameHeader{500, 1000000000000000 + 500 * 1024, 4, false}), h);
+  });
   EXPECT_NE(idx.find("first sample index 1000000000512000 is beyond what its sequence number allows"),
-            std::string::npos) << idx;
-  EXPECT_NE(error_of([&] { decode_frame_header(encode(FrameHeader{10, 4096 + 10241, 4, false}), h); }).find("beyond"),
+            std::string::npos)
+      << idx;
+  EXPECT_NE(error_of([&] {
+              decode_frame_header(encode(FrameHeader{10, 4096 + 10241, 4, false}), h);
+            }).find("beyond"),
             std::string::npos);
   // Start indices past 2^53 are no longer whole samples as doubles.
   StreamHeader late = h;
   late.start_sample_index = std::int64_t{1} << 62;
-  EXPECT_NE(error_of([&] { decode_header(encode(late)); }).find("start sample index 4611686018427387904 is beyond 2^53"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of([&] { decode_header(encode(late)); }).find("start sample index 4611686018427387904 is beyond 2^53"),
+      std::string::npos);
 }
 
 TEST(StreamProtocol, ParserReassemblesAnySplit) {
@@ -152,7 +166,8 @@ TEST(StreamProtocol, ParserReassemblesAnySplit) {
     StreamParser parser;
     std::size_t at = 0;
     while (at < bytes.size()) {
-      const std::size_t n = std::min<std::size_t>(bytes.size() - at, std::uniform_int_distribution<std::size_t>(1, 700)(rng));
+      const std::size_t n =
+          std::min<std::size_t>(bytes.size() - at, std::uniform_int_distribution<std::size_t>(1, 700)(rng));
       parser.feed(std::span<const std::byte>(bytes.data() + at, n), got);
       at += n;
     }

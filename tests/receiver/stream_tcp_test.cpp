@@ -37,7 +37,9 @@ std::vector<std::byte> payload(std::int64_t first, int count) {
   return out;
 }
 
-void send(tcp::socket& s, std::span<const std::byte> bytes) { asio::write(s, asio::buffer(bytes.data(), bytes.size())); }
+void send(tcp::socket& s, std::span<const std::byte> bytes) {
+  asio::write(s, asio::buffer(bytes.data(), bytes.size()));
+}
 
 void send_frame(tcp::socket& s, std::uint64_t seq, std::int64_t first, int count, std::size_t cut = 0) {
   const auto p = payload(first, count);
@@ -142,7 +144,8 @@ TEST(StreamTcp, MalformedStreamsAreClearErrors) {
     send(s, header);
     send(s, stream::encode(stream::FrameHeader{0, 0, 0x7fffffff, false}));
   });
-  EXPECT_NE(oversized.find("payload length 2147483647 bytes exceeds the stream's maximum of 4000 bytes"), std::string::npos)
+  EXPECT_NE(oversized.find("payload length 2147483647 bytes exceeds the stream's maximum of 4000 bytes"),
+            std::string::npos)
       << oversized;
   EXPECT_NE(open_error([&](tcp::socket& s) {
               send(s, header);

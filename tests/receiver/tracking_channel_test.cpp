@@ -34,7 +34,12 @@ RunResult track(const ChannelSignalSpec& spec, double seconds, double doppler_er
   const double fs = spec.fs_hz;
   cfg.sample_rate_hz = fs;
   const double start_phase = std::fmod(spec.code0_chips, 1023.0);
-  ChannelStart start{spec.prn, spec.doppler0_hz + doppler_error_hz, std::fmod(start_phase + code_error_chips + 1023.0, 1023.0), 0, 4, std::nullopt};
+  ChannelStart start{spec.prn,
+                     spec.doppler0_hz + doppler_error_hz,
+                     std::fmod(start_phase + code_error_chips + 1023.0, 1023.0),
+                     0,
+                     4,
+                     std::nullopt};
   TrackingChannel ch(cfg, start);
   const LoopBandwidths pull_in{15.0, 10.0, 1.0};
   const LoopBandwidths narrow{10.0, 0.0, 0.5};
@@ -62,7 +67,8 @@ RunResult track(const ChannelSignalSpec& spec, double seconds, double doppler_er
         if (r.bit_sync_time_s < 0 && e.bit_synced) r.bit_sync_time_s = t_end;
         if (t_end > 1.0) {
           const double chips = static_cast<double>(e.code_period) * 1023.0 + e.code_phase_chips;
-          const double code_err = std::remainder(chips - (sig.code_chips(t_end) - spec.code0_chips + start_phase), 1023.0);
+          const double code_err =
+              std::remainder(chips - (sig.code_chips(t_end) - spec.code0_chips + start_phase), 1023.0);
           sum_code2 += code_err * code_err;
           const double dop_err = e.carrier_doppler_hz - sig.doppler_hz(t_end - 0.5 * e.integration_s);
           sum_dop2 += dop_err * dop_err;

@@ -44,7 +44,8 @@ TEST(TrackingLoops, Discriminators) {
 
 TEST(TrackingLoops, SecondOrderPllFollowsAFrequencyStepWithoutPhaseError) {
   CarrierLoopFilter f(2, 15.0, 0.0, 0.0);
-  const double e = run_carrier_loop(f, [](double t) { return 5.0 * t + 0.1; }, 2.0, false);
+  const double e = run_carrier_loop(
+      f, [](double t) { return 5.0 * t + 0.1; }, 2.0, false);
   EXPECT_NEAR(e, 0.0, 1e-5);
   EXPECT_NEAR(f.frequency_hz(), 5.0, 1e-3);
 }
@@ -52,7 +53,8 @@ TEST(TrackingLoops, SecondOrderPllFollowsAFrequencyStepWithoutPhaseError) {
 TEST(TrackingLoops, SecondOrderPllLagsADopplerRateByTwoPiROverOmegaSquared) {
   const double bn = 15.0, rate = 10.0;
   CarrierLoopFilter f(2, bn, 0.0, 0.0);
-  const double e = run_carrier_loop(f, [&](double t) { return 0.5 * rate * t * t; }, 2.0, false);
+  const double e = run_carrier_loop(
+      f, [&](double t) { return 0.5 * rate * t * t; }, 2.0, false);
   const double w0 = bn / 0.53;
   const double expected_rad = 2.0 * M_PI * rate / (w0 * w0);
   EXPECT_NEAR(2.0 * M_PI * e, expected_rad, 0.05 * expected_rad);
@@ -60,7 +62,8 @@ TEST(TrackingLoops, SecondOrderPllLagsADopplerRateByTwoPiROverOmegaSquared) {
 
 TEST(TrackingLoops, ThirdOrderPllFollowsADopplerRateWithoutPhaseError) {
   CarrierLoopFilter f(3, 18.0, 0.0, 0.0);
-  const double e = run_carrier_loop(f, [](double t) { return 20.0 * t + 0.5 * 10.0 * t * t; }, 3.0, false);
+  const double e = run_carrier_loop(
+      f, [](double t) { return 20.0 * t + 0.5 * 10.0 * t * t; }, 3.0, false);
   EXPECT_NEAR(e, 0.0, 1e-5);
   EXPECT_NEAR(f.frequency_hz(), 20.0 + 10.0 * 3.0, 1e-2);
 }
@@ -68,17 +71,19 @@ TEST(TrackingLoops, ThirdOrderPllFollowsADopplerRateWithoutPhaseError) {
 TEST(TrackingLoops, FllAloneConvergesOnAFrequencyOffset) {
   // PLL bandwidth 0: only the frequency-locked loop acts; 1st order, time constant 1/w0f.
   CarrierLoopFilter f(2, 0.0, 10.0, 0.0);
-  run_carrier_loop(f, [](double t) { return 150.0 * t; }, 0.5, true);
+  run_carrier_loop(
+      f, [](double t) { return 150.0 * t; }, 0.5, true);
   EXPECT_NEAR(f.frequency_hz(), 150.0, 0.01);
   CarrierLoopFilter f3(3, 0.0, 10.0, 0.0);  // 2nd-order FLL assist of the 3rd-order PLL
-  run_carrier_loop(f3, [](double t) { return 150.0 * t + 0.5 * 5.0 * t * t; }, 2.0, true);
+  run_carrier_loop(
+      f3, [](double t) { return 150.0 * t + 0.5 * 5.0 * t * t; }, 2.0, true);
   EXPECT_NEAR(f3.frequency_hz(), 150.0 + 5.0 * 2.0, 0.05);
 }
 
 TEST(TrackingLoops, CarrierAidedDllRemovesACodeOffsetWithTimeConstantOneOverFourBn) {
   const double bn = 1.0, doppler = 1500.0;
   double replica = 0.0;
-  const double truth = 0.3;  // chips ahead of the replica, moving with the carrier-aided rate
+  const double truth = 0.3;        // chips ahead of the replica, moving with the carrier-aided rate
   for (int k = 0; k < 250; ++k) {  // 0.25 s = one time constant
     const double error = truth - replica;
     const double rate = carrier_aided_code_rate_cps(doppler, error, bn);

@@ -54,8 +54,11 @@ TEST(TruthFile, RowsNeedTheHeadersColumnCount) {
 }
 
 TEST(TruthFile, NonFiniteAndPartlyNumericValuesAreErrors) {
-  for (const auto& [bad, column] : std::vector<std::pair<std::string, std::string>>{
-           {"nan", "x_ecef_m"}, {"inf", "x_ecef_m"}, {"123.4junk", "x_ecef_m"}, {"", "x_ecef_m"}, {"1e999", "x_ecef_m"}}) {
+  for (const auto& [bad, column] : std::vector<std::pair<std::string, std::string>>{{"nan", "x_ecef_m"},
+                                                                                    {"inf", "x_ecef_m"},
+                                                                                    {"123.4junk", "x_ecef_m"},
+                                                                                    {"", "x_ecef_m"},
+                                                                                    {"1e999", "x_ecef_m"}}) {
     const std::string e = error_of(write_text("bad.csv", kHeader + "\n0,1,2,3,4,5,6\n1," + bad + ",2,3,4,5,6\n"));
     EXPECT_NE(e.find(":3: column '" + column + "': '" + bad + "' is not a finite number"), std::string::npos)
         << bad << ": " << e;

@@ -67,7 +67,8 @@ TEST(Klobuchar, PlausibleRangeOverADay) {
     for (double hour = 0; hour < 24; hour += 1.5) {
       for (double az = 0; az < 360; az += 45) {
         for (double el : {90.0, 60.0, 30.0, 15.0, 10.0}) {
-          const double d = klobuchar_delay_m(p, lat * kDeg, 127.0 * kDeg, az * kDeg, el * kDeg, kMidnightSow + hour * 3600);
+          const double d =
+              klobuchar_delay_m(p, lat * kDeg, 127.0 * kDeg, az * kDeg, el * kDeg, kMidnightSow + hour * 3600);
           EXPECT_GT(d, 1.0);
           EXPECT_LT(d, 30.0);
           max_m = std::max(max_m, d);

@@ -13,9 +13,8 @@ namespace {
 // IS-GPS-200 Table 3-I, "First 10 Chips Octal" for C/A PRN 1..32: the leading 1 is the first
 // chip, the three following octal digits are chips 2..10.
 constexpr std::array<int, 32> kFirstTenChipsOctal = {
-    01440, 01620, 01710, 01744, 01133, 01455, 01131, 01454, 01626, 01504, 01642,
-    01750, 01764, 01772, 01775, 01776, 01156, 01467, 01633, 01715, 01746, 01763,
-    01063, 01706, 01743, 01761, 01770, 01774, 01127, 01453, 01625, 01712,
+    01440, 01620, 01710, 01744, 01133, 01455, 01131, 01454, 01626, 01504, 01642, 01750, 01764, 01772, 01775, 01776,
+    01156, 01467, 01633, 01715, 01746, 01763, 01063, 01706, 01743, 01761, 01770, 01774, 01127, 01453, 01625, 01712,
 };
 
 int first_ten_chips(const CaCodeBits& bits) {
@@ -66,7 +65,8 @@ TEST(CaCode, AutocorrelationPeakAndSidelobes) {
   for (int prn = 1; prn <= 32; ++prn) {
     const auto r = circular_correlation(ca_code_chips(prn), ca_code_chips(prn));
     EXPECT_EQ(r[0], 1023) << "PRN " << prn;
-    for (int lag = 1; lag < 1023; ++lag) ASSERT_TRUE(three_valued(r[lag])) << "PRN " << prn << " lag " << lag << ": " << r[lag];
+    for (int lag = 1; lag < 1023; ++lag)
+      ASSERT_TRUE(three_valued(r[lag])) << "PRN " << prn << " lag " << lag << ": " << r[lag];
   }
 }
 

@@ -100,7 +100,9 @@ TEST(Ephemeris, ContinuousAcrossTheWeekBoundary) {
   // Weeks more than half a week apart are taken as unreliable (e.g. a 1024-week rollover):
   // the seconds-of-week fold applies, as with an unknown week.
   const GpsTime at_toe{2190, 604784.0};
-  EXPECT_LT((satellite_state(eph, GpsTime{2190 + 1024, 604784.0}).r_ecef_m - satellite_state(eph, at_toe).r_ecef_m).norm(), 1e-6);
+  EXPECT_LT(
+      (satellite_state(eph, GpsTime{2190 + 1024, 604784.0}).r_ecef_m - satellite_state(eph, at_toe).r_ecef_m).norm(),
+      1e-6);
 }
 
 TEST(Ephemeris, KeplerEquationConvergesForLargeEccentricity) {

@@ -160,7 +160,8 @@ double integration_snr_db(const std::vector<float>& y, double freq_hz) {
   std::vector<std::complex<double>> sums;
   for (std::size_t k0 = 0; k0 + len <= n; k0 += len) {
     std::complex<double> acc = 0;
-    for (std::size_t k = k0; k < k0 + len; ++k) acc += std::complex<double>(y[2 * k], y[2 * k + 1]) * std::complex<double>(s[k]);
+    for (std::size_t k = k0; k < k0 + len; ++k)
+      acc += std::complex<double>(y[2 * k], y[2 * k + 1]) * std::complex<double>(s[k]);
     sums.push_back(acc);
   }
   std::complex<double> mean = 0;
@@ -254,15 +255,16 @@ TEST(FrontEnd, EveryFormatRoundTripsThroughItsBytes) {
     std::vector<float> values(is_complex(format) ? 2 * x.size() : x.size());
     unpack_levels(bytes.data(), values.size(), bits, format, values.data());
     for (std::size_t k = 0; k < values.size(); ++k) {
-      const float component = is_complex(format) ? (k % 2 ? x[k / 2].imag() : x[k / 2].real())
-                                                 : std::sqrt(2.0f) * x[k].real();
+      const float component =
+          is_complex(format) ? (k % 2 ? x[k / 2].imag() : x[k / 2].real()) : std::sqrt(2.0f) * x[k].real();
       const float y = 2.0f * component;
       const float max_level = std::ldexp(1.0f, bits) - 1.0f;
       const float expected = bits == 0 ? y : std::clamp(2.0f * std::floor(y / 2.0f) + 1.0f, -max_level, max_level);
       EXPECT_EQ(values[k], expected) << to_string(format) << " value " << k;
     }
     // Through a file and back.
-    const auto path = std::filesystem::temp_directory_path() / ("deepnav_fe_" + std::string(to_string(format)) + ".bin");
+    const auto path =
+        std::filesystem::temp_directory_path() / ("deepnav_fe_" + std::string(to_string(format)) + ".bin");
     {
       IfFileWriter writer(path);
       writer.write(bytes);
@@ -280,7 +282,8 @@ TEST(FrontEnd, PackedFormatsHoldTheQuantizerLevelsInTimeOrder) {
   Block x(32);
   for (std::size_t k = 0; k < x.size(); ++k)
     x[k] = {static_cast<float>(k % 7) - 3.3f, 2.6f - static_cast<float>(k % 5) * 1.1f};
-  for (const char* name : {"packed2_iq", "packed4", "packed1_qi_msb", "packed2_sm_bytemsb_w16be", "packed4_iq_ob_w32le"}) {
+  for (const char* name :
+       {"packed2_iq", "packed4", "packed1_qi_msb", "packed2_sm_bytemsb_w16be", "packed4_iq_ob_w32le"}) {
     const SampleFormat format = parse_sample_format(name);
     const int bits = format.packed.bits;
     FrontEndConfig c = config(format, bits);
@@ -302,7 +305,8 @@ TEST(FrontEnd, PackedFormatsHoldTheQuantizerLevelsInTimeOrder) {
       const float component = complex ? (q ? x[sample].imag() : x[sample].real()) : std::sqrt(2.0f) * x[sample].real();
       const float y = 2.0f * component;
       const float max_level = std::ldexp(1.0f, bits) - 1.0f;
-      EXPECT_EQ(values[k], std::clamp(2.0f * std::floor(y / 2.0f) + 1.0f, -max_level, max_level)) << name << " value " << k;
+      EXPECT_EQ(values[k], std::clamp(2.0f * std::floor(y / 2.0f) + 1.0f, -max_level, max_level))
+          << name << " value " << k;
     }
   }
   Block odd(3);

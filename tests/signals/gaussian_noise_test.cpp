@@ -103,9 +103,9 @@ TEST(IndexedNoise, ValueDependsOnlyOnSeedAndSampleIndex) {
   IndexedNoise split(11);
   const std::int64_t cuts[] = {0, 1, 4000, 4001, 40000, n};
   for (int c = 0; c + 1 < 6; ++c)
-    split.add_complex(std::span(pieces).subspan(static_cast<std::size_t>(cuts[c]),
-                                                static_cast<std::size_t>(cuts[c + 1] - cuts[c])),
-                      -1000 + cuts[c], 1.0f);
+    split.add_complex(
+        std::span(pieces).subspan(static_cast<std::size_t>(cuts[c]), static_cast<std::size_t>(cuts[c + 1] - cuts[c])),
+        -1000 + cuts[c], 1.0f);
   EXPECT_EQ(whole, pieces);
   IndexedNoise(11).add_complex(jumped, -1000 + 50000, 1.0f);  // random access into the second chunk
   for (int k = 0; k < 100; ++k) EXPECT_EQ(jumped[k], whole[50000 + k]);

@@ -28,18 +28,24 @@ std::filesystem::path write_xml(const std::string& name, const std::string& text
 
 /// A file of one lane, block, chunk, lump and stream with the given pieces.
 std::string document(const std::string& chunk, const std::string& stream, const std::string& band = "",
-                     const std::string& block_extra = "", const std::string& freqbase = "<freqbase format=\"MHz\">4.092</freqbase>") {
+                     const std::string& block_extra = "",
+                     const std::string& freqbase = "<freqbase format=\"MHz\">4.092</freqbase>") {
   const std::string default_band =
       R"(<band id="L1"><centerfreq format="MHz">1575.42</centerfreq><translatedfreq format="Hz">0</translatedfreq></band>)";
   return R"(<?xml version="1.0" encoding="UTF-8"?>
 <metadata xmlns="http://www.ion.org/standards/sdrwg/schema/metadata.xsd">
-  <system id="fe">)" + freqbase + R"(</system>
-  )" + (band.empty() ? default_band : band) + R"(
+  <system id="fe">)" +
+         freqbase + R"(</system>
+  )" + (band.empty() ? default_band : band) +
+         R"(
   <lane id="A"><system id="fe"/>
-    <block>)" + block_extra + R"(
-      <chunk>)" + chunk + R"(
+    <block>)" +
+         block_extra + R"(
+      <chunk>)" +
+         chunk + R"(
         <lump>
-          <stream id="S">)" + stream + R"(<band id="L1"/></stream>
+          <stream id="S">)" +
+         stream + R"(<band id="L1"/></stream>
         </lump>
       </chunk>
     </block>
@@ -78,7 +84,8 @@ TEST(IfMetadata, WhatTheSynthesizerWritesReadsBackForEveryFormat) {
       for (const char* encoding : {"", "_sm", "_ob"})
         for (const char* order : {"", "_msb", "_bytemsb"})
           for (const char* word : {"", "_w16le", "_w16be", "_w32le", "_w32be"})
-            names.insert(to_string(parse_sample_format("packed" + std::to_string(bits) + type + encoding + order + word)));
+            names.insert(
+                to_string(parse_sample_format("packed" + std::to_string(bits) + type + encoding + order + word)));
   EXPECT_EQ(names.size(), 5u + 405u - 27u);  // bytemsb is msb in 8-bit words
   for (const std::string& name : names) {
     IfMetadataDescription d;
@@ -110,12 +117,13 @@ TEST(IfMetadata, WhatTheSynthesizerWritesReadsBackForEveryFormat) {
 TEST(IfMetadata, TwoBitSignMagnitudeFrontEndAtAnIntermediateFrequency) {
   // A MAX2769-style recording: real 2-bit sign/magnitude samples, four to a byte from the
   // top bits down (the default left shift), 16.368 Msps with L1 at 4.092 MHz.
-  const IfMetadata m = read("max2769.xml", document("<sizeword>1</sizeword><countwords>1</countwords>",
-                                                    "<ratefactor>1</ratefactor><quantization>2</quantization>"
-                                                    "<packedbits>2</packedbits><format>IF</format><encoding>SM</encoding>",
-                                                    R"(<band id="L1"><centerfreq format="GHz">1.57542</centerfreq>
+  const IfMetadata m =
+      read("max2769.xml", document("<sizeword>1</sizeword><countwords>1</countwords>",
+                                   "<ratefactor>1</ratefactor><quantization>2</quantization>"
+                                   "<packedbits>2</packedbits><format>IF</format><encoding>SM</encoding>",
+                                   R"(<band id="L1"><centerfreq format="GHz">1.57542</centerfreq>
                                                        <translatedfreq format="kHz">4092</translatedfreq></band>)",
-                                                    "", R"(<freqbase units="MHz">16.368</freqbase>)"));
+                                   "", R"(<freqbase units="MHz">16.368</freqbase>)"));
   EXPECT_EQ(to_string(m.format), "packed2_sm_msb");
   EXPECT_DOUBLE_EQ(m.sample_rate_hz, 16.368e6);
   EXPECT_DOUBLE_EQ(m.if_hz, 4.092e6);
@@ -125,33 +133,38 @@ TEST(IfMetadata, TwoBitSignMagnitudeFrontEndAtAnIntermediateFrequency) {
 TEST(IfMetadata, RateFactorShiftsAndPadding) {
   // Two I/Q samples a byte in one lump of rate factor 2, the stream shifted right: the later
   // sample in the upper nibble, I above Q in each: from bit 0 up Q0 I0 Q1 I1.
-  IfMetadata m = read("rate2.xml", document("<sizeword>1</sizeword><countwords>1</countwords>",
-                                            "<ratefactor>2</ratefactor><quantization>2</quantization><packedbits>8</packedbits>"
-                                            "<shift>Right</shift><format>IQ</format><encoding>TC</encoding>"));
+  IfMetadata m =
+      read("rate2.xml", document("<sizeword>1</sizeword><countwords>1</countwords>",
+                                 "<ratefactor>2</ratefactor><quantization>2</quantization><packedbits>8</packedbits>"
+                                 "<shift>Right</shift><format>IQ</format><encoding>TC</encoding>"));
   EXPECT_EQ(to_string(m.format), "packed2_qi");
   EXPECT_DOUBLE_EQ(m.sample_rate_hz, 2 * 4.092e6);
   // One sample a lump, the lump repeated with the default left shift: from the top bits down.
-  m = read("lumpright.xml", document("<sizeword>1</sizeword><countwords>1</countwords>",
-                                     "<ratefactor>1</ratefactor><quantization>2</quantization><packedbits>4</packedbits>"
-                                     "<format>IQ</format><encoding>TC</encoding>"));
+  m = read("lumpright.xml",
+           document("<sizeword>1</sizeword><countwords>1</countwords>",
+                    "<ratefactor>1</ratefactor><quantization>2</quantization><packedbits>4</packedbits>"
+                    "<format>IQ</format><encoding>TC</encoding>"));
   EXPECT_EQ(to_string(m.format), "packed2_iq_msb");
   // 16-bit little-endian words, the lump's repeats from the low bits up, Q above I.
-  const std::string right_lump = document("<sizeword>2</sizeword><countwords>1</countwords><endian>Little</endian>",
-                                          "<ratefactor>1</ratefactor><quantization>4</quantization><packedbits>8</packedbits>"
-                                          "<format>QI</format><encoding>OB</encoding>");
+  const std::string right_lump =
+      document("<sizeword>2</sizeword><countwords>1</countwords><endian>Little</endian>",
+               "<ratefactor>1</ratefactor><quantization>4</quantization><packedbits>8</packedbits>"
+               "<format>QI</format><encoding>OB</encoding>");
   std::string with_shift = right_lump;
   with_shift.replace(with_shift.find("<lump>"), 6, "<lump><shift>Right</shift>");
   EXPECT_EQ(to_string(read("w16.xml", with_shift).format), "packed4_iq_ob");  // same bits as 8-bit words
   // 1-bit I/Q samples in big-endian 16-bit words from the top bit down: the bytes in file
   // order, each from its top bit.
-  m = read("pad.xml", document("<sizeword>2</sizeword><countwords>1</countwords><endian>Big</endian><padding>Tail</padding>",
-                               "<ratefactor>1</ratefactor><quantization>1</quantization><packedbits>2</packedbits>"
-                               "<format>IQ</format><encoding>SIGN</encoding>"));
+  m = read("pad.xml",
+           document("<sizeword>2</sizeword><countwords>1</countwords><endian>Big</endian><padding>Tail</padding>",
+                    "<ratefactor>1</ratefactor><quantization>1</quantization><packedbits>2</packedbits>"
+                    "<format>IQ</format><encoding>SIGN</encoding>"));
   EXPECT_EQ(to_string(m.format), "packed1_iq_msb");
   // Odd padding cannot be any of our layouts: an error naming the stream.
-  const std::string msg = error_of(document("<sizeword>2</sizeword><countwords>1</countwords><padding>Tail</padding>",
-                                            "<ratefactor>1</ratefactor><quantization>2</quantization><packedbits>5</packedbits>"
-                                            "<alignment>Right</alignment><format>IQ</format><encoding>TC</encoding>"));
+  const std::string msg =
+      error_of(document("<sizeword>2</sizeword><countwords>1</countwords><padding>Tail</padding>",
+                        "<ratefactor>1</ratefactor><quantization>2</quantization><packedbits>5</packedbits>"
+                        "<alignment>Right</alignment><format>IQ</format><encoding>TC</encoding>"));
   EXPECT_NE(msg.find("stream[S]>: the layout"), std::string::npos) << msg;
   EXPECT_NE(msg.find("none of the sample formats"), std::string::npos) << msg;
 }
@@ -176,8 +189,9 @@ TEST(IfMetadata, InversionHeaderCyclesAndReferences) {
   EXPECT_TRUE(inv.inverted_spectrum);
   EXPECT_DOUBLE_EQ(inv.if_hz, 750000.0);
   // Header, footer and cycles.
-  const IfMetadata h = read("hdr.xml", document(chunk, stream("IQ"), "",
-                                                "<cycles>1000</cycles><sizeheader>512</sizeheader><sizefooter>16</sizefooter>"));
+  const IfMetadata h =
+      read("hdr.xml", document(chunk, stream("IQ"), "",
+                               "<cycles>1000</cycles><sizeheader>512</sizeheader><sizefooter>16</sizefooter>"));
   EXPECT_EQ(h.header_bytes, 512u);
   EXPECT_EQ(h.footer_bytes, 16u);
   ASSERT_TRUE(h.length_bytes);
@@ -189,27 +203,31 @@ TEST(IfMetadata, InversionHeaderCyclesAndReferences) {
   ref.replace(ref.find("<lane"), 0, "<stream id=\"S\">" + stream("IQ") + "<band id=\"L1\"/></stream>\n  ");
   EXPECT_EQ(read("ref.xml", ref).format, SampleFormat::ibyte);
   // 16-bit TC I/Q little endian is ishort, 8-bit OB I/Q is cu8, 32-bit FP I/Q gr_complex.
-  EXPECT_EQ(read("s16.xml", document("<sizeword>2</sizeword><countwords>2</countwords><endian>Little</endian>",
-                                     "<ratefactor>1</ratefactor><quantization>16</quantization><packedbits>32</packedbits>"
-                                     "<format>IQ</format><encoding>TC</encoding>"))
-                .format,
-            SampleFormat::ishort);
-  EXPECT_EQ(read("u8.xml", document(chunk, "<ratefactor>1</ratefactor><quantization>8</quantization><packedbits>16"
-                                           "</packedbits><format>IQ</format><encoding>OB</encoding>"))
+  EXPECT_EQ(
+      read("s16.xml", document("<sizeword>2</sizeword><countwords>2</countwords><endian>Little</endian>",
+                               "<ratefactor>1</ratefactor><quantization>16</quantization><packedbits>32</packedbits>"
+                               "<format>IQ</format><encoding>TC</encoding>"))
+          .format,
+      SampleFormat::ishort);
+  EXPECT_EQ(read("u8.xml", document(chunk,
+                                    "<ratefactor>1</ratefactor><quantization>8</quantization><packedbits>16"
+                                    "</packedbits><format>IQ</format><encoding>OB</encoding>"))
                 .format,
             SampleFormat::cu8);
 }
 
 TEST(IfMetadata, UnsupportedAndBrokenDescriptionsNameTheElement) {
   const std::string chunk = "<sizeword>1</sizeword><countwords>1</countwords>";
-  const std::string stream = "<ratefactor>1</ratefactor><quantization>2</quantization><packedbits>2</packedbits>"
-                             "<format>IF</format><encoding>TC</encoding>";
+  const std::string stream =
+      "<ratefactor>1</ratefactor><quantization>2</quantization><packedbits>2</packedbits>"
+      "<format>IF</format><encoding>TC</encoding>";
   auto expect = [](const std::string& msg, const std::string& part1, const std::string& part2) {
     EXPECT_NE(msg.find(part1), std::string::npos) << msg;
     EXPECT_NE(msg.find(part2), std::string::npos) << msg;
   };
   EXPECT_EQ(error_of(document(chunk, stream, R"(<band id="L1"><centerfreq format="MHz">1575.42</centerfreq>
-      <translatedfreq format="MHz">1.0</translatedfreq></band>)")), "");
+      <translatedfreq format="MHz">1.0</translatedfreq></band>)")),
+            "");
   expect(error_of("<metadata><lane>"), "bad.xml':", "not well-formed XML");
   expect(error_of("<other/>"), "root element is <other>", "<metadata>");
   std::string two_streams = document(chunk, stream);
@@ -227,12 +245,15 @@ TEST(IfMetadata, UnsupportedAndBrokenDescriptionsNameTheElement) {
                            "<ratefactor>1</ratefactor><quantization>2</quantization><packedbits>3</packedbits>"
                            "<alignment>Left</alignment><format>IF</format><encoding>TC</encoding>")),
          "block/chunk>: 2 of its 8 bits", "<padding> is None");
-  expect(error_of(document(chunk, "<ratefactor>1</ratefactor><quantization>2</quantization><packedbits>3</packedbits>"
-                                  "<format>IF</format><encoding>TC</encoding>")),
+  expect(error_of(document(chunk,
+                           "<ratefactor>1</ratefactor><quantization>2</quantization><packedbits>3</packedbits>"
+                           "<format>IF</format><encoding>TC</encoding>")),
          "stream[S]>: 1 of its 3 packed bits are padding", "<alignment>");
   expect(error_of(document(chunk, stream, R"(<band id="L1"><centerfreq format="MHz">1227.6</centerfreq>
-      <translatedfreq format="Hz">0</translatedfreq></band>)")), "band[L1]>: GPS L1", "outside");
-  expect(error_of(document(chunk, stream, R"(<band id="L2"><centerfreq>1</centerfreq><translatedfreq>0</translatedfreq></band>)")),
+      <translatedfreq format="Hz">0</translatedfreq></band>)")),
+         "band[L1]>: GPS L1", "outside");
+  expect(error_of(document(chunk, stream,
+                           R"(<band id="L2"><centerfreq>1</centerfreq><translatedfreq>0</translatedfreq></band>)")),
          "stream[S]/band[L1]>: refers to <band id=\"L1\">", "does not define");
   expect(error_of(document(chunk, stream, "", "", "")), "system[fe]>: has no <freqbase>", "");
   expect(error_of(document(chunk, stream, "", "", R"(<freqbase format="furlongs">4</freqbase>)")), "freqbase>",

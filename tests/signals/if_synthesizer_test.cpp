@@ -123,7 +123,8 @@ TEST(IfSynthesizer, SignalMatchesTruthCodePhaseDopplerAndPower) {
         const std::complex<double> wipe = std::polar(1.0, -2.0 * M_PI * r.doppler_hz * t);
         const std::complex<double> x = std::complex<double>(iq[k0 + k]) * wipe;
         prompt += x * static_cast<double>(ca_code_chips(sat.prn)[chip]);
-        for (std::size_t a = 0; a < absent.size(); ++a) others[a] += x * static_cast<double>(ca_code_chips(absent[a])[chip]);
+        for (std::size_t a = 0; a < absent.size(); ++a)
+          others[a] += x * static_cast<double>(ca_code_chips(absent[a])[chip]);
       }
       signal += std::norm(prompt);
       for (const auto& o : others) noise += std::norm(o) / static_cast<double>(absent.size());
@@ -189,7 +190,8 @@ std::map<std::string, std::vector<double>> read_columns(const std::filesystem::p
   while (std::getline(in, line)) {
     std::stringstream row(line);
     std::string cell;
-    for (std::size_t i = 0; i < names.size() && std::getline(row, cell, ','); ++i) cols[names[i]].push_back(std::stod(cell));
+    for (std::size_t i = 0; i < names.size() && std::getline(row, cell, ','); ++i)
+      cols[names[i]].push_back(std::stod(cell));
   }
   return cols;
 }

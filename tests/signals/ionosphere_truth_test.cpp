@@ -7,8 +7,8 @@
 #include <numbers>
 
 #include "signals/atmosphere.hpp"
-#include "signals/sim/error_presets.hpp"
 #include "signals/gps_constants.hpp"
+#include "signals/sim/error_presets.hpp"
 
 namespace deepnav {
 namespace {
@@ -89,7 +89,8 @@ TEST(IonosphereTruth, OpenSkyZenithResidualIsUpToAFewMetres) {
     hi = std::max(hi, r);
     ++n;
   }
-  std::printf("Seoul zenith residual after Klobuchar over a day: RMS %.2f m, %.2f to %.2f m\n", std::sqrt(r2 / n), lo, hi);
+  std::printf("Seoul zenith residual after Klobuchar over a day: RMS %.2f m, %.2f to %.2f m\n", std::sqrt(r2 / n), lo,
+              hi);
   EXPECT_GT(std::sqrt(r2 / n), 0.3);
   EXPECT_LT(std::sqrt(r2 / n), 3.0);
   EXPECT_LT(hi, 5.0);
@@ -128,8 +129,8 @@ TEST(IonosphereTruth, LatitudeProfileHasCrestsAndFallsPoleward) {
     return truth.thin_shell(rx, 0.0, 90 * kDeg, GpsTime{kMidnight.week, sow}).vtec_tecu;
   };
   // On that meridian geomagnetic latitude = 90 deg - |latitude - 80.65 deg|.
-  EXPECT_NEAR(vtec_at(5.65), 50.0, 1e-9);    // geomagnetic 15 deg: the crest
-  EXPECT_NEAR(vtec_at(-24.35), 50.0, 1e-9);  // the southern crest
+  EXPECT_NEAR(vtec_at(5.65), 50.0, 1e-9);           // geomagnetic 15 deg: the crest
+  EXPECT_NEAR(vtec_at(-24.35), 50.0, 1e-9);         // the southern crest
   EXPECT_LT(vtec_at(-9.35), 0.95 * vtec_at(5.65));  // magnetic equator: the trough between the crests
   EXPECT_LT(vtec_at(60.0), 0.6 * vtec_at(5.65));
 }

@@ -192,7 +192,8 @@ TEST(Jammer, OutputDoesNotDependOnBlockBoundaries) {
     Block pieces(whole.size());
     const std::size_t cuts[] = {0, 1, 1000, 1001, 4093, 12000, 20000};
     for (int k = 0; k + 1 < 7; ++k)
-      jammer.add_to(std::span(pieces).subspan(cuts[k], cuts[k + 1] - cuts[k]), first + static_cast<std::int64_t>(cuts[k]));
+      jammer.add_to(std::span(pieces).subspan(cuts[k], cuts[k + 1] - cuts[k]),
+                    first + static_cast<std::int64_t>(cuts[k]));
     for (std::size_t k = 0; k < whole.size(); ++k) ASSERT_EQ(whole[k], pieces[k]) << to_string(type) << " sample " << k;
   }
 }

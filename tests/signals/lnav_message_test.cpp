@@ -284,7 +284,8 @@ TEST(LnavMessage, TlmAndHowFields) {
 TEST(LnavMessage, SourceDataWordsReencodeToTheTransmittedSubframe) {
   auto c = content_with(real_ephemeris_prn1());
   c.anti_spoof = true;
-  for (std::int64_t k : {std::int64_t{0}, std::int64_t{3}, std::int64_t{4}, std::int64_t{87612}, std::int64_t{100799}}) {
+  for (std::int64_t k :
+       {std::int64_t{0}, std::int64_t{3}, std::int64_t{4}, std::int64_t{87612}, std::int64_t{100799}}) {
     const Subframe words = subframe_of_week(c, k);
     const auto sf = decode_subframe(words);
     ASSERT_TRUE(sf.has_value()) << k;

@@ -129,8 +129,8 @@ TEST(LnavRtklibCrosscheck, ConvbinDecodesOurSubframes) {
       out.write(reinterpret_cast<const char*>(msg.data()), static_cast<std::streamsize>(msg.size()));
     }
   }
-  const std::string cmd = "convbin -r ubx -v 3.03 -oi -ot -ol -n '" + nav.string() + "' -o '" + (dir / "nav.obs").string() +
-                          "' '" + ubx.string() + "' >/dev/null 2>&1";
+  const std::string cmd = "convbin -r ubx -v 3.03 -oi -ot -ol -n '" + nav.string() + "' -o '" +
+                          (dir / "nav.obs").string() + "' '" + ubx.string() + "' >/dev/null 2>&1";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
 
   std::ifstream in(nav);
@@ -153,12 +153,12 @@ TEST(LnavRtklibCrosscheck, ConvbinDecodesOurSubframes) {
   // RINEX 3 GPS record order: af0 af1 af2 | IODE Crs dn M0 | Cuc e Cus sqrtA | toe Cic OMEGA0 Cis
   // | i0 Crc omega OMEGADOT | IDOT L2codes week L2P | URA health TGD IODC | ttr fit.
   const std::vector<std::pair<double, double>> pairs = {
-      {v[0], e.af0_s},        {v[1], e.af1_sps},          {v[2], e.af2_sps2},   {v[3], e.iode},
-      {v[4], e.crs_m},        {v[5], e.delta_n_radps},    {v[6], e.m0_rad},     {v[7], e.cuc_rad},
-      {v[8], e.e},            {v[9], e.cus_rad},          {v[10], e.sqrt_a},    {v[11], e.toe_s},
-      {v[12], e.cic_rad},     {v[13], e.omega0_rad},      {v[14], e.cis_rad},   {v[15], e.i0_rad},
-      {v[16], e.crc_m},       {v[17], e.omega_rad},       {v[18], e.omega_dot_radps}, {v[19], e.idot_radps},
-      {v[20], e.code_on_l2},  {v[21], e.week},            {v[24], e.health},    {v[25], e.tgd_s},
+      {v[0], e.af0_s},       {v[1], e.af1_sps},       {v[2], e.af2_sps2},         {v[3], e.iode},
+      {v[4], e.crs_m},       {v[5], e.delta_n_radps}, {v[6], e.m0_rad},           {v[7], e.cuc_rad},
+      {v[8], e.e},           {v[9], e.cus_rad},       {v[10], e.sqrt_a},          {v[11], e.toe_s},
+      {v[12], e.cic_rad},    {v[13], e.omega0_rad},   {v[14], e.cis_rad},         {v[15], e.i0_rad},
+      {v[16], e.crc_m},      {v[17], e.omega_rad},    {v[18], e.omega_dot_radps}, {v[19], e.idot_radps},
+      {v[20], e.code_on_l2}, {v[21], e.week},         {v[24], e.health},          {v[25], e.tgd_s},
       {v[26], e.iodc},
   };
   for (std::size_t i = 0; i < pairs.size(); ++i) {

@@ -31,8 +31,8 @@ MultipathSpec land_mobile_spec() {
   return m;
 }
 
-MultipathChannel constant_channel(const MultipathSpec& spec, std::uint64_t seed, std::vector<int> prns, double duration_s,
-                                  double elevation_rad, double speed_mps) {
+MultipathChannel constant_channel(const MultipathSpec& spec, std::uint64_t seed, std::vector<int> prns,
+                                  double duration_s, double elevation_rad, double speed_mps) {
   return MultipathChannel(
       spec, seed, std::move(prns), duration_s, [=](std::size_t, double) { return elevation_rad; },
       [=](double) { return speed_mps; });
@@ -179,10 +179,11 @@ TEST(MultipathChannel, LandMobileStatisticsMatchTheSettings) {
   // Envelope fourth moment over the squared second: 2 for Rayleigh (2 - 1/12 for 12 sinusoids).
   const double kurtosis = (echo_power2 / taps) / (tap_power * tap_power);
   const double mean_delay = delay_per_reflector_sum / static_cast<double>(reflectors.size());
-  std::printf("blocked share %.4f, mean blocked %.3f s over %ld periods, echo power %.2f dB, tap |h|^4 ratio %.3f, "
-              "mean delay %.2f m over %zu reflectors (time-weighted %.2f m)\n",
-              blocked_share, mean_blocked_s, blocked_runs, 10.0 * std::log10(mean_echo_power), kurtosis, mean_delay,
-              reflectors.size(), delay_sum / taps);
+  std::printf(
+      "blocked share %.4f, mean blocked %.3f s over %ld periods, echo power %.2f dB, tap |h|^4 ratio %.3f, "
+      "mean delay %.2f m over %zu reflectors (time-weighted %.2f m)\n",
+      blocked_share, mean_blocked_s, blocked_runs, 10.0 * std::log10(mean_echo_power), kurtosis, mean_delay,
+      reflectors.size(), delay_sum / taps);
   EXPECT_NEAR(blocked_share, 0.2, 0.015);
   EXPECT_NEAR(mean_blocked_s, 2.0, 0.12);
   EXPECT_NEAR(10.0 * std::log10(mean_echo_power), -10.0, 0.3);
@@ -217,7 +218,8 @@ TEST(MultipathChannel, FadingRateFollowsTheAntennaSpeed) {
       }
     }
     const double k = 2.0 * kPi * v / gps::kL1Wavelength_m;
-    std::printf("v = %.0f m/s: rms fading rate / (k v / sqrt 2) = %.3f\n", v, std::sqrt(derivative / power / (k * k / 2.0)));
+    std::printf("v = %.0f m/s: rms fading rate / (k v / sqrt 2) = %.3f\n", v,
+                std::sqrt(derivative / power / (k * k / 2.0)));
     EXPECT_NEAR(derivative / power, k * k / 2.0, 0.1 * k * k / 2.0) << v;
   }
 }

@@ -78,9 +78,9 @@ std::vector<Row> read_rows(const std::filesystem::path& p) {
     Row r;
     double cn0, az, pr, range, rr, iono, tropo, clk, iono_model, tropo_model, orbit, clk_error, antenna;
     int on;
-    s >> r.t_s >> r.prn >> r.code_phase_chips >> r.doppler_hz >> r.carrier_phase_cycles >> cn0 >> r.elevation_deg >> az >>
-        pr >> range >> rr >> iono >> tropo >> clk >> on >> iono_model >> tropo_model >> orbit >> clk_error >> antenna >>
-        r.multipath_m >> r.los_gain_db >> r.echoes;
+    s >> r.t_s >> r.prn >> r.code_phase_chips >> r.doppler_hz >> r.carrier_phase_cycles >> cn0 >> r.elevation_deg >>
+        az >> pr >> range >> rr >> iono >> tropo >> clk >> on >> iono_model >> tropo_model >> orbit >> clk_error >>
+        antenna >> r.multipath_m >> r.los_gain_db >> r.echoes;
     rows.push_back(r);
   }
   return rows;
@@ -104,8 +104,8 @@ FloatRun synthesize_float(const Scenario& sc, const std::string& name) {
 /// Correlation over one code period, starting at the first period start of the code
 /// delayed by `window_delay_chips`, of `x` (a difference of two runs, or a run) with
 /// the satellite's code delayed by `replica_delay_chips` and the truth carrier.
-std::complex<double> correlate(const Scenario& sc, const FloatRun& a, const FloatRun* minus, const Row& r, double window_delay_chips,
-                               double replica_delay_chips) {
+std::complex<double> correlate(const Scenario& sc, const FloatRun& a, const FloatRun* minus, const Row& r,
+                               double window_delay_chips, double replica_delay_chips) {
   const int n = static_cast<int>(sc.sample_rate_hz / 1000);
   const double fs = sc.sample_rate_hz;
   const auto k0 = static_cast<std::int64_t>(std::llround(r.t_s * 1000.0)) * n;
@@ -172,10 +172,10 @@ TEST(MultipathSynthesis, GroundEchoIsInTheSamplesWithItsDelayAmplitudeAndPhase) 
   // A 60 m mast gives an echo near 0.75 chip for the highest satellite; no rejection, so its
   // amplitude is |Gamma| = 0.5. The difference of the runs with and without it is the echo alone.
   const Scenario direct = float_scenario("", 0.03, 1);
-  const Scenario echo =
-      float_scenario("errors:\n  multipath: {model: ground, antenna_height_m: 60, reflection_coefficient: 0.5, "
-                     "below_horizon_gain_db: 0}\n",
-                     0.03, 1);
+  const Scenario echo = float_scenario(
+      "errors:\n  multipath: {model: ground, antenna_height_m: 60, reflection_coefficient: 0.5, "
+      "below_horizon_gain_db: 0}\n",
+      0.03, 1);
   const FloatRun a = synthesize_float(direct, "ground_direct"), b = synthesize_float(echo, "ground_echo");
   ASSERT_EQ(a.rows.size(), b.rows.size());
   int checked = 0;

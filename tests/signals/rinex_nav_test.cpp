@@ -312,7 +312,8 @@ std::string mixed_rinex3() {
   while (lines[header_end].find("END OF HEADER") == std::string::npos) ++header_end;
   out.insert(out.end(), lines.begin(), lines.begin() + static_cast<long>(header_end) + 1);
   out.insert(out.end(), glonass.begin(), glonass.end());
-  out.insert(out.end(), lines.begin() + static_cast<long>(header_end) + 1, lines.begin() + static_cast<long>(header_end) + 9);
+  out.insert(out.end(), lines.begin() + static_cast<long>(header_end) + 1,
+             lines.begin() + static_cast<long>(header_end) + 9);
   out.insert(out.end(), galileo.begin(), galileo.end());
   out.insert(out.end(), sbas.begin(), sbas.end());
   out.insert(out.end(), lines.begin() + static_cast<long>(header_end) + 9, lines.end());
@@ -388,8 +389,7 @@ TEST(RinexNavErrors, MissingAndEmptyFile) {
 }
 
 TEST(RinexNavErrors, WrongFileTypeAndVersion) {
-  const std::string obs =
-      "     2.11           OBSERVATION DATA    G (GPS)             RINEX VERSION / TYPE\n";
+  const std::string obs = "     2.11           OBSERVATION DATA    G (GPS)             RINEX VERSION / TYPE\n";
   EXPECT_NE(error_of(obs).find("test.nav:1: not a GPS navigation file: file type 'O'"), std::string::npos)
       << error_of(obs);
   const std::string v4 = "     4.00           N: GNSS NAV DATA    M: MIXED            RINEX VERSION / TYPE\n";
@@ -425,8 +425,7 @@ TEST(RinexNavErrors, NonNumericAndMissingFields) {
   auto lines = split_lines(brdc_head(16));
   lines[11].replace(25, 5, "12x45");  // broadcast orbit line 3, field 2
   const std::string msg = error_of(join_lines(lines), "brdc0010.22n");
-  EXPECT_NE(msg.find("brdc0010.22n:12: broadcast orbit line 3, field 2: expected a number"), std::string::npos)
-      << msg;
+  EXPECT_NE(msg.find("brdc0010.22n:12: broadcast orbit line 3, field 2: expected a number"), std::string::npos) << msg;
 
   lines = split_lines(brdc_head(16));
   lines[13] = lines[13].substr(0, 60);  // line 5 loses its L2 P flag
@@ -437,8 +436,7 @@ TEST(RinexNavErrors, NonNumericAndMissingFields) {
   lines = split_lines(brdc_head(16));
   lines[8].replace(0, 2, "4x");
   const std::string msg3 = error_of(join_lines(lines), "brdc0010.22n");
-  EXPECT_NE(msg3.find("brdc0010.22n:9: epoch line, PRN (columns 1-2): expected a number"), std::string::npos)
-      << msg3;
+  EXPECT_NE(msg3.find("brdc0010.22n:9: epoch line, PRN (columns 1-2): expected a number"), std::string::npos) << msg3;
 
   lines = split_lines(brdc_head(16));
   lines[8].replace(6, 2, "13");  // month 13
@@ -481,10 +479,18 @@ TEST(RinexNavErrors, RandomMutationsNeverCrash) {
       const std::size_t pos = rng() % text.size();
       const char ch = alphabet[rng() % (sizeof(alphabet) - 1)];
       switch (rng() % 4) {
-        case 0: text[pos] = ch; break;
-        case 1: text.erase(pos, 1 + rng() % 30); break;
-        case 2: text.insert(pos, 1, ch); break;
-        default: text.resize(pos); break;
+        case 0:
+          text[pos] = ch;
+          break;
+        case 1:
+          text.erase(pos, 1 + rng() % 30);
+          break;
+        case 2:
+          text.insert(pos, 1, ch);
+          break;
+        default:
+          text.resize(pos);
+          break;
       }
       if (text.empty()) text = "x";
     }
@@ -524,15 +530,19 @@ TEST(RinexNavErrors, FieldsNoSatelliteCanBroadcastNameLineSatelliteAndField) {
     const char* fragment;
   };
   for (const Case& c : std::vector<Case>{
-           {"nav_prn2_deltan_1.23e19.22n", "nav_prn2_deltan_1.23e19.22n:10: PRN 2 (record at line 9), broadcast orbit "
-                                           "line 1, field 3: delta n = 1.23457e+19 rad/s is outside [-1.1"},
-           {"nav_prn5_cuc_1e29.22n", "nav_prn5_cuc_1e29.22n:11: PRN 5 (record at line 9), broadcast orbit line 2, "
-                                     "field 1: Cuc = 1e+29 rad is outside"},
-           {"nav_af0_1e300.22n", "nav_af0_1e300.22n:9: PRN 1 (record at line 9), epoch line, clock field 1: af0 = "
-                                 "1e+300 s is outside [-0.00097656"},
+           {"nav_prn2_deltan_1.23e19.22n",
+            "nav_prn2_deltan_1.23e19.22n:10: PRN 2 (record at line 9), broadcast orbit "
+            "line 1, field 3: delta n = 1.23457e+19 rad/s is outside [-1.1"},
+           {"nav_prn5_cuc_1e29.22n",
+            "nav_prn5_cuc_1e29.22n:11: PRN 5 (record at line 9), broadcast orbit line 2, "
+            "field 1: Cuc = 1e+29 rad is outside"},
+           {"nav_af0_1e300.22n",
+            "nav_af0_1e300.22n:9: PRN 1 (record at line 9), epoch line, clock field 1: af0 = "
+            "1e+300 s is outside [-0.00097656"},
            {"nav_ion_alpha_1e301.22n", "nav_ion_alpha_1e301.22n:4: ION ALPHA: alpha0 = 1e+300 is outside"},
-           {"nav_epoch_feb31.22n", "nav_epoch_feb31.22n:9: epoch line, day (columns 9-11): 2022-02-31 is not a date "
-                                   "(2022-02 has 28 days)"}}) {
+           {"nav_epoch_feb31.22n",
+            "nav_epoch_feb31.22n:9: epoch line, day (columns 9-11): 2022-02-31 is not a date "
+            "(2022-02 has 28 days)"}}) {
     const std::string e = file_error(repro(c.file));
     EXPECT_NE(e.find(c.fragment), std::string::npos) << c.file << ": " << e;
   }
@@ -551,7 +561,8 @@ TEST(RinexNavErrors, EveryBroadcastFieldIsChecked) {
       std::string& l = edited[static_cast<std::size_t>(8 + orbit_line)];
       l.replace(static_cast<std::size_t>(3 + 19 * field), 19, " 0.100000000000D+11");
       const std::string e = error_of(join_lines(edited));
-      if (e.find(fmt::format("broadcast orbit line {}, field {}:", orbit_line, field + 1)) != std::string::npos) ++rejected;
+      if (e.find(fmt::format("broadcast orbit line {}, field {}:", orbit_line, field + 1)) != std::string::npos)
+        ++rejected;
     }
   }
   // Lines 1-4 but IODE, e and toe (their own checks come first), and IDOT and TGD of lines

@@ -33,8 +33,8 @@
 #include "ins/wgs84.hpp"
 #include "signals/ephemeris.hpp"
 #include "signals/gps_constants.hpp"
-#include "signals/sim/line_of_sight.hpp"
 #include "signals/rinex_nav.hpp"
+#include "signals/sim/line_of_sight.hpp"
 
 namespace deepnav {
 namespace {
@@ -127,8 +127,8 @@ struct RtklibResult {
 
 RtklibResult run_rnx2rtkp(const fs::path& dir, const std::string& obs, const std::string& nav) {
   const fs::path pos = dir / (nav + ".pos");
-  const std::string cmd = fmt::format("cd '{}' && rnx2rtkp -k opts.conf -o '{}' {} {} > '{}.log' 2>&1",
-                                      dir.string(), pos.string(), obs, nav, pos.string());
+  const std::string cmd = fmt::format("cd '{}' && rnx2rtkp -k opts.conf -o '{}' {} {} > '{}.log' 2>&1", dir.string(),
+                                      pos.string(), obs, nav, pos.string());
   EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
   RtklibResult r;
   for (const std::string& line : file_lines(pos.string())) {

@@ -112,7 +112,7 @@ TEST(SamplePacking, EveryLayoutRoundTrips) {
 
 TEST(SamplePacking, NamesAndErrors) {
   EXPECT_EQ(to_string(parse_sample_format("packed2_real_tc_lsb_w8")), "packed2");
-  EXPECT_EQ(to_string(parse_sample_format("packed2_bytemsb")), "packed2_msb");  // one byte: the same order
+  EXPECT_EQ(to_string(parse_sample_format("packed2_bytemsb")), "packed2_msb");    // one byte: the same order
   EXPECT_EQ(to_string(parse_sample_format("two_bit_cpx_iq")), "packed2_iq_msb");  // the user's token wins
   EXPECT_EQ(parse_sample_format("cs8"), SampleFormat::ibyte);
   EXPECT_NE(error_of("packed3").find("1, 2 or 4 bits"), std::string::npos);

@@ -73,14 +73,16 @@ TEST(SatelliteSignalKernel, StepsThatCouldNeverReachTheCodeEndAreErrors) {
     s.code_step_chips = step;
     s.amplitude = 1.0f;
     std::vector<float> i(64), q(64), scratch(64);
-    EXPECT_THROW(add_satellite_segment(i.data(), q.data(), 64, s, ca_code_chips(1), scratch.data()), std::invalid_argument)
+    EXPECT_THROW(add_satellite_segment(i.data(), q.data(), 64, s, ca_code_chips(1), scratch.data()),
+                 std::invalid_argument)
         << step;
   }
   SignalSegment s;
   s.code_step_chips = 0.25;
   s.code_phase_chips = std::nan("");
   std::vector<float> i(64), q(64), scratch(64);
-  EXPECT_THROW(add_satellite_segment(i.data(), q.data(), 64, s, ca_code_chips(1), scratch.data()), std::invalid_argument);
+  EXPECT_THROW(add_satellite_segment(i.data(), q.data(), 64, s, ca_code_chips(1), scratch.data()),
+               std::invalid_argument);
 }
 
 }  // namespace

@@ -183,12 +183,13 @@ TEST(Scenario, ExplicitErrorFieldsOverrideThePreset) {
 TEST(Scenario, ErrorSettingsRoundTripThroughYaml) {
   for (const std::string& extra :
        {std::string(""), std::string("errors: {preset: urban}\n"),
-        std::string("errors:\n  preset: suburban\n  ionosphere: {model: klobuchar, vtec_scale: 0.7, day_vtec_tecu: 33.3, "
-                    "night_vtec_tecu: 2.5, shell_height_km: 425.5, disturbance_rms: 0.07}\n  troposphere: {model: site, "
-                    "pressure_hpa: 998.4, temperature_c: 31.7, relative_humidity: 0.91, wet_random_walk_m_per_sqrt_h: "
-                    "0.021, mapping: black-eisner}\n  orbit_clock: {radial_m: 0.25, along_m: 1.3, cross_m: 0.45, "
-                    "clock_m: 0.65, correlation_time_s: 5400}\n  antenna: {pattern: patch, gain_10deg_db: -6.5, "
-                    "gain_horizon_db: -12.25}\n")}) {
+        std::string(
+            "errors:\n  preset: suburban\n  ionosphere: {model: klobuchar, vtec_scale: 0.7, day_vtec_tecu: 33.3, "
+            "night_vtec_tecu: 2.5, shell_height_km: 425.5, disturbance_rms: 0.07}\n  troposphere: {model: site, "
+            "pressure_hpa: 998.4, temperature_c: 31.7, relative_humidity: 0.91, wet_random_walk_m_per_sqrt_h: "
+            "0.021, mapping: black-eisner}\n  orbit_clock: {radial_m: 0.25, along_m: 1.3, cross_m: 0.45, "
+            "clock_m: 0.65, correlation_time_s: 5400}\n  antenna: {pattern: patch, gain_10deg_db: -6.5, "
+            "gain_horizon_db: -12.25}\n")}) {
     const Scenario s = parse(std::string(kMinimal) + extra);
     const std::string yaml = scenario_to_yaml(s);
     EXPECT_NE(yaml.find("errors:"), std::string::npos);
@@ -202,12 +203,16 @@ TEST(Scenario, BadErrorSettingsNameTheField) {
   const std::string m = kMinimal;
   expect_error(m + "errors: {preset: jungle}\n", {"test.yaml:3", "errors.preset", "open-sky"});
   expect_error(m + "errors: {presets: none}\n", {"errors.presets", "unknown field"});
-  expect_error(m + "errors:\n  ionosphere: {modle: klobuchar}\n", {"test.yaml:4", "errors.ionosphere.modle", "unknown field"});
+  expect_error(m + "errors:\n  ionosphere: {modle: klobuchar}\n",
+               {"test.yaml:4", "errors.ionosphere.modle", "unknown field"});
   expect_error(m + "errors: {ionosphere: {model: iri}}\n", {"errors.ionosphere.model", "thin-shell"});
   expect_error(m + "errors: {ionosphere: {vtec_scale: -1}}\n", {"errors.ionosphere.vtec_scale", "out of range"});
-  expect_error(m + "errors: {ionosphere: {night_vtec_tecu: 80}}\n", {"errors.ionosphere.night_vtec_tecu", "day_vtec_tecu"});
-  expect_error(m + "errors: {ionosphere: {shell_height_km: 50}}\n", {"errors.ionosphere.shell_height_km", "out of range"});
-  expect_error(m + "errors: {troposphere: {relative_humidity: 1.5}}\n", {"errors.troposphere.relative_humidity", "out of range"});
+  expect_error(m + "errors: {ionosphere: {night_vtec_tecu: 80}}\n",
+               {"errors.ionosphere.night_vtec_tecu", "day_vtec_tecu"});
+  expect_error(m + "errors: {ionosphere: {shell_height_km: 50}}\n",
+               {"errors.ionosphere.shell_height_km", "out of range"});
+  expect_error(m + "errors: {troposphere: {relative_humidity: 1.5}}\n",
+               {"errors.troposphere.relative_humidity", "out of range"});
   expect_error(m + "errors: {troposphere: {mapping: gmf}}\n", {"errors.troposphere.mapping", "niell"});
   expect_error(m + "errors: {troposphere: {pressure: 1000}}\n", {"errors.troposphere.pressure", "unknown field"});
   expect_error(m + "errors: {orbit_clock: {radial_m: -0.1}}\n", {"errors.orbit_clock.radial_m", "out of range"});
@@ -221,7 +226,8 @@ TEST(Scenario, BadErrorSettingsNameTheField) {
 
 TEST(Scenario, MultipathParsesAndRoundTrips) {
   EXPECT_EQ(parse(kMinimal).errors.multipath.model, MultipathSpec::Model::none);
-  EXPECT_EQ(parse(std::string(kMinimal) + "errors: {multipath: {model: none}}\n").errors.multipath.model, MultipathSpec::Model::none);
+  EXPECT_EQ(parse(std::string(kMinimal) + "errors: {multipath: {model: none}}\n").errors.multipath.model,
+            MultipathSpec::Model::none);
   const Scenario g = parse(std::string(kMinimal) +
                            "errors: {multipath: {model: ground, antenna_height_m: 2, reflection_coefficient: 0.4, "
                            "below_horizon_gain_db: -12}}\n");
@@ -234,10 +240,11 @@ TEST(Scenario, MultipathParsesAndRoundTrips) {
   EXPECT_EQ(g_back.errors.multipath.antenna_height_m, 2.0);
   EXPECT_EQ(g_back.errors.multipath.below_horizon_gain_db, -12.0);
 
-  const Scenario l = parse(std::string(kMinimal) +
-                           "errors:\n  multipath:\n    model: land-mobile\n    echoes: 4\n    echo_power_db: -8\n    echo_rician_k: 2\n"
-                           "    mean_excess_delay_m: 40\n    echo_lifetime_s: 3\n    blocked_probability: 0.3\n"
-                           "    mean_blocked_s: 1.5\n    blocked_attenuation_db: 22\n");
+  const Scenario l = parse(
+      std::string(kMinimal) +
+      "errors:\n  multipath:\n    model: land-mobile\n    echoes: 4\n    echo_power_db: -8\n    echo_rician_k: 2\n"
+      "    mean_excess_delay_m: 40\n    echo_lifetime_s: 3\n    blocked_probability: 0.3\n"
+      "    mean_blocked_s: 1.5\n    blocked_attenuation_db: 22\n");
   const Scenario l_back = parse(scenario_to_yaml(l));
   for (const Scenario* s : {&l, &l_back}) {
     const MultipathSpec& m = s->errors.multipath;
@@ -252,29 +259,37 @@ TEST(Scenario, MultipathParsesAndRoundTrips) {
     EXPECT_EQ(m.blocked_attenuation_db, 22.0);
   }
   // An environment, as shorthand or as the base that the keys given override.
-  EXPECT_EQ(parse(std::string(kMinimal) + "errors: {multipath: urban}\n").errors.multipath.echoes, multipath_for_environment("urban").echoes);
-  const Scenario e = parse(std::string(kMinimal) + "errors: {multipath: {environment: suburban, blocked_probability: 0.5}}\n");
+  EXPECT_EQ(parse(std::string(kMinimal) + "errors: {multipath: urban}\n").errors.multipath.echoes,
+            multipath_for_environment("urban").echoes);
+  const Scenario e =
+      parse(std::string(kMinimal) + "errors: {multipath: {environment: suburban, blocked_probability: 0.5}}\n");
   EXPECT_EQ(e.errors.multipath.model, MultipathSpec::Model::land_mobile);
   EXPECT_EQ(e.errors.multipath.blocked_probability, 0.5);
   EXPECT_EQ(e.errors.multipath.echo_power_db, multipath_for_environment("suburban").echo_power_db);
-  EXPECT_EQ(parse(std::string(kMinimal) + "errors: {multipath: open-sky}\n").errors.multipath.model, MultipathSpec::Model::ground);
+  EXPECT_EQ(parse(std::string(kMinimal) + "errors: {multipath: open-sky}\n").errors.multipath.model,
+            MultipathSpec::Model::ground);
   EXPECT_NE(scenario_to_yaml(parse(kMinimal)).find("multipath: {model: none}"), std::string::npos);
 }
 
 TEST(Scenario, BadMultipathNamesTheField) {
-  expect_error(std::string(kMinimal) + "errors: {multipath: {model: rain}}\n", {"test.yaml:3", "multipath.model", "land-mobile"});
+  expect_error(std::string(kMinimal) + "errors: {multipath: {model: rain}}\n",
+               {"test.yaml:3", "multipath.model", "land-mobile"});
   expect_error(std::string(kMinimal) + "errors: {multipath: downtown}\n", {"multipath", "urban"});
-  expect_error(std::string(kMinimal) + "errors: {multipath: {model: ground, echoes: 3}}\n", {"multipath.echoes", "land-mobile"});
+  expect_error(std::string(kMinimal) + "errors: {multipath: {model: ground, echoes: 3}}\n",
+               {"multipath.echoes", "land-mobile"});
   expect_error(std::string(kMinimal) + "errors: {multipath: {model: land-mobile, antenna_height_m: 3}}\n",
                {"multipath.antenna_height_m", "ground"});
   expect_error(std::string(kMinimal) + "errors: {multipath: {model: none, echoes: 2}}\n", {"multipath.echoes"});
-  expect_error(std::string(kMinimal) + "errors: {multipath: {model: land-mobile, echoes: 9}}\n", {"multipath.echoes", "out of range"});
+  expect_error(std::string(kMinimal) + "errors: {multipath: {model: land-mobile, echoes: 9}}\n",
+               {"multipath.echoes", "out of range"});
   expect_error(std::string(kMinimal) + "errors: {multipath: {model: land-mobile, blocked_probability: 1.2}}\n",
                {"multipath.blocked_probability", "out of range"});
   expect_error(std::string(kMinimal) + "errors: {multipath: {model: ground, reflection_coefficient: 1.5}}\n",
                {"multipath.reflection_coefficient"});
-  expect_error(std::string(kMinimal) + "errors: {multipath: {model: ground, height_m: 3}}\n", {"multipath.height_m", "unknown field"});
-  expect_error(std::string(kMinimal) + "errors: {multipath: {model: ground, environment: urban}}\n", {"multipath", "not both"});
+  expect_error(std::string(kMinimal) + "errors: {multipath: {model: ground, height_m: 3}}\n",
+               {"multipath.height_m", "unknown field"});
+  expect_error(std::string(kMinimal) + "errors: {multipath: {model: ground, environment: urban}}\n",
+               {"multipath", "not both"});
 }
 
 TEST(Scenario, MissingFileIsReported) {
@@ -283,8 +298,9 @@ TEST(Scenario, MissingFileIsReported) {
 
 TEST(Scenario, ImpossibleStartTimesAreErrors) {
   // Accepted before: Feb 31 (read as Mar 3), a negative hour, trailing text.
-  for (const char* bad : {"2022-02-31T02:00:00", "2022-01-01T-3:00:00", "2021-02-29T00:00:00", "2022-01-01T24:00:00",
-                          "2022-01-01T02:00:00junk", "2022-1-1T02:00:00", "1979-12-31T00:00:00", "2022-01-01T02:60:00"}) {
+  for (const char* bad :
+       {"2022-02-31T02:00:00", "2022-01-01T-3:00:00", "2021-02-29T00:00:00", "2022-01-01T24:00:00",
+        "2022-01-01T02:00:00junk", "2022-1-1T02:00:00", "1979-12-31T00:00:00", "2022-01-01T02:60:00"}) {
     expect_error(std::string("start_time: \"") + bad + "\"\nduration_s: 1\n", {"test.yaml:1", "start_time", bad});
   }
   EXPECT_EQ(parse("start_time: \"2024-02-29T23:59:59.5\"\nduration_s: 1\n").start_time.week, 2303);
@@ -292,7 +308,8 @@ TEST(Scenario, ImpossibleStartTimesAreErrors) {
 }
 
 TEST(Scenario, DuplicateKeysAreErrors) {
-  expect_error(std::string(kMinimal) + "duration_s: 20\n", {"test.yaml:3: key 'duration_s' appears twice", "lines 2 and 3"});
+  expect_error(std::string(kMinimal) + "duration_s: 20\n",
+               {"test.yaml:3: key 'duration_s' appears twice", "lines 2 and 3"});
   expect_error(std::string(kMinimal) + "cn0: {dbhz: 40, dbhz: 45}\n", {"key 'dbhz' appears twice"});
 }
 

@@ -53,8 +53,8 @@ TEST(NiellMapping, SeasonAndHeightTerms) {
   EXPECT_GT(niell_mapping(45 * kDeg, 2000.0, 100.0, 5 * kDeg).hydrostatic,
             niell_mapping(45 * kDeg, 0.0, 100.0, 5 * kDeg).hydrostatic);
   // Latitude interpolation is continuous across the table rows.
-  EXPECT_NEAR(niell_mapping(44.999 * kDeg, 0.0, 100.0, 5 * kDeg).wet, niell_mapping(45.001 * kDeg, 0.0, 100.0, 5 * kDeg).wet,
-              1e-4);
+  EXPECT_NEAR(niell_mapping(44.999 * kDeg, 0.0, 100.0, 5 * kDeg).wet,
+              niell_mapping(45.001 * kDeg, 0.0, 100.0, 5 * kDeg).wet, 1e-4);
 }
 
 TEST(TroposphereTruth, StandardModelIsTheReceiversModel) {
@@ -82,8 +82,8 @@ TEST(TroposphereTruth, OpenSkyDiffersFromTheReceiverModelByCentimetresToDecimetr
   TroposphereTruthSpec be = error_preset("open-sky").troposphere;
   be.mapping = TroposphereTruthSpec::Mapping::black_eisner;
   const TroposphereTruth tb(be, 1, kStart, 3600.0);
-  EXPECT_NEAR(tb.delay_m(kSeoulLat, kSeoulHeight_m, 90 * kDeg, kStart), t.delay_m(kSeoulLat, kSeoulHeight_m, 90 * kDeg, kStart),
-              0.002);
+  EXPECT_NEAR(tb.delay_m(kSeoulLat, kSeoulHeight_m, 90 * kDeg, kStart),
+              t.delay_m(kSeoulLat, kSeoulHeight_m, 90 * kDeg, kStart), 0.002);
   // Dry, cold air at altitude: far less delay than at the ground.
   EXPECT_LT(t.delay_m(kSeoulLat, 10000.0, 90 * kDeg, kStart), 0.7);
   EXPECT_LT(t.delay_m(kSeoulLat, 15000.0, 90 * kDeg, kStart), 0.4);
@@ -106,8 +106,9 @@ TEST(TroposphereTruth, WetRandomWalkHasTheConfiguredSizeAndIsSeeded) {
   EXPECT_NEAR(std::sqrt(sum2 / kSeeds), 0.015, 0.0015);
   // Continuous in time (linear between 10 s nodes): no jump between milliseconds.
   for (int ms = 0; ms < 30000; ms += 1)
-    ASSERT_LT(std::abs(a.wet_walk_m(kStart.plus_seconds(ms * 1e-3 + 1e-3)) - a.wet_walk_m(kStart.plus_seconds(ms * 1e-3))),
-              1e-5);
+    ASSERT_LT(
+        std::abs(a.wet_walk_m(kStart.plus_seconds(ms * 1e-3 + 1e-3)) - a.wet_walk_m(kStart.plus_seconds(ms * 1e-3))),
+        1e-5);
 }
 
 TEST(TroposphereTruth, WetDelayNeverGoesNegative) {

@@ -13,8 +13,7 @@ nlohmann::json epoch(double t, const std::string& mode, bool valid, double n, do
 
 TEST(CouplingScoreRun, RmsOverValidEpochsFromTheStartOfScoring) {
   const nlohmann::json epochs = {epoch(10.0, "ultra", true, 100.0, 0.0, 0.0),  // before scoring: ignored
-                                 epoch(30.0, "ultra", true, 3.0, 4.0, 0.0),
-                                 epoch(31.0, "coast", true, 0.0, 0.0, 12.0),
+                                 epoch(30.0, "ultra", true, 3.0, 4.0, 0.0), epoch(31.0, "coast", true, 0.0, 0.0, 12.0),
                                  epoch(32.0, "ultra", false, 50.0, 50.0, 50.0)};  // no solution: time only
   const RunScore s = score_run(epochs, "ultra", 30.0, 31.0);
   EXPECT_DOUBLE_EQ(s.rms_h_m, std::sqrt(25.0 / 2.0));

@@ -24,8 +24,8 @@ struct CliResult {
 inline CliResult run_deepnav(const std::vector<std::string>& args) {
   static int calls = 0;
   const std::filesystem::path log =
-      std::filesystem::temp_directory_path() / ("deepnav_tools_test_" + std::to_string(getpid()) + "_" +
-                                                std::to_string(++calls) + ".log");
+      std::filesystem::temp_directory_path() /
+      ("deepnav_tools_test_" + std::to_string(getpid()) + "_" + std::to_string(++calls) + ".log");
   std::vector<std::string> argv{DEEPNAV_CLI};
   argv.insert(argv.end(), args.begin(), args.end());
   CliResult r;

@@ -19,7 +19,7 @@ struct PointFigures {
   std::string mode = "scalar", mitigation = "none";
   std::uint64_t seed = 1;
   double js_db = 20.0;
-  std::string failure;               ///< "": passed
+  std::string failure;  ///< "": passed
   double signal_fraction_mean = 1.0;
 };
 
@@ -109,14 +109,14 @@ TEST(JamThresholds, ASeriesThatNeverFailsIsAboveTheHighestJs) {
 }
 
 TEST(JamThresholds, GainOverNoneOnTheSameSeeds) {
-  const auto all = jam_thresholds(join({series("scalar", "excision", {{1, 40.0}, {2, 40.0}}),
-                                        series("scalar", "none", {{1, 30.0}, {2, 40.0}})}));
+  const auto all = jam_thresholds(
+      join({series("scalar", "excision", {{1, 40.0}, {2, 40.0}}), series("scalar", "none", {{1, 30.0}, {2, 40.0}})}));
   EXPECT_EQ(find(all, "scalar", "excision").gain_over_none, "5.0");  // 40 - median(30, 40)
 }
 
 TEST(JamThresholds, GainOfAMitigationThatNeverFailedIsALowerBound) {
-  const auto all = jam_thresholds(
-      join({series("scalar", "excision", {{1, 0.0}}), series("scalar", "none", {{1, 20.0}})}));
+  const auto all =
+      jam_thresholds(join({series("scalar", "excision", {{1, 0.0}}), series("scalar", "none", {{1, 20.0}})}));
   EXPECT_EQ(find(all, "scalar", "excision").gain_over_none, "> 20.0");  // 40 - 20
 }
 
@@ -131,8 +131,9 @@ TEST(JamThresholds, GainCannotBeSaidWithoutACommonFailingBaseline) {
 }
 
 TEST(JamThresholds, GainIsPerMode) {
-  const auto all = jam_thresholds(join({series("scalar", "excision", {{1, 40.0}}), series("scalar", "none", {{1, 30.0}}),
-                                        series("ultra", "excision", {{1, 0.0}})}));
+  const auto all =
+      jam_thresholds(join({series("scalar", "excision", {{1, 40.0}}), series("scalar", "none", {{1, 30.0}}),
+                           series("ultra", "excision", {{1, 0.0}})}));
   EXPECT_EQ(all.size(), 3u);
   EXPECT_EQ(find(all, "scalar", "excision").gain_over_none, "10.0");
   EXPECT_EQ(find(all, "ultra", "excision").gain_over_none, "");  // no ultra series without mitigation
@@ -162,23 +163,26 @@ std::string read_file(const std::string& path) {
 
 TEST(JamReport, WritesTheThresholdsAndOneCsvRowPerPoint) {
   const test::ScratchDir dir("jam_report_test");
-  const auto points = join({series("scalar", "excision", {{1, 40.0}, {2, 0.0}}),
-                            series("scalar", "none", {{1, 30.0}, {2, 40.0}})});
+  const auto points =
+      join({series("scalar", "excision", {{1, 40.0}, {2, 0.0}}), series("scalar", "none", {{1, 30.0}, {2, 40.0}})});
   const BenchReport report = write_jam_report(points, dir.path().string());
   const std::string md = read_file(dir / "thresholds.md");
-  EXPECT_NE(md.find("| static | cw | scalar | none | 20..40 | 2 | 35.0 | 30.0 40.0 |  | GNSS fixes missing | > 40.0 |\n"),
-            std::string::npos)
+  EXPECT_NE(
+      md.find("| static | cw | scalar | none | 20..40 | 2 | 35.0 | 30.0 40.0 |  | GNSS fixes missing | > 40.0 |\n"),
+      std::string::npos)
       << md;
   // Excision: seed 1 fails at 40, seed 2 never; median of (40, > 40) is above 40.
-  EXPECT_NE(md.find("| static | cw | scalar | excision | 20..40 | 2 | > 40.0 | 40.0 > 40.0 | > 5.0 | GNSS fixes missing "
-                    "| > 40.0 |\n"),
-            std::string::npos)
+  EXPECT_NE(
+      md.find("| static | cw | scalar | excision | 20..40 | 2 | > 40.0 | 40.0 > 40.0 | > 5.0 | GNSS fixes missing "
+              "| > 40.0 |\n"),
+      std::string::npos)
       << md;
   const std::string csv = read_file(dir / "runs.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + static_cast<long>(points.size()));
-  EXPECT_NE(csv.find("static,cw,30.0,scalar,none,1,2,0.300,0.100,1.000,,0.500,1.000,scalar:16,1.250,2.500,2.000,4.000,1,"
-                     "GNSS fixes missing,1:0.980,1:44.5,3.0\n"),
-            std::string::npos)
+  EXPECT_NE(
+      csv.find("static,cw,30.0,scalar,none,1,2,0.300,0.100,1.000,,0.500,1.000,scalar:16,1.250,2.500,2.000,4.000,1,"
+               "GNSS fixes missing,1:0.980,1:44.5,3.0\n"),
+      std::string::npos)
       << csv;
   const nlohmann::json table = report.to_json();
   ASSERT_EQ(table["rows"].size(), 2u);

@@ -2,11 +2,11 @@
 
 #include <chrono>
 
+#include "aiding/navigation_session.hpp"
 #include "ins/frames.hpp"
 #include "ins/imu_file.hpp"
-#include "aiding/navigation_session.hpp"
-#include "receiver/sources/file_sample_source.hpp"
 #include "receiver/products/truth_file.hpp"
+#include "receiver/sources/file_sample_source.hpp"
 #include "signals/rinex_nav.hpp"
 
 namespace deepnav::bench {

@@ -27,12 +27,12 @@ struct EpochError {
 };
 
 struct AidedRunResult {
-  std::vector<EpochError> epochs;       ///< one per observation epoch
-  std::map<int, double> tracked_s;      ///< per PRN: seconds of integrations with C/N0 above the loss threshold
-  double first_aided_s = -1.0;          ///< first epoch in a coupled mode (-1: never)
+  std::vector<EpochError> epochs;   ///< one per observation epoch
+  std::map<int, double> tracked_s;  ///< per PRN: seconds of integrations with C/N0 above the loss threshold
+  double first_aided_s = -1.0;      ///< first epoch in a coupled mode (-1: never)
   std::vector<aiding::ModeChange> mode_changes;
   double wall_s = 0.0;
-  int satellite_exclusions = 0;         ///< satellites the aided filter's fault monitor excluded
+  int satellite_exclusions = 0;  ///< satellites the aided filter's fault monitor excluded
   int filter_restarts = 0;
   /// When the aided filter found the troposphere or the ionosphere model not to match the
   /// signal (and took that state); nullopt: not found.

@@ -77,17 +77,22 @@ std::vector<double> log_space(double lo, double hi, int n) {
 
 nlohmann::json case_json(const CoarseCase& c) {
   auto vec = [](const Eigen::Vector3d& v) { return std::vector<double>{v.x(), v.y(), v.z()}; };
-  return {{"method", c.method},          {"sensor", c.sensor},   {"axis", "xyz"[c.axis] + std::string()},
-          {"magnitude", c.magnitude},    {"sim_euler_deg", vec(c.sim_euler_deg)},
-          {"sim_tilt_deg", vec(c.sim_tilt_deg)}, {"analytic_tilt_deg", vec(c.analytic_tilt_deg)},
+  return {{"method", c.method},
+          {"sensor", c.sensor},
+          {"axis", "xyz"[c.axis] + std::string()},
+          {"magnitude", c.magnitude},
+          {"sim_euler_deg", vec(c.sim_euler_deg)},
+          {"sim_tilt_deg", vec(c.sim_tilt_deg)},
+          {"analytic_tilt_deg", vec(c.analytic_tilt_deg)},
           {"rel_diff_pct", c.rel_diff_pct}};
 }
 
 /// Table: each single error source at the top of the paper's ranges; returns the sweep.
 BenchReport coarse_report(nlohmann::json& sweep_out) {
-  BenchReport report("Coarse alignment (paper 000), lat 35 deg, attitude (5,5,5) deg: tilt error N/E/D in deg, "
-                     "simulated vs analytic (Table 1)",
-                     {"method", "source", "sim_N", "sim_E", "sim_D", "ana_N", "ana_E", "ana_D", "diff_%"});
+  BenchReport report(
+      "Coarse alignment (paper 000), lat 35 deg, attitude (5,5,5) deg: tilt error N/E/D in deg, "
+      "simulated vs analytic (Table 1)",
+      {"method", "source", "sim_N", "sim_E", "sim_D", "ana_N", "ana_E", "ana_D", "diff_%"});
   for (const char* c : {"sim_N", "sim_E", "sim_D", "ana_N", "ana_E", "ana_D"}) report.set_precision(c, 4);
   report.set_precision("diff_%", 2);
   double worst_pct[2] = {0.0, 0.0};
@@ -98,7 +103,8 @@ BenchReport coarse_report(nlohmann::json& sweep_out) {
       for (int axis = 0; axis < 3; ++axis) {
         const double top = gyro ? 1.0 : 100.0;
         const CoarseCase c = run_coarse_case(one_shot, gyro, axis, top);
-        report.add_row({c.method, std::string(gyro ? "gyro " : "accel ") + "xyz"[axis] + (gyro ? " 1 deg/h" : " 100 ug"),
+        report.add_row({c.method,
+                        std::string(gyro ? "gyro " : "accel ") + "xyz"[axis] + (gyro ? " 1 deg/h" : " 100 ug"),
                         c.sim_tilt_deg.x(), c.sim_tilt_deg.y(), c.sim_tilt_deg.z(), c.analytic_tilt_deg.x(),
                         c.analytic_tilt_deg.y(), c.analytic_tilt_deg.z(), c.rel_diff_pct});
         for (double m : log_space(gyro ? 0.01 : 1.0, top, 9)) {
@@ -114,9 +120,10 @@ BenchReport coarse_report(nlohmann::json& sweep_out) {
                   std::vector<double>{worst_pct[0], worst_pct[1]});
   report.add_note("worst difference in the small-angle region, gyro <= 0.3 deg/h (two-step, one-shot) %",
                   std::vector<double>{worst_small_pct[0], worst_small_pct[1]});
-  report.add_note("beyond small angles",
-                  "a 1 deg/h gyro error is 8 % of the horizontal Earth rate (12.3 deg/h at 35 deg); the yaw's "
-                  "second-order term -dw_E/(w_N + dw_N) then makes the first-order formula ~7 % large for x-gyro errors");
+  report.add_note(
+      "beyond small angles",
+      "a 1 deg/h gyro error is 8 % of the horizontal Earth rate (12.3 deg/h at 35 deg); the yaw's "
+      "second-order term -dw_E/(w_N + dw_N) then makes the first-order formula ~7 % large for x-gyro errors");
   report.add_note("sweep", "accelerometer 1-100 ug and gyro 0.01-1 deg/h, one body axis at a time, 9 points each");
   report.add_note("sign convention",
                   "errors measured-minus-true, C_est = (I + [eps x]) C_true; the gyro terms have the opposite sign "
@@ -212,7 +219,8 @@ BenchReport fine_report(const AlignBenchSettings& opt, std::mt19937_64& rng, nlo
       limits.accel_noise_mps2 = e.accel_noise_density_mps2_per_rthz * std::sqrt(kRate);
       limits.gyro_noise_radps = e.gyro_noise_density_radps_per_rthz * std::sqrt(kRate);
       const auto coarse = coarse_align(f, w, lat, g, CoarseAlignmentMethod::kTwoStep, limits);
-      if (!coarse.attitude) throw InputError("fine-alignment bench: coarse alignment refused: " + coarse.stationarity.reason);
+      if (!coarse.attitude)
+        throw InputError("fine-alignment bench: coarse alignment refused: " + coarse.stationarity.reason);
       const double limit = two_step_tilt_error_rad(C * e.accel_bias_b_mps2, C * e.gyro_bias_b_radps, lat, g).z();
       coarse_dev2.push_back(std::pow(tilt_error_ned_rad(coarse.attitude->C_b_n, C).z() - limit, 2));
       FineAlignmentConfig cfg;
@@ -235,7 +243,10 @@ BenchReport fine_report(const AlignBenchSettings& opt, std::mt19937_64& rng, nlo
         heading_err.push_back(trace.tilt_error_rad[i].z() / kDeg);
       }
       sigma_final += trace.attitude_sigma_rad.back().z() / opt.runs;
-      traces_out.push_back({{"grade", gr.name}, {"run", run}, {"t_s", trace.t_s}, {"heading_err_deg", heading_err},
+      traces_out.push_back({{"grade", gr.name},
+                            {"run", run},
+                            {"t_s", trace.t_s},
+                            {"heading_err_deg", heading_err},
                             {"limit_deg", limit / kDeg}});
     }
     // Settled: the Monte Carlo RMS deviation from each run's limit stays below a quarter of
@@ -256,10 +267,13 @@ BenchReport fine_report(const AlignBenchSettings& opt, std::mt19937_64& rng, nlo
     report.set_precision(c, 4);
   report.set_precision("settle_s", 0);
   report.add_note("runs per grade", opt.runs);
-  report.add_note("dev", "RMS over runs of (heading error - that run's gyrocompass limit -dw_E/(w_ie cos L) + (df_E/g) tan L)");
-  report.add_note("settle_s", "first time after which the RMS deviation stays below settle_tol (quarter of the nominal "
-                              "limit) to the end of the 1200 s run; -1 if never");
-  report.add_note("VRW (ug/sqrt(Hz)) tactical, navigation", std::vector<double>{grades[0].vrw_ug_rthz, grades[1].vrw_ug_rthz});
+  report.add_note(
+      "dev", "RMS over runs of (heading error - that run's gyrocompass limit -dw_E/(w_ie cos L) + (df_E/g) tan L)");
+  report.add_note("settle_s",
+                  "first time after which the RMS deviation stays below settle_tol (quarter of the nominal "
+                  "limit) to the end of the 1200 s run; -1 if never");
+  report.add_note("VRW (ug/sqrt(Hz)) tactical, navigation",
+                  std::vector<double>{grades[0].vrw_ug_rthz, grades[1].vrw_ug_rthz});
   return report;
 }
 

@@ -11,7 +11,7 @@
 namespace deepnav::bench {
 
 struct AlignBenchSettings {
-  int runs = 10;          ///< fine-alignment Monte Carlo runs per grade
+  int runs = 10;  ///< fine-alignment Monte Carlo runs per grade
   std::uint64_t seed = 1;
   std::string json_path;  ///< the tables as JSON; empty: none
   std::string plots_dir;  ///< PNG plots and their data; empty: none

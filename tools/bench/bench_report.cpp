@@ -25,15 +25,16 @@ void BenchReport::set_precision(const std::string& column, int decimals) {
 
 void BenchReport::add_row(std::vector<Cell> row) {
   if (row.size() != columns_.size())
-    throw std::invalid_argument(fmt::format("BenchReport '{}': row has {} cells, table has {} columns", title_,
-                                            row.size(), columns_.size()));
+    throw std::invalid_argument(
+        fmt::format("BenchReport '{}': row has {} cells, table has {} columns", title_, row.size(), columns_.size()));
   rows_.push_back(std::move(row));
 }
 
 std::string bench_scratch_dir(const std::string& given, const std::string& name) {
   // A folder of this process's own inside the given one: benchmarks delete their scratch
   // folder when done, and must not delete what the user pointed them at.
-  const std::filesystem::path parent = given.empty() ? std::filesystem::temp_directory_path() : std::filesystem::path(given);
+  const std::filesystem::path parent =
+      given.empty() ? std::filesystem::temp_directory_path() : std::filesystem::path(given);
   return (parent / fmt::format("deepnav_{}_{}", name, getpid())).string();
 }
 

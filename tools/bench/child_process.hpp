@@ -1,8 +1,8 @@
 #pragma once
 // Child processes for sweeps: another run of this program (or any executable) with its
 // standard output and error going to a log file.
-#include <string>
 #include <sys/types.h>
+#include <string>
 #include <vector>
 
 namespace deepnav::bench {

@@ -36,8 +36,8 @@ CorrelatorThroughput correlator_throughput(CorrelatorKernel kernel, bool noise_t
   const double c0 = thread_cpu_s();
   while (seconds_since(t0) < 1.0) {
     for (int c = 0; c < 12; ++c) {
-      const CorrelatorSums r = correlate(kernel, input, n, spans[static_cast<std::size_t>(c)],
-                                         ca_code_chips(c + 1), ca_code_chips(32));
+      const CorrelatorSums r =
+          correlate(kernel, input, n, spans[static_cast<std::size_t>(c)], ca_code_chips(c + 1), ca_code_chips(32));
       sink += r.prompt.real();
       ++calls;
     }

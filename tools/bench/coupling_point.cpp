@@ -64,9 +64,9 @@ nlohmann::json mode_record(const AidedRunResult& r) {
 }  // namespace
 
 const std::vector<std::string>& coupling_trajectories() {
-  static const std::vector<std::string> t{"land-straight", "land-accel",   "land-circle",   "land-s",
-                                          "air-circle",    "air-s",        "air-spiral",    "air-wingrock",
-                                          "air-circle-x2", "air-s-x2",     "air-spiral-x2", "air-wingrock-x2"};
+  static const std::vector<std::string> t{"land-straight", "land-accel", "land-circle",   "land-s",
+                                          "air-circle",    "air-s",      "air-spiral",    "air-wingrock",
+                                          "air-circle-x2", "air-s-x2",   "air-spiral-x2", "air-wingrock-x2"};
   return t;
 }
 
@@ -148,7 +148,8 @@ nlohmann::json run_coupling_point(const CouplingPoint& p, const std::string& wor
   run_settings.filter_troposphere = o.filter_troposphere;
   run_settings.filter_ionosphere = o.filter_ionosphere;
   nlohmann::json point = coupling_point_settings(p);
-  for (const auto& m : o.modes) point["modes"][m] = mode_record(run_aided_scenario(sc, s, aiding::parse_nav_mode(m), run_settings));
+  for (const auto& m : o.modes)
+    point["modes"][m] = mode_record(run_aided_scenario(sc, s, aiding::parse_nav_mode(m), run_settings));
   fs::remove_all(dir);
   return point;
 }
@@ -173,7 +174,8 @@ nlohmann::json load_coupling_point(const std::string& out_dir, const CouplingPoi
   try {
     point = nlohmann::json::parse(in);
   } catch (const nlohmann::json::exception& e) {
-    throw InputError(fmt::format("{}: not a coupling point ({}); delete it to run the point again", path.string(), e.what()));
+    throw InputError(
+        fmt::format("{}: not a coupling point ({}); delete it to run the point again", path.string(), e.what()));
   }
   const nlohmann::json want = coupling_point_settings(p);
   for (const auto& [key, value] : want.items())
@@ -183,8 +185,8 @@ nlohmann::json load_coupling_point(const std::string& out_dir, const CouplingPoi
   // A flag the point was made with and this run does not ask for is another setting too.
   for (const char* flag : kFlagsRecordedWhenSet)
     if (point.value(flag, false) != want.value(flag, false))
-      throw InputError(fmt::format("{}: made with {} = {}, this run asks for {}; use another --out", path.string(), flag,
-                                   point.value(flag, false), want.value(flag, false)));
+      throw InputError(fmt::format("{}: made with {} = {}, this run asks for {}; use another --out", path.string(),
+                                   flag, point.value(flag, false), want.value(flag, false)));
   for (const auto& m : p.settings.modes)
     if (!point["modes"].contains(m))
       throw InputError(fmt::format("{}: has no '{}' run; use another --out or the point's modes", path.string(), m));

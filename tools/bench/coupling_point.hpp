@@ -30,8 +30,8 @@ struct CouplingPointSettings {
   double duration_s = 200.0;
   std::string imu_grade = "paper003";
   std::string base_scenario = default_coupling_scenario();
-  std::uint64_t seed = 300;     ///< base seed: a point's is seed + 1000 run + trajectory index
-  AtmosphereModels atmosphere;  ///< the receiver's (the scenario decides what is synthesized)
+  std::uint64_t seed = 300;         ///< base seed: a point's is seed + 1000 run + trajectory index
+  AtmosphereModels atmosphere;      ///< the receiver's (the scenario decides what is synthesized)
   bool filter_troposphere = false;  ///< tight/ultra: the zenith troposphere residual state
   bool filter_ionosphere = false;   ///< tight/ultra: the ionosphere model's scale state
 };

@@ -16,10 +16,8 @@ namespace {
 /// Paper 003's 1-sigma position errors at 150 s (m, x/y/z), where the paper states them.
 const std::map<std::pair<std::string, std::string>, Eigen::Vector3d>& paper_figures() {
   static const std::map<std::pair<std::string, std::string>, Eigen::Vector3d> f{
-      {{"land-circle", "tight"}, {2.384, 3.251, 1.455}},
-      {{"land-circle", "ultra"}, {0.430, 1.015, 0.906}},
-      {{"air-circle", "loose"}, {1.783, 2.429, 5.512}},
-      {{"air-circle", "tight"}, {1.248, 1.177, 3.881}},
+      {{"land-circle", "tight"}, {2.384, 3.251, 1.455}}, {{"land-circle", "ultra"}, {0.430, 1.015, 0.906}},
+      {{"air-circle", "loose"}, {1.783, 2.429, 5.512}},  {{"air-circle", "tight"}, {1.248, 1.177, 3.881}},
       {{"air-circle", "ultra"}, {0.591, 0.634, 0.896}},
   };
   return f;
@@ -74,8 +72,8 @@ BenchReport coupling_report(const CouplingSweepSettings& o, const std::vector<nl
   BenchReport report(fmt::format("GNSS/INS coupling: position error against truth (paper 003), errors: {}", pt.errors),
                      {"trajectory", "mode", "n_at_m", "e_at_m", "d_at_m", "paper_n_m", "paper_e_m", "paper_d_m",
                       "rms_h_mean_m", "rms_h_std_m", "rms_3d_mean_m", "rms_3d_std_m", "in_mode_pct"});
-  for (const char* c : {"n_at_m", "e_at_m", "d_at_m", "paper_n_m", "paper_e_m", "paper_d_m", "rms_h_mean_m", "rms_h_std_m",
-                        "rms_3d_mean_m", "rms_3d_std_m"})
+  for (const char* c : {"n_at_m", "e_at_m", "d_at_m", "paper_n_m", "paper_e_m", "paper_d_m", "rms_h_mean_m",
+                        "rms_h_std_m", "rms_3d_mean_m", "rms_3d_std_m"})
     report.set_precision(c, 3);
   report.set_precision("in_mode_pct", 0);
   int holds_h = 0, holds_3d = 0, checked = 0;
@@ -92,15 +90,17 @@ BenchReport coupling_report(const CouplingSweepSettings& o, const std::vector<nl
   report.add_note("errors", pt.errors);
   report.add_note("imu_grade", pt.imu_grade);
   report.add_note("scenario", source_relative(pt.base_scenario));
-  report.add_note("receiver_models", fmt::format("ionosphere {}, troposphere {}{}{}", to_string(pt.atmosphere.ionosphere),
-                                                 to_string(pt.atmosphere.troposphere),
-                                                 pt.filter_troposphere ? ", zenith troposphere state" : "",
-                                                 pt.filter_ionosphere ? ", ionosphere scale state" : ""));
+  report.add_note(
+      "receiver_models",
+      fmt::format("ionosphere {}, troposphere {}{}{}", to_string(pt.atmosphere.ionosphere),
+                  to_string(pt.atmosphere.troposphere), pt.filter_troposphere ? ", zenith troposphere state" : "",
+                  pt.filter_ionosphere ? ", ionosphere scale state" : ""));
   report.add_note("scoring", fmt::format("n/e/d_at: north/east/down 1-sigma over runs at t = {} s (RMS across runs); "
                                          "rms_h/rms_3d: each run's RMS over every epoch from {} s to {} s, mean and "
                                          "standard deviation over the runs",
                                          o.score_at_s, o.score_from_s, pt.duration_s));
-  report.add_note("ordering_ultra_le_tight_le_loose_horizontal", fmt::format("{} of {} trajectories", holds_h, checked));
+  report.add_note("ordering_ultra_le_tight_le_loose_horizontal",
+                  fmt::format("{} of {} trajectories", holds_h, checked));
   report.add_note("ordering_ultra_le_tight_le_loose_3d", fmt::format("{} of {} trajectories", holds_3d, checked));
   report.add_note("paired_3d", ordering);
   report.add_note("mismatch_found", mismatch_counts(points, pt.modes));
@@ -134,8 +134,9 @@ void write_coupling_csv(const std::string& path, const std::vector<nlohmann::jso
     for (const auto& [mode, r] : p["modes"].items())
       for (const auto& e : r["epochs"])
         csv << fmt::format("{},{},{},{:.2f},{},{},{:.4f},{:.4f},{:.4f},{:.4f}\n", p["trajectory"].get<std::string>(),
-                           p["run"].get<int>(), mode, e[0].get<double>(), e[1].get<std::string>(), e[2].get<bool>() ? 1 : 0,
-                           e[3].get<double>(), e[4].get<double>(), e[5].get<double>(), e[6].get<double>());
+                           p["run"].get<int>(), mode, e[0].get<double>(), e[1].get<std::string>(),
+                           e[2].get<bool>() ? 1 : 0, e[3].get<double>(), e[4].get<double>(), e[5].get<double>(),
+                           e[6].get<double>());
 }
 
 }  // namespace deepnav::bench

@@ -13,7 +13,7 @@ namespace deepnav::bench {
 
 /// One mode of one run, scored.
 struct RunScore {
-  double rms_h_m = NAN, rms_3d_m = NAN;  ///< NaN: no valid epoch in the scored span
+  double rms_h_m = NAN, rms_3d_m = NAN;       ///< NaN: no valid epoch in the scored span
   std::optional<Eigen::Vector3d> error_at_m;  ///< north/east/down at the scoring time
   double in_mode_s = 0.0, scored_s = 0.0;     ///< epochs in the requested mode, epochs scored
 };

@@ -88,7 +88,8 @@ void run_coupling_sweep(CouplingSweepSettings o, const std::function<void(double
   for (const auto& p : points)
     if (load_coupling_point(o.out_dir, p).is_null()) todo.push_back(p);
   if (o.list_commands) {
-    for (const auto& p : todo) fmt::print("{}\n", shell_command_line(coupling_point_command(self_executable(), p, o.out_dir)));
+    for (const auto& p : todo)
+      fmt::print("{}\n", shell_command_line(coupling_point_command(self_executable(), p, o.out_dir)));
     return;
   }
   if (keep_points) {

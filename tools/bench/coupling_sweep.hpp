@@ -18,13 +18,13 @@ struct CouplingSweepSettings {
   int runs = 2;       ///< Monte Carlo runs per trajectory
   int first_run = 0;  ///< index of the first (a slice of a larger sweep)
   CouplingPointSettings point;
-  double score_at_s = 150.0;    ///< time of the 1-sigma figures
-  double score_from_s = 30.0;   ///< the RMS errors cover this time to the end
-  std::string work_dir;         ///< where the (deleted) IF files go; empty: the temporary folder
-  std::string out_dir;          ///< finished points (a rerun resumes); empty: kept nowhere
+  double score_at_s = 150.0;                   ///< time of the 1-sigma figures
+  double score_from_s = 30.0;                  ///< the RMS errors cover this time to the end
+  std::string work_dir;                        ///< where the (deleted) IF files go; empty: the temporary folder
+  std::string out_dir;                         ///< finished points (a rerun resumes); empty: kept nowhere
   std::string json_path, csv_path, plot_path;  ///< optional outputs (the plot needs the CSV)
-  unsigned jobs = 1;            ///< points run at once
-  bool list_commands = false;   ///< print one command per unfinished point instead
+  unsigned jobs = 1;                           ///< points run at once
+  bool list_commands = false;                  ///< print one command per unfinished point instead
 };
 
 /// The points of the sweep, trajectory by trajectory, run by run.

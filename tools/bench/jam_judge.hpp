@@ -20,8 +20,8 @@ struct FailureCriteria {
 
 /// One satellite over the jammed window.
 struct JamChannelFigures {
-  double tracked_fraction = 0.0;  ///< of the window, under the receiver's loss rule
-  double signal_fraction = 0.0;   ///< of the window, following with C/N0 above the signal floor
+  double tracked_fraction = 0.0;   ///< of the window, under the receiver's loss rule
+  double signal_fraction = 0.0;    ///< of the window, following with C/N0 above the signal floor
   std::optional<double> cn0_dbhz;  ///< mean estimate while tracked; none: never tracked after settling
 };
 

@@ -87,11 +87,10 @@ std::string point_id(const JamPoint& p) {
   const aiding::LongIntegrationConfig defaults;
   const bool own_integration = p.long_integration.coherent_ms != defaults.coherent_ms ||
                                p.long_integration.noncoherent_ms != defaults.noncoherent_ms;
-  return fmt::format("{}_{}_js{:05.1f}_{}{}_{}_s{}{}", fs::path(p.scenario).stem().string(), p.jammer, p.js_db, p.mode,
-                     p.long_integration.assist_data_bits ? "-assisted-bits" : "", p.mitigation, p.seed,
-                     own_integration ? fmt::format("_c{}n{}", p.long_integration.coherent_ms,
-                                                   p.long_integration.noncoherent_ms)
-                                     : "");
+  return fmt::format(
+      "{}_{}_js{:05.1f}_{}{}_{}_s{}{}", fs::path(p.scenario).stem().string(), p.jammer, p.js_db, p.mode,
+      p.long_integration.assist_data_bits ? "-assisted-bits" : "", p.mitigation, p.seed,
+      own_integration ? fmt::format("_c{}n{}", p.long_integration.coherent_ms, p.long_integration.noncoherent_ms) : "");
 }
 
 std::string point_dir(const std::string& out_dir, const JamPoint& p) {
@@ -112,9 +111,10 @@ Scenario jam_point_scenario(const JamPoint& p) {
       throw InputError(fmt::format("--onset {} s: expected within the scenario's {} s", p.onset_s, sc.duration_s));
     sc.jammers = {benchmark_jammer(p.jammer, p.js_db, p.onset_s)};
     if (mode.needs_imu && !sc.imu.enabled)
-      throw InputError(fmt::format("receiver mode '{}' needs an IMU, but scenario '{}' has no imu: section "
-                                   "(e.g. imu: {{grade: tactical, rate_hz: 100}})",
-                                   p.mode, p.scenario));
+      throw InputError(
+          fmt::format("receiver mode '{}' needs an IMU, but scenario '{}' has no imu: section "
+                      "(e.g. imu: {{grade: tactical, rate_hz: 100}})",
+                      p.mode, p.scenario));
     validate_scenario(sc);
   } catch (const std::invalid_argument& e) {
     throw InputError(e.what());
@@ -176,7 +176,8 @@ nlohmann::json run_jam_point(const JamPoint& p, const std::string& out_dir) {
                         {"command", shell_command_line(run_command(run))}};
   const ChannelTimeline timeline = channel_timeline(recorder.tracking, s.sat_truth_path, p.onset_s, sc.duration_s);
   const JamChannels channels = channel_figures(timeline, p.onset_s, sc.duration_s);
-  const JamSolutionFigures solution = solution_figures(recorder.solutions, run.truth, timeline, p.onset_s, sc.duration_s);
+  const JamSolutionFigures solution =
+      solution_figures(recorder.solutions, run.truth, timeline, p.onset_s, sc.duration_s);
   fig["channels"] = to_json(channels);
   fig["solution"] = to_json(solution);
   add_verdict(fig, judge_jam_point(channels, solution));
@@ -191,9 +192,10 @@ nlohmann::json run_jam_point(const JamPoint& p, const std::string& out_dir) {
 }
 
 std::string jam_point_summary(const nlohmann::json& fig) {
-  return fmt::format("{}: tracked {:.2f}, C/N0 {}, fixes {:.2f}, horizontal max {} m -> {}", fig["id"].get<std::string>(),
-                     fig["tracked_fraction_mean"].get<double>(), fig["cn0_mean_dbhz"].dump(),
-                     fig["solution"]["fix_availability"].get<double>(), fig["solution"]["horizontal_max_m"].dump(),
+  return fmt::format("{}: tracked {:.2f}, C/N0 {}, fixes {:.2f}, horizontal max {} m -> {}",
+                     fig["id"].get<std::string>(), fig["tracked_fraction_mean"].get<double>(),
+                     fig["cn0_mean_dbhz"].dump(), fig["solution"]["fix_availability"].get<double>(),
+                     fig["solution"]["horizontal_max_m"].dump(),
                      fig["failed"].get<bool>() ? "FAIL (" + fig["failure"].get<std::string>() + ")" : "ok");
 }
 

@@ -14,13 +14,13 @@
 namespace deepnav::bench {
 
 struct JamPoint {
-  std::string scenario;       ///< scenario file
-  std::string jammer;         ///< cw, chirp, wideband, pulsed
+  std::string scenario;  ///< scenario file
+  std::string jammer;    ///< cw, chirp, wideband, pulsed
   double js_db = 0.0;
   std::string mode = "scalar";
   std::string mitigation = "none";
   std::uint64_t seed = 1;
-  double onset_s = 16.0;      ///< jammer on from here to the end of the scenario
+  double onset_s = 16.0;  ///< jammer on from here to the end of the scenario
   /// Ultra-tight long integration; a coherent length other than the default shows in the id.
   aiding::LongIntegrationConfig long_integration;
 };

@@ -31,7 +31,8 @@ void write_runs_csv(const std::vector<nlohmann::json>& points, const std::string
   csv.write(
       "scenario,jammer,js_db,mode,mitigation,seed,adc_bits,tracked_fraction_mean,tracked_fraction_min,"
       "signal_fraction_mean,cn0_mean_dbhz,"
-      "fix_availability,solution_availability,epochs_in_mode,horizontal_rms_m,horizontal_max_m,vertical_rms_m,vertical_max_m,failed,failure,"
+      "fix_availability,solution_availability,epochs_in_mode,horizontal_rms_m,horizontal_max_m,vertical_rms_m,vertical_"
+      "max_m,failed,failure,"
       "tracked_fraction_by_prn,cn0_by_prn_dbhz,wall_s\n");
   for (const auto& p : points) {
     const auto& s = p["solution"];
@@ -43,15 +44,14 @@ void write_runs_csv(const std::vector<nlohmann::json>& points, const std::string
       tracked += fmt::format("{}{}:{:.3f}", tracked.empty() ? "" : " ", prn, ch["tracked_fraction"].get<double>());
       cn0 += fmt::format("{}{}:{}", cn0.empty() ? "" : " ", prn, cell(ch["cn0_dbhz"], 1));
     }
-    csv.write(fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", cell(p["scenario"], 0),
-                          cell(p["jammer"], 0), cell(p["js_db"], 1), cell(p["mode"], 0), cell(p["mitigation"], 0),
-                          cell(p["seed"], 0), cell(p["adc_bits"], 0), cell(p["tracked_fraction_mean"], 3),
-                          cell(p["tracked_fraction_min"], 3), cell(p.value("signal_fraction_mean", nlohmann::json()), 3),
-                          cell(p["cn0_mean_dbhz"], 2),
-                          cell(s["fix_availability"], 3), cell(s.value("solution_availability", nlohmann::json()), 3),
-                          modes, cell(s["horizontal_rms_m"], 3),
-                          cell(s["horizontal_max_m"], 3), cell(s["vertical_rms_m"], 3), cell(s["vertical_max_m"], 3),
-                          cell(p["failed"], 0), cell(p["failure"], 0), tracked, cn0, cell(p["wall_s"], 1)));
+    csv.write(fmt::format(
+        "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", cell(p["scenario"], 0),
+        cell(p["jammer"], 0), cell(p["js_db"], 1), cell(p["mode"], 0), cell(p["mitigation"], 0), cell(p["seed"], 0),
+        cell(p["adc_bits"], 0), cell(p["tracked_fraction_mean"], 3), cell(p["tracked_fraction_min"], 3),
+        cell(p.value("signal_fraction_mean", nlohmann::json()), 3), cell(p["cn0_mean_dbhz"], 2),
+        cell(s["fix_availability"], 3), cell(s.value("solution_availability", nlohmann::json()), 3), modes,
+        cell(s["horizontal_rms_m"], 3), cell(s["horizontal_max_m"], 3), cell(s["vertical_rms_m"], 3),
+        cell(s["vertical_max_m"], 3), cell(p["failed"], 0), cell(p["failure"], 0), tracked, cn0, cell(p["wall_s"], 1)));
   }
   csv.commit();
 }
@@ -204,8 +204,9 @@ BenchReport write_jam_report(const std::vector<nlohmann::json>& points, const st
   for (const JamThreshold& t : jam_thresholds(points)) {
     const std::string tested = tested_text(t), first = threshold_text(t.median_first_failure_db, t.js_max_db),
                       per_run = per_run_text(t), signal_lost = threshold_text(t.median_signal_lost_db, t.js_max_db);
-    report.add_row({t.scenario, t.jammer, t.mode, t.mitigation, tested, static_cast<long long>(t.first_failure_db.size()),
-                    first, per_run, t.gain_over_none, t.failure, signal_lost});
+    report.add_row({t.scenario, t.jammer, t.mode, t.mitigation, tested,
+                    static_cast<long long>(t.first_failure_db.size()), first, per_run, t.gain_over_none, t.failure,
+                    signal_lost});
     md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", t.scenario, t.jammer, t.mode,
                       t.mitigation, tested, t.first_failure_db.size(), first, per_run, t.gain_over_none, t.failure,
                       signal_lost);

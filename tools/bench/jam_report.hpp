@@ -24,7 +24,7 @@ struct JamThreshold {
   /// every J/S passed.
   std::vector<double> first_failure_db;
   double median_first_failure_db = kNoJamFailure;  ///< the median of those
-  std::string failure;  ///< why the points at those thresholds failed, each reason once
+  std::string failure;                             ///< why the points at those thresholds failed, each reason once
   /// What the mitigation gains over none on the seeds both series ran: "12.5"; "> 8.0" when
   /// the mitigation never failed; "n/a (...)" when it cannot be said; "" for none itself
   /// or without a series without mitigation.

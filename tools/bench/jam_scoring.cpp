@@ -78,8 +78,8 @@ nlohmann::json figure(const std::optional<double>& v) { return v ? nlohmann::jso
 
 void JamRecorder::on_epoch(const NavigationEpoch& e) {
   if (!e.solution.valid) return;
-  solutions.push_back({e.receiver.t_s, e.solution.r_ecef_m, e.solution.llh.lat_rad, e.solution.llh.lon_rad,
-                       std::string(e.mode)});
+  solutions.push_back(
+      {e.receiver.t_s, e.solution.r_ecef_m, e.solution.llh.lat_rad, e.solution.llh.lon_rad, std::string(e.mode)});
 }
 
 void JamRecorder::on_correlation(const CorrelatorEpoch& e, const ChannelSnapshot& ch) {
@@ -121,13 +121,12 @@ ChannelTimeline channel_timeline(const std::vector<TrackingRow>& tracking, const
     const int prn = r.prn;
     if (!doppler.count(prn) || t >= window_end_s) continue;
     const double cn0 = r.cn0_dbhz;
-    if (!(cn0 < loss.lost_cn0_dbhz))
-      below_since.erase(prn);
-    else
-      below_since.try_emplace(prn, t);
+    if (!(cn0 < loss.lost_cn0_dbhz)) below_since.erase(prn);
+    else below_since.try_emplace(prn, t);
     // A channel its filter steers and judges (ultra-tight) is held to that filter's lock
     // criterion instead: a measurement within the last second.
-    const bool faded = r.aided_lock ? !*r.aided_lock : below_since.count(prn) && t - below_since[prn] >= loss.lost_after_s;
+    const bool faded =
+        r.aided_lock ? !*r.aided_lock : below_since.count(prn) && t - below_since[prn] >= loss.lost_after_s;
     auto& recent = last_second[prn];
     double& recent_sum = last_second_sum[prn];
     recent.emplace_back(t, cn0);

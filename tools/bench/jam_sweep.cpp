@@ -55,8 +55,9 @@ int run_parallel(const std::vector<std::pair<JamPoint, std::vector<std::string>>
     const JamPoint& p = work[it->second].first;
     ++done;
     if (status != 0) ++failed;
-    fmt::print("[{}/{}] {} {}\n", done, work.size(), point_id(p),
-               status == 0 ? "done" : fmt::format("FAILED (exit {}, see {}/{}.log)", status, logs.string(), point_id(p)));
+    fmt::print(
+        "[{}/{}] {} {}\n", done, work.size(), point_id(p),
+        status == 0 ? "done" : fmt::format("FAILED (exit {}, see {}/{}.log)", status, logs.string(), point_id(p)));
     std::fflush(stdout);
     running.erase(it);
   }
@@ -104,9 +105,10 @@ std::vector<JamPoint> jam_sweep_points(const JamSweepSettings& o) {
   const auto modes = split_list(o.modes, "--modes");
   for (const auto& m : modes)
     if (find_receiver_mode(m).needs_imu && !base.imu.enabled)
-      throw InputError(fmt::format("--modes {}: mode '{}' needs an IMU, but scenario '{}' has no imu: section "
-                                   "(e.g. imu: {{grade: tactical, rate_hz: 100}})",
-                                   o.modes, m, o.scenario));
+      throw InputError(
+          fmt::format("--modes {}: mode '{}' needs an IMU, but scenario '{}' has no imu: section "
+                      "(e.g. imu: {{grade: tactical, rate_hz: 100}})",
+                      o.modes, m, o.scenario));
   const auto mitigations = split_list(o.mitigations, "--mitigation");
   for (const auto& m : mitigations) {
     try {
@@ -130,17 +132,28 @@ std::vector<JamPoint> jam_sweep_points(const JamSweepSettings& o) {
 }
 
 std::vector<std::string> jam_point_command(const std::string& exe, const JamPoint& p, const std::string& out_dir) {
-  std::vector<std::string> cmd = {exe,           "-q",
-                                  "bench",       "jam-point",
-                                  "--scenario",  p.scenario,
-                                  "--jammer",    p.jammer,
-                                  "--js",        fmt::format("{}", p.js_db),
-                                  "--mode",      p.mode,
-                                  "--mitigation", p.mitigation,
-                                  "--seed",      std::to_string(p.seed),
-                                  "--onset",     fmt::format("{}", p.onset_s),
-                                  "--coherent-ms", std::to_string(p.long_integration.coherent_ms),
-                                  "--noncoherent-ms", std::to_string(p.long_integration.noncoherent_ms)};
+  std::vector<std::string> cmd = {exe,
+                                  "-q",
+                                  "bench",
+                                  "jam-point",
+                                  "--scenario",
+                                  p.scenario,
+                                  "--jammer",
+                                  p.jammer,
+                                  "--js",
+                                  fmt::format("{}", p.js_db),
+                                  "--mode",
+                                  p.mode,
+                                  "--mitigation",
+                                  p.mitigation,
+                                  "--seed",
+                                  std::to_string(p.seed),
+                                  "--onset",
+                                  fmt::format("{}", p.onset_s),
+                                  "--coherent-ms",
+                                  std::to_string(p.long_integration.coherent_ms),
+                                  "--noncoherent-ms",
+                                  std::to_string(p.long_integration.noncoherent_ms)};
   if (p.long_integration.assist_data_bits) cmd.push_back("--assist-data-bits");
   cmd.push_back("--out");
   cmd.push_back(out_dir);
@@ -171,7 +184,8 @@ void run_jam_sweep(const JamSweepSettings& o) {
   report.add_note("out", source_relative(out.string()));
   report.emit(o.json_path);
   if (!o.no_plots && run_plot_script("plot_jam.py", out.string())) spdlog::info("plots written to {}", out.string());
-  if (failed > 0) throw InputError(fmt::format("{} point(s) failed to run; rerun the same command to retry them", failed));
+  if (failed > 0)
+    throw InputError(fmt::format("{} point(s) failed to run; rerun the same command to retry them", failed));
 }
 
 }  // namespace deepnav::bench

@@ -19,17 +19,17 @@ std::string default_jam_scenario();
 
 struct JamSweepSettings {
   std::string scenario = default_jam_scenario();  ///< base scenario (the jammer is added from onset_s)
-  std::string jammers = "cw";         ///< comma-separated jammer types
-  std::string js = "20:60:5";         ///< FROM:TO:STEP (dB), or one value
-  std::string modes = "scalar";       ///< comma-separated receiver modes
+  std::string jammers = "cw";                     ///< comma-separated jammer types
+  std::string js = "20:60:5";                     ///< FROM:TO:STEP (dB), or one value
+  std::string modes = "scalar";                   ///< comma-separated receiver modes
   std::string mitigations = "none,auto";
-  int runs = 1;                       ///< seeds per point: the scenario's, +1, ...
+  int runs = 1;  ///< seeds per point: the scenario's, +1, ...
   double onset_s = 16.0;
-  std::string out_dir;                ///< sweep folder
-  int jobs = 1;                       ///< points run at the same time
-  bool list_commands = false;         ///< print the unfinished points' commands instead
+  std::string out_dir;         ///< sweep folder
+  int jobs = 1;                ///< points run at the same time
+  bool list_commands = false;  ///< print the unfinished points' commands instead
   bool no_plots = false;
-  std::string json_path;              ///< the threshold table as JSON; empty: none
+  std::string json_path;  ///< the threshold table as JSON; empty: none
   aiding::LongIntegrationConfig long_integration;
 };
 

@@ -29,7 +29,8 @@ struct PaperRow {
 constexpr PaperRow kPaperTable1[] = {
     {0.25, 0.1289, 0.0856}, {0.50, 0.1677, 0.0811}, {0.75, 0.2119, 0.0842}, {1.00, 0.2539, 0.0871}};
 
-double max_abs_roll_error_deg(const LeverArmEkfRun& run, const std::vector<AttitudeTruth>& truth, double t0, double t1) {
+double max_abs_roll_error_deg(const LeverArmEkfRun& run, const std::vector<AttitudeTruth>& truth, double t0,
+                              double t1) {
   double worst = 0.0;
   for (std::size_t i = 0; i < truth.size(); ++i)
     if (truth[i].t_s >= t0 && truth[i].t_s <= t1)
@@ -75,10 +76,11 @@ std::vector<T> decimate(const std::vector<T>& v) {
 }
 
 BenchReport ship_report(const LeverArmBenchSettings& opt, nlohmann::json& plot) {
-  BenchReport report("Paper 004 Table 1: maximum roll error 10-12 s (deg), ship rolled by a moment 5-15 s, IMU above "
-                     "the centre of gravity; ours = mean (std) over Monte Carlo runs",
-                     {"arm_m", "paper_conv", "ours_conv", "conv_std", "paper_prop", "ours_prop", "prop_std",
-                      "est_arm_m", "est_arm_std"});
+  BenchReport report(
+      "Paper 004 Table 1: maximum roll error 10-12 s (deg), ship rolled by a moment 5-15 s, IMU above "
+      "the centre of gravity; ours = mean (std) over Monte Carlo runs",
+      {"arm_m", "paper_conv", "ours_conv", "conv_std", "paper_prop", "ours_prop", "prop_std", "est_arm_m",
+       "est_arm_std"});
   for (const char* c : {"paper_conv", "ours_conv", "conv_std", "paper_prop", "ours_prop", "prop_std"})
     report.set_precision(c, 4);
   report.set_precision("arm_m", 2);
@@ -115,25 +117,28 @@ BenchReport ship_report(const LeverArmBenchSettings& opt, nlohmann::json& plot) 
     }
     conv_mean.push_back(conv.mean());
     prop_mean.push_back(prop.mean());
-    report.add_row(numeric_row({row.arm_m, row.conventional_deg, conv.mean(), conv.std(), row.proposed_deg,
-                                prop.mean(), prop.std(), arm.mean(), arm.std()}));
+    report.add_row(numeric_row({row.arm_m, row.conventional_deg, conv.mean(), conv.std(), row.proposed_deg, prop.mean(),
+                                prop.std(), arm.mean(), arm.std()}));
   }
   auto pct = [](double a, double b) { return 100.0 * (b - a) / a; };
   report.add_note("conventional growth 0.25 -> 1.00 m (paper +96.9 %), %", pct(conv_mean.front(), conv_mean.back()));
   report.add_note("lever-arm filter growth 0.25 -> 1.00 m (paper +1.8 %), %", pct(prop_mean.front(), prop_mean.back()));
   report.add_note("reduction at 0.25 m (paper 33.6 %), %", -pct(conv_mean.front(), prop_mean.front()));
   report.add_note("runs, seed", std::vector<long long>{opt.runs, static_cast<long long>(opt.seed)});
-  report.add_note("ship (our figures; paper gives ~7 t and 5-15 s only)",
-                  "7000 kg, Ixx 10080 kg m^2, GM 0.5 m, 10 % damping, 2000 N m wave moment of 4 s period, ~11.5 deg roll");
-  report.add_note("IMU (industrial MEMS, our figures)",
-                  "0.3 deg/sqrt(h) ARW, 72 deg/h Markov drift (300 s), 100 ug/sqrt(Hz), 1 mg accelerometer bias, 100 Hz");
+  report.add_note(
+      "ship (our figures; paper gives ~7 t and 5-15 s only)",
+      "7000 kg, Ixx 10080 kg m^2, GM 0.5 m, 10 % damping, 2000 N m wave moment of 4 s period, ~11.5 deg roll");
+  report.add_note(
+      "IMU (industrial MEMS, our figures)",
+      "0.3 deg/sqrt(h) ARW, 72 deg/h Markov drift (300 s), 100 ug/sqrt(Hz), 1 mg accelerometer bias, 100 Hz");
   report.add_note("filter", "R = (1 m/s^2)^2 I, lambda = 1e-6 m^2/s, angular acceleration from a +-5 sample local fit");
   return report;
 }
 
 BenchReport rate_table_report(const LeverArmBenchSettings& opt, nlohmann::json& plot) {
-  BenchReport report("Rate table (paper 004 experiment, simulated): 18 cm arm, roll 30 deg amplitude, 2 s period from 5 s",
-                     {"filter", "max_roll_err_deg", "rms_roll_err_deg", "est_arm_m"});
+  BenchReport report(
+      "Rate table (paper 004 experiment, simulated): 18 cm arm, roll 30 deg amplitude, 2 s period from 5 s",
+      {"filter", "max_roll_err_deg", "rms_roll_err_deg", "est_arm_m"});
   for (const char* c : {"max_roll_err_deg", "rms_roll_err_deg", "est_arm_m"}) report.set_precision(c, 4);
   const auto truth = simulate_rate_table({});
   const MemsImuFigures imu = MemsImuFigures::industrial();
@@ -222,7 +227,8 @@ void run_leverarm_bench(const LeverArmBenchSettings& settings) {
   if (!settings.plots_dir.empty()) {
     make_plots_dir(settings.plots_dir);
     write_json_file(settings.plots_dir + "/leverarm_traces.json", r.traces);
-    if (run_plot_script("plot_leverarm.py", settings.plots_dir)) spdlog::info("plots written to {}", settings.plots_dir);
+    if (run_plot_script("plot_leverarm.py", settings.plots_dir))
+      spdlog::info("plots written to {}", settings.plots_dir);
   }
 }
 

@@ -12,10 +12,10 @@
 namespace deepnav::bench {
 
 struct LeverArmBenchSettings {
-  int runs = 20;          ///< Monte Carlo runs per lever arm
-  std::uint64_t seed = 1; ///< base seed of the random generators
-  std::string json_path;  ///< the tables as JSON; empty: none
-  std::string plots_dir;  ///< PNG plots and their data; empty: none
+  int runs = 20;           ///< Monte Carlo runs per lever arm
+  std::uint64_t seed = 1;  ///< base seed of the random generators
+  std::string json_path;   ///< the tables as JSON; empty: none
+  std::string plots_dir;   ///< PNG plots and their data; empty: none
 };
 
 struct LeverArmBenchResult {

@@ -44,16 +44,12 @@ std::vector<std::string> receiver_mode_run_arguments(const ReceiverMode& mode, c
     throw InputError(fmt::format("receiver mode '{}' needs an IMU file (--imu), and the run names none", mode.name));
   std::vector<std::string> args;
   for (const auto& a : mode.run_arguments) {
-    if (a == "{imu}")
-      args.push_back(imu.path);
-    else if (a == "{imu_grade}")
-      args.push_back(imu.grade);
-    else if (a == "{imu_grades_file}")
-      args.push_back(imu.grades_file);
+    if (a == "{imu}") args.push_back(imu.path);
+    else if (a == "{imu_grade}") args.push_back(imu.grade);
+    else if (a == "{imu_grades_file}") args.push_back(imu.grades_file);
     else if (a == "{imu_lever_arm}")
       for (double x : imu.lever_arm_m) args.push_back(fmt::format("{}", x));
-    else
-      args.push_back(a);
+    else args.push_back(a);
   }
   return args;
 }

@@ -18,7 +18,7 @@ struct ReceiverMode {
 
 /// The IMU of a run, as the scenario describes it and the synthesizer wrote it.
 struct RunImu {
-  std::string path;         ///< imu.csv; empty when the scenario has no `imu:` section
+  std::string path;  ///< imu.csv; empty when the scenario has no `imu:` section
   std::string grade;
   std::string grades_file;
   std::array<double, 3> lever_arm_m{0.0, 0.0, 0.0};

@@ -13,8 +13,11 @@
 namespace deepnav::bench {
 
 std::vector<std::string> run_command(const RunConfiguration& run) {
-  std::vector<std::string> argv = {"deepnav", "run", "--input", run.input, "--format", to_string(run.format),
-                                   "--fs", fmt::format("{}", run.sample_rate_hz), "--if", fmt::format("{}", run.if_hz)};
+  std::vector<std::string> argv = {"deepnav",  "run",
+                                   "--input",  run.input,
+                                   "--format", to_string(run.format),
+                                   "--fs",     fmt::format("{}", run.sample_rate_hz),
+                                   "--if",     fmt::format("{}", run.if_hz)};
   const auto add = [&argv](const char* option, const std::string& value) {
     if (value.empty()) return;  // not given: `deepnav run`'s default
     argv.push_back(option);

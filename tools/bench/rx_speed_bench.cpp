@@ -103,7 +103,8 @@ std::vector<std::string> add_correlator_rows(BenchReport& report) {
     for (bool noise_tap : {true, false}) {
       const CorrelatorThroughput t = correlator_throughput(k, noise_tap);
       report.add_row({std::string("correlator ") + correlator_kernel_name(k) + (noise_tap ? "" : " E/P/L"), 12LL, 1LL,
-                      0LL, 0.0, t.wall_s, t.cpu_s, 0.0, 0.0, t.channel_samples / t.wall_s, t.channel_samples / t.cpu_s});
+                      0LL, 0.0, t.wall_s, t.cpu_s, 0.0, 0.0, t.channel_samples / t.wall_s,
+                      t.channel_samples / t.cpu_s});
     }
   }
   return kernels;
@@ -134,7 +135,8 @@ void run_rx_speed_bench(const RxSpeedSettings& o) {
   };
   for (int channels : {8, 12}) {
     add("scalar", channels, 1, median_run(o.repeats, [&] { return run_scalar(sc, s, channels, 1); }));
-    if (cores > 1) add("scalar", channels, cores, median_run(o.repeats, [&] { return run_scalar(sc, s, channels, cores); }));
+    if (cores > 1)
+      add("scalar", channels, cores, median_run(o.repeats, [&] { return run_scalar(sc, s, channels, cores); }));
   }
   add("ultra-tight", 12, 1, median_run(o.repeats, [&] { return run_ultra(sc, s); }));
   const std::vector<std::string> kernels = add_correlator_rows(report);
@@ -142,18 +144,23 @@ void run_rx_speed_bench(const RxSpeedSettings& o) {
   report.add_note("cpu", cpu_model());
   report.add_note("instruction_sets", instruction_sets());
   report.add_note("correlator_kernels", kernels);
-  report.add_note("kernel_in_use", std::string(correlator_kernel_name(in_use)) +
-                                       (in_use == fastest_correlator_kernel() ? "" : " (chosen; the CPU's fastest is " +
-                                                                                     std::string(correlator_kernel_name(fastest_correlator_kernel())) + ")"));
+  report.add_note("kernel_in_use",
+                  std::string(correlator_kernel_name(in_use)) +
+                      (in_use == fastest_correlator_kernel()
+                           ? ""
+                           : " (chosen; the CPU's fastest is " +
+                                 std::string(correlator_kernel_name(fastest_correlator_kernel())) + ")"));
   report.add_note("scenario", source_relative(o.scenario));
   report.add_note("repeats", std::to_string(o.repeats) + " runs per receiver row, the median shown");
-  report.add_note("notes", "receiver rows: whole receiver (acquisition, tracking, navigation data, PVT; assisted "
-                           "ephemerides); channel_samples_per_s = realtime_factor x fs x channels; the *_cpu columns "
-                           "use the process's CPU time instead of wall time (on a shared machine the one-thread figures "
-                           "are closer to an idle machine's). Correlator rows: "
-                           "E/P/L + noise taps (\"E/P/L\": without the noise tap, as the receiver runs most integrations) over 1 ms "
-                           "spans, one core, input prepared once per block as in the receiver (magnitude scan; planar "
-                           "copy for avx512).");
+  report.add_note(
+      "notes",
+      "receiver rows: whole receiver (acquisition, tracking, navigation data, PVT; assisted "
+      "ephemerides); channel_samples_per_s = realtime_factor x fs x channels; the *_cpu columns "
+      "use the process's CPU time instead of wall time (on a shared machine the one-thread figures "
+      "are closer to an idle machine's). Correlator rows: "
+      "E/P/L + noise taps (\"E/P/L\": without the noise tap, as the receiver runs most integrations) over 1 ms "
+      "spans, one core, input prepared once per block as in the receiver (magnitude scan; planar "
+      "copy for avx512).");
   report.emit(o.json_path);
 }
 

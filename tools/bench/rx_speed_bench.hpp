@@ -15,11 +15,11 @@ std::string default_rx_speed_scenario();
 
 struct RxSpeedSettings {
   std::string scenario = default_rx_speed_scenario();  ///< 12 satellites and an imu section
-  double duration_s = 60.0;  ///< signal length
-  int repeats = 3;           ///< runs per receiver case; the median is reported
-  std::string work_dir;      ///< where the (deleted) IF file goes; empty: the temporary folder
-  std::string json_path;     ///< the figures as JSON; empty: none
-  std::string kernel;        ///< correlator kernel for the receiver runs; empty: the default
+  double duration_s = 60.0;                            ///< signal length
+  int repeats = 3;                                     ///< runs per receiver case; the median is reported
+  std::string work_dir;   ///< where the (deleted) IF file goes; empty: the temporary folder
+  std::string json_path;  ///< the figures as JSON; empty: none
+  std::string kernel;     ///< correlator kernel for the receiver runs; empty: the default
 };
 
 /// Runs every case and prints the table (and writes the JSON asked for); throws InputError

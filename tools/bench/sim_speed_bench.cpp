@@ -25,8 +25,8 @@ void run_sim_speed_bench(const SimSpeedSettings& o) {
   const NavData nav = read_rinex_nav(sc.nav_file);
   const std::string work = bench_scratch_dir(o.work_dir, "bench_sim");
 
-  BenchReport report("IF synthesis speed", {"threads", "satellites", "signal_s", "wall_s", "x_real_time",
-                                            "ns_per_sample", "peak_rss_mib"});
+  BenchReport report("IF synthesis speed",
+                     {"threads", "satellites", "signal_s", "wall_s", "x_real_time", "ns_per_sample", "peak_rss_mib"});
   report.set_precision("x_real_time", 1);
   report.set_precision("ns_per_sample", 2);
   report.set_precision("peak_rss_mib", 1);

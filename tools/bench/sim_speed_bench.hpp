@@ -9,12 +9,12 @@ std::string default_sim_speed_scenario();
 
 struct SimSpeedSettings {
   std::string scenario = default_sim_speed_scenario();  ///< base scenario (its time, place and clock are used)
-  double duration_s = 10.0;   ///< seconds of signal per run
+  double duration_s = 10.0;                             ///< seconds of signal per run
   int satellites = 10;
   std::string format = "ibyte";
   int adc_bits = 2;
-  std::string work_dir;       ///< where the (deleted) IF files go; empty: the temporary folder
-  std::string json_path;      ///< the figures as JSON; empty: none
+  std::string work_dir;   ///< where the (deleted) IF files go; empty: the temporary folder
+  std::string json_path;  ///< the figures as JSON; empty: none
 };
 
 /// Synthesizes on one thread and on every core and prints the table (and writes the JSON

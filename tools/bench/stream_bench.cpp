@@ -154,8 +154,9 @@ void run_stream_bench(const StreamBenchSettings& o) {
   report.add_note("satellites", synth.satellites().size());
   report.add_note("format", std::string(to_string(sc.format)));
   report.add_note("sample_rate_hz", sc.sample_rate_hz);
-  report.add_note("cpu_note", "receiver_cpu_pct: the receiver thread (acquisition, tracking, PVT, sample conversion), "
-                              "percent of one core; process_cpu_pct adds the server and the socket I/O thread");
+  report.add_note("cpu_note",
+                  "receiver_cpu_pct: the receiver thread (acquisition, tracking, PVT, sample conversion), "
+                  "percent of one core; process_cpu_pct adds the server and the socket I/O thread");
   report.add_note("hardware_threads", std::thread::hardware_concurrency());
   report.emit(o.json_path);
 }

@@ -78,14 +78,16 @@ void run_mode_thresholds(const ThresholdBenchSettings& o) {
   if (!o.imu_grade.empty()) base.imu.grade = o.imu_grade;
   if (!o.oscillator.empty()) set_oscillator_preset(base.clock, o.oscillator);
   const Scenario sc = with_ramp(base, o);
-  if (!sc.imu.enabled) throw InputError("scenario '" + o.aided_scenario + "' has no imu section (the aided modes need one)");
+  if (!sc.imu.enabled)
+    throw InputError("scenario '" + o.aided_scenario + "' has no imu section (the aided modes need one)");
   const std::string work = bench_scratch_dir(o.work_dir, "bench_threshold_modes");
   SynthesisOptions so;
   so.threads = 0;
   const SynthesisSummary s = IfSynthesizer(sc, read_rinex_nav(sc.nav_file)).run(work, so);
   BenchReport report("Weak-signal threshold per mode (land circle, C/N0 ramp)",
                      {"mode", "holds_until_s", "threshold_dbhz", "failure", "max_h_error_before_m", "wall_s"});
-  for (const char* col : {"holds_until_s", "threshold_dbhz", "max_h_error_before_m", "wall_s"}) report.set_precision(col, 1);
+  for (const char* col : {"holds_until_s", "threshold_dbhz", "max_h_error_before_m", "wall_s"})
+    report.set_precision(col, 1);
   for (const auto& name : o.modes) {
     const aiding::NavMode mode = aiding::parse_nav_mode(name);
     AidedRunSettings settings;
@@ -185,9 +187,11 @@ void run_scalar_threshold(const ThresholdBenchSettings& o) {
   std::sort(thresholds.begin(), thresholds.end());
   std::sort(phase_thresholds.begin(), phase_thresholds.end());
   if (!thresholds.empty()) report.add_note("median_threshold_dbhz", thresholds[thresholds.size() / 2]);
-  if (!phase_thresholds.empty()) report.add_note("median_phase_threshold_dbhz", phase_thresholds[phase_thresholds.size() / 2]);
-  report.add_note("criteria", "frequency: NCO within 5 Hz of the true Doppler; phase: first cycle slip (the NCO phase "
-                              "minus the true carrier phase moves by more than 0.35 cycle within 0.2 s)");
+  if (!phase_thresholds.empty())
+    report.add_note("median_phase_threshold_dbhz", phase_thresholds[phase_thresholds.size() / 2]);
+  report.add_note("criteria",
+                  "frequency: NCO within 5 Hz of the true Doppler; phase: first cycle slip (the NCO phase "
+                  "minus the true carrier phase moves by more than 0.35 cycle within 0.2 s)");
   report.add_note("ramp", ramp_note(o));
   report.add_note("loops", "FLL-assisted PLL 10 Hz (tracking), DLL 0.5 Hz, 10 ms coherent after bit sync");
   report.emit(o.json_path);

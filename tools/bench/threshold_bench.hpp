@@ -18,18 +18,18 @@ std::string default_threshold_aided_scenario();
 
 struct ThresholdBenchSettings {
   std::string scenario = default_threshold_scenario();  ///< base scenario of the scalar sweep (static)
-  double start_dbhz = 40.0;    ///< C/N0 before the ramp
+  double start_dbhz = 40.0;                             ///< C/N0 before the ramp
   double ramp_start_s = 15.0;
-  double rate_dbps = 0.25;     ///< C/N0 fall rate
-  double end_dbhz = 15.0;      ///< lowest C/N0
-  std::string json_path;       ///< the figures as JSON; empty: none
-  std::string work_dir;        ///< where the (deleted) IF file goes; empty: the temporary folder
+  double rate_dbps = 0.25;         ///< C/N0 fall rate
+  double end_dbhz = 15.0;          ///< lowest C/N0
+  std::string json_path;           ///< the figures as JSON; empty: none
+  std::string work_dir;            ///< where the (deleted) IF file goes; empty: the temporary folder
   std::vector<std::string> modes;  ///< non-empty: the per-mode threshold on the aided scenario
   std::string aided_scenario = default_threshold_aided_scenario();  ///< of the per-mode sweep (needs an imu section)
-  std::string imu_grade;       ///< per mode: this grade instead of the scenario's (empty: the scenario's)
-  std::string oscillator;      ///< per mode: this oscillator instead of the scenario's (empty: the scenario's)
+  std::string imu_grade;   ///< per mode: this grade instead of the scenario's (empty: the scenario's)
+  std::string oscillator;  ///< per mode: this oscillator instead of the scenario's (empty: the scenario's)
   aiding::LongIntegrationConfig long_integration;  ///< ultra-tight long integration
-  std::string long_integration_text;  ///< how the report describes long_integration
+  std::string long_integration_text;               ///< how the report describes long_integration
 };
 
 /// The ramp's C/N0 at time t (dB-Hz).

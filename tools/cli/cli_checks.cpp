@@ -18,8 +18,7 @@ CLI::Validator finite_check(double lo, double hi, bool lo_open, const std::strin
         const double v = std::strtod(text.c_str(), &end);
         if (end == text.c_str() || *end != '\0' || !std::isfinite(v) || errno == ERANGE)
           return fmt::format("'{}' is not a finite number ({} in {})", text, what, range);
-        if (v < lo || v > hi || (lo_open && v == lo))
-          return fmt::format("{} is outside {} ({})", text, range, what);
+        if (v < lo || v > hi || (lo_open && v == lo)) return fmt::format("{} is outside {} ({})", text, range, what);
         return {};
       },
       fmt::format("{} in {}", what, range));

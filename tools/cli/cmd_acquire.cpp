@@ -82,10 +82,11 @@ void run_acquire(AcquireOptions o) {
   if (!o.json_path.empty()) {
     nlohmann::json all = nlohmann::json::array();
     for (const auto& r : results) all.push_back(to_json(r));
-    const std::string text = nlohmann::json{{"input", opened.input},
-                                            {"sample_rate_hz", o.acq.sample_rate_hz},
-                                            {"if_hz", o.acq.if_hz},
-                                            {"results", all}}.dump(2) + "\n";
+    const std::string text =
+        nlohmann::json{
+            {"input", opened.input}, {"sample_rate_hz", o.acq.sample_rate_hz}, {"if_hz", o.acq.if_hz}, {"results", all}}
+            .dump(2) +
+        "\n";
     if (o.json_path == "-") {
       std::cout << text;
     } else {
@@ -101,7 +102,8 @@ void run_acquire(AcquireOptions o) {
     for (const auto& r : results) {
       if (!r.detected) continue;
       fmt::print("{:>4} {:>11.1f} {:>13.2f} {:>12.3f} {:>9.1f} {:>10.1f} {:>10.1f}\n", r.prn, r.doppler_hz,
-                 r.delay_samples, r.delay_samples * 1.023e6 / o.acq.sample_rate_hz, r.cn0_dbhz, r.statistic, r.threshold);
+                 r.delay_samples, r.delay_samples * 1.023e6 / o.acq.sample_rate_hz, r.cn0_dbhz, r.statistic,
+                 r.threshold);
     }
   }
   if (detected == 0)
@@ -115,7 +117,8 @@ void run_acquire(AcquireOptions o) {
 
 void add_acquire_command(CommandParents& parents) {
   auto o = std::make_shared<AcquireOptions>();
-  CLI::App* cmd = parents.root.add_subcommand("acquire", "Cold-start FFT acquisition of an IF file: detected PRNs, Doppler, code delay");
+  CLI::App* cmd = parents.root.add_subcommand(
+      "acquire", "Cold-start FFT acquisition of an IF file: detected PRNs, Doppler, code delay");
   add_source_options(*cmd, o->source, SourceUse::acquisition);
   cmd->add_option("--doppler-max", o->acq.doppler_max_hz, "Doppler search half-width (Hz)")
       ->check(finite_in(0.0, 50000.0, "a Doppler in Hz"))
@@ -133,7 +136,8 @@ void add_acquire_command(CommandParents& parents) {
       ->check(finite_above(0.0, 0.5, "a probability"))
       ->capture_default_str();
   cmd->add_option("--prn", o->prn_list, "Only these PRNs, e.g. 1,5,31");
-  cmd->add_option("--json", o->json_path, "Write every searched PRN as JSON to FILE ('-': stdout instead of the table)");
+  cmd->add_option("--json", o->json_path,
+                  "Write every searched PRN as JSON to FILE ('-': stdout instead of the table)");
   cmd->callback([o, cmd] {
     note_given_source_options(*cmd, o->source);
     run_acquire(*o);

@@ -39,7 +39,8 @@ void add_bench_jam_command(CommandParents& parents) {
   // The options jam_point_command writes for each point of the sweep.
   auto p = std::make_shared<JamPoint>();
   auto out = std::make_shared<std::string>();
-  CLI::App* point = parents.bench.add_subcommand("jam-point", "One point of `deepnav bench jam` (writes OUT/points/ID/point.json)");
+  CLI::App* point =
+      parents.bench.add_subcommand("jam-point", "One point of `deepnav bench jam` (writes OUT/points/ID/point.json)");
   point->add_option("--scenario", p->scenario, "Base scenario")->required();
   point->add_option("--jammer", p->jammer, "cw, chirp, wideband, pulsed")->required();
   point->add_option("--js", p->js_db, "J/S (dB)")->required();
@@ -51,7 +52,8 @@ void add_bench_jam_command(CommandParents& parents) {
   point->add_option("--onset", p->onset_s, "Jammer onset (s)")->capture_default_str();
   add_long_integration_options(*point, p->long_integration);
   point->add_option("--out", *out, "Sweep folder")->required();
-  point->callback([p, out] { fmt::print("{}\n", jam_point_summary(run_jam_point(*p, std::filesystem::absolute(*out).string()))); });
+  point->callback(
+      [p, out] { fmt::print("{}\n", jam_point_summary(run_jam_point(*p, std::filesystem::absolute(*out).string()))); });
 }
 
 }  // namespace deepnav::cli

@@ -8,7 +8,8 @@ using namespace deepnav::bench;  // the engines this command drives
 
 void add_bench_rx_command(CommandParents& parents) {
   auto o = std::make_shared<RxSpeedSettings>();
-  CLI::App* cmd = parents.bench.add_subcommand("rx", "Receiver real-time factor (8/12 channels, 1 thread/all cores, ultra) and correlator throughput");
+  CLI::App* cmd = parents.bench.add_subcommand(
+      "rx", "Receiver real-time factor (8/12 channels, 1 thread/all cores, ultra) and correlator throughput");
   cmd->add_option("--scenario", o->scenario, "Scenario with 12 satellites and an imu section")->capture_default_str();
   cmd->add_option("--duration", o->duration_s, "Signal length (s)")->capture_default_str();
   cmd->add_option("--repeats", o->repeats, "Runs per receiver case; the median is reported")
@@ -16,9 +17,10 @@ void add_bench_rx_command(CommandParents& parents) {
       ->capture_default_str();
   cmd->add_option("--work-dir", o->work_dir, "Where the (deleted) IF file is written");
   cmd->add_option("--json", o->json_path, "Write the figures as JSON to this file");
-  cmd->add_option("--kernel", o->kernel,
-                  "Correlator kernel for the receiver runs (portable, avx2, avx512, neon; default: the CPU's fastest, or "
-                  "DEEPNAV_CORRELATOR_KERNEL)");
+  cmd->add_option(
+      "--kernel", o->kernel,
+      "Correlator kernel for the receiver runs (portable, avx2, avx512, neon; default: the CPU's fastest, or "
+      "DEEPNAV_CORRELATOR_KERNEL)");
   cmd->callback([o] { run_rx_speed_bench(*o); });
 }
 

@@ -9,7 +9,8 @@ using namespace deepnav::bench;  // the engines this command drives
 void add_bench_sim_command(CommandParents& parents) {
   auto o = std::make_shared<SimSpeedSettings>();
   CLI::App* cmd = parents.bench.add_subcommand("sim", "IF synthesis speed on one core and all cores, peak memory");
-  cmd->add_option("--scenario", o->scenario, "Base scenario (its time, place and clock are used)")->capture_default_str();
+  cmd->add_option("--scenario", o->scenario, "Base scenario (its time, place and clock are used)")
+      ->capture_default_str();
   cmd->add_option("--duration", o->duration_s, "Seconds of signal per run")->capture_default_str();
   cmd->add_option("--satellites", o->satellites, "Number of satellites")->capture_default_str();
   cmd->add_option("--format", o->format, "Sample format")->capture_default_str();

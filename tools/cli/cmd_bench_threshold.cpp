@@ -9,7 +9,8 @@ using namespace deepnav::bench;  // the engines this command drives
 
 void add_bench_threshold_command(CommandParents& parents) {
   auto o = std::make_shared<ThresholdBenchSettings>();
-  CLI::App* cmd = parents.bench.add_subcommand("threshold", "Lowest C/N0 at which the scalar loops keep lock (C/N0 ramp)");
+  CLI::App* cmd =
+      parents.bench.add_subcommand("threshold", "Lowest C/N0 at which the scalar loops keep lock (C/N0 ramp)");
   cmd->add_option("--scenario", o->scenario, "Base scenario (static)")->capture_default_str();
   cmd->add_option("--start", o->start_dbhz, "C/N0 before the ramp (dB-Hz)")->capture_default_str();
   cmd->add_option("--ramp-start", o->ramp_start_s, "Ramp start (s)")->capture_default_str();
@@ -19,9 +20,12 @@ void add_bench_threshold_command(CommandParents& parents) {
                   "Instead: each of these modes (scalar,loose,tight,ultra) on the land circle with an IMU; the C/N0 at "
                   "which it stops holding a 10 m solution from satellite measurements")
       ->delimiter(',');
-  cmd->add_option("--aided-scenario", o->aided_scenario, "Scenario for --modes (needs an imu section)")->capture_default_str();
-  cmd->add_option("--imu-grade", o->imu_grade, "With --modes: this IMU grade instead of the scenario's (e.g. consumer)");
-  cmd->add_option("--oscillator", o->oscillator, "With --modes: this receiver oscillator instead of the scenario's (ideal, tcxo, ocxo)")
+  cmd->add_option("--aided-scenario", o->aided_scenario, "Scenario for --modes (needs an imu section)")
+      ->capture_default_str();
+  cmd->add_option("--imu-grade", o->imu_grade,
+                  "With --modes: this IMU grade instead of the scenario's (e.g. consumer)");
+  cmd->add_option("--oscillator", o->oscillator,
+                  "With --modes: this receiver oscillator instead of the scenario's (ideal, tcxo, ocxo)")
       ->check(CLI::IsMember({"ideal", "tcxo", "ocxo"}));
   add_long_integration_options(*cmd, o->long_integration);
   cmd->add_option("--work-dir", o->work_dir, "Where the (deleted) IF file is written");

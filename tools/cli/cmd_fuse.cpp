@@ -49,13 +49,18 @@ void resolve_config_paths(CLI::App& root, FuseOptions& o) {
     return;  // the configuration reader has reported it already
   }
   const std::string dir = std::filesystem::path(file).parent_path().string();
-  for (auto [key, value] : {std::pair{"obs", &o.obs}, {"nav", &o.nav}, {"imu", &o.imu}, {"reference", &o.reference},
-                            {"compare", &o.compare}, {"out", &o.out_dir}, {"imu-grades-file", &o.imu_grades_file}}) {
+  for (auto [key, value] : {std::pair{"obs", &o.obs},
+                            {"nav", &o.nav},
+                            {"imu", &o.imu},
+                            {"reference", &o.reference},
+                            {"compare", &o.compare},
+                            {"out", &o.out_dir},
+                            {"imu-grades-file", &o.imu_grades_file}}) {
     for (const std::string& k : {std::string(key), [&] {
-                                  std::string u = key;
-                                  std::replace(u.begin(), u.end(), '-', '_');
-                                  return u;
-                                }()}) {
+                                   std::string u = key;
+                                   std::replace(u.begin(), u.end(), '-', '_');
+                                   return u;
+                                 }()}) {
       if (y[k] && y[k].IsScalar() && y[k].Scalar() == *value && !value->empty() &&
           !std::filesystem::path(*value).is_absolute())
         *value = (std::filesystem::path(dir.empty() ? "." : dir) / *value).lexically_normal().string();
@@ -114,7 +119,8 @@ void run_fuse(CLI::App& root, FuseOptions o) {
     ImuMounting mounting;
     mounting.rpy_deg = Eigen::Vector3d(o.imu_rpy_deg[0], o.imu_rpy_deg[1], o.imu_rpy_deg[2]);
     mounting.imu_position_b_m = Eigen::Vector3d(o.imu_position_m[0], o.imu_position_m[1], o.imu_position_m[2]);
-    mounting.antenna_position_b_m = Eigen::Vector3d(o.antenna_position_m[0], o.antenna_position_m[1], o.antenna_position_m[2]);
+    mounting.antenna_position_b_m =
+        Eigen::Vector3d(o.antenna_position_m[0], o.antenna_position_m[1], o.antenna_position_m[2]);
     apply_mounting(imu.log, mounting);
     aiding::to_fusion_axis(imu.log, base, obs);
     c.mode = aiding::parse_nav_mode(o.mode);
@@ -153,18 +159,23 @@ void run_fuse(CLI::App& root, FuseOptions o) {
   SolutionCollector collected;
   std::vector<ProductSink*> sinks{&stats, &collected, &pvt_csv, &nmea, &track, &obs_out, &nav_out};
   TextOutputFile filter_csv(path("filter.csv")), innovations_csv(path("innovations.csv"));
-  filter_csv.write("t_s,filter,pvt_valid,pvt_satellites,rows,rows_rejected,zero_velocity,clock_jump_m,sigma_n_m,sigma_e_m,sigma_d_m\n");
-  innovations_csv.write("t_s,prn,elevation_deg,cn0_dbhz,smoothing_epochs,code_residual_m,code_normalized,code_rejected,"
-                        "rate_residual_mps,rate_rejected\n");
+  filter_csv.write(
+      "t_s,filter,pvt_valid,pvt_satellites,rows,rows_rejected,zero_velocity,clock_jump_m,sigma_n_m,sigma_e_m,sigma_d_"
+      "m\n");
+  innovations_csv.write(
+      "t_s,prn,elevation_deg,cn0_dbhz,smoothing_epochs,code_residual_m,code_normalized,code_rejected,"
+      "rate_residual_mps,rate_rejected\n");
   const auto opt = [](const std::optional<double>& v) { return v ? fmt::format("{:.4f}", *v) : std::string(); };
   fusion->set_trace([&](const aiding::FusionEpochTrace& t) {
-    filter_csv.write(fmt::format("{:.3f},{:d},{:d},{},{},{},{:d},{:.3f},{:.3f},{:.3f},{:.3f}\n", t.t_s, t.filter, t.pvt_valid,
-                                 t.pvt_satellites, t.rows, t.rows_rejected, t.zero_velocity, t.clock_jump_m,
-                                 t.position_sigma_ned_m.x(), t.position_sigma_ned_m.y(), t.position_sigma_ned_m.z()));
+    filter_csv.write(fmt::format("{:.3f},{:d},{:d},{},{},{},{:d},{:.3f},{:.3f},{:.3f},{:.3f}\n", t.t_s, t.filter,
+                                 t.pvt_valid, t.pvt_satellites, t.rows, t.rows_rejected, t.zero_velocity,
+                                 t.clock_jump_m, t.position_sigma_ned_m.x(), t.position_sigma_ned_m.y(),
+                                 t.position_sigma_ned_m.z()));
     for (const aiding::FusionSatelliteTrace& st : t.satellites)
-      innovations_csv.write(fmt::format("{:.3f},{},{:.2f},{:.1f},{},{},{},{:d},{},{:d}\n", t.t_s, st.prn, st.elevation_deg,
-                                        st.cn0_dbhz, st.smoothing_epochs, opt(st.code_residual_m), opt(st.code_normalized),
-                                        st.code_rejected, opt(st.rate_residual_mps), st.rate_rejected));
+      innovations_csv.write(fmt::format("{:.3f},{},{:.2f},{:.1f},{},{},{},{:d},{},{:d}\n", t.t_s, st.prn,
+                                        st.elevation_deg, st.cn0_dbhz, st.smoothing_epochs, opt(st.code_residual_m),
+                                        opt(st.code_normalized), st.code_rejected, opt(st.rate_residual_mps),
+                                        st.rate_rejected));
   });
   fusion->run(sinks);
   filter_csv.commit();
@@ -212,8 +223,10 @@ void run_fuse(CLI::App& root, FuseOptions o) {
         {"backward_time", imu.report.backward_time},
         {"first_backward_line", imu.report.first_backward_line},
         {"truncated_lines", imu.report.truncated_lines},
-        {"interval_s", {{"nominal", imu.report.nominal_interval_s}, {"min", imu.report.min_interval_s},
-                        {"max", imu.report.max_interval_s}}},
+        {"interval_s",
+         {{"nominal", imu.report.nominal_interval_s},
+          {"min", imu.report.min_interval_s},
+          {"max", imu.report.max_interval_s}}},
         {"time_scale", imu.report.time_scale},
         {"time_offset_s", imu.report.time_offset_s},
         {"time_base", o.imu_time_base},
@@ -222,10 +235,11 @@ void run_fuse(CLI::App& root, FuseOptions o) {
     const ReferenceErrors ours = reference_errors(collected.points(), reference);
     summary["reference"] = o.reference;
     summary["reference_errors"] = ours.json();
-    fmt::print("against the reference ({} epochs): mean offset E {:.2f} N {:.2f} U {:.2f} m; horizontal RMS {:.2f} m, "
-               "about the mean offset {:.2f} m (max {:.2f} m, 3-D max {:.2f} m)\n",
-               ours.epochs, ours.mean_offset_enu_m.x(), ours.mean_offset_enu_m.y(), ours.mean_offset_enu_m.z(),
-               ours.rms_horizontal_m, ours.scatter_rms_horizontal_m, ours.scatter_max_horizontal_m, ours.scatter_max_3d_m);
+    fmt::print(
+        "against the reference ({} epochs): mean offset E {:.2f} N {:.2f} U {:.2f} m; horizontal RMS {:.2f} m, "
+        "about the mean offset {:.2f} m (max {:.2f} m, 3-D max {:.2f} m)\n",
+        ours.epochs, ours.mean_offset_enu_m.x(), ours.mean_offset_enu_m.y(), ours.mean_offset_enu_m.z(),
+        ours.rms_horizontal_m, ours.scatter_rms_horizontal_m, ours.scatter_max_horizontal_m, ours.scatter_max_3d_m);
     if (!baseline.empty()) {
       // The baseline on the epochs this run has a solution at.
       std::vector<SolutionPoint> same;
@@ -238,16 +252,19 @@ void run_fuse(CLI::App& root, FuseOptions o) {
       const ReferenceErrors base = reference_errors(same, reference);
       summary["compare"] = o.compare;
       summary["compare_errors"] = base.json();
-      fmt::print("baseline {} on the same epochs ({}): horizontal RMS {:.2f} m, about the mean offset {:.2f} m (max {:.2f} m)\n",
-                 std::filesystem::path(o.compare).filename().string(), base.epochs, base.rms_horizontal_m,
-                 base.scatter_rms_horizontal_m, base.scatter_max_horizontal_m);
+      fmt::print(
+          "baseline {} on the same epochs ({}): horizontal RMS {:.2f} m, about the mean offset {:.2f} m (max {:.2f} "
+          "m)\n",
+          std::filesystem::path(o.compare).filename().string(), base.epochs, base.rms_horizontal_m,
+          base.scatter_rms_horizontal_m, base.scatter_max_horizontal_m);
     }
   }
   TextOutputFile summary_file(path("summary.json"));
   summary_file.write(summary.dump(2) + "\n");
   summary_file.commit();
   fmt::print("{} epochs, {} with the {} filter; INS start: {}; {} zero-velocity updates\n", stats.epochs(),
-             fusion->report().filter_epochs, o.mode, fusion->report().ins_start.empty() ? "none" : fusion->report().ins_start,
+             fusion->report().filter_epochs, o.mode,
+             fusion->report().ins_start.empty() ? "none" : fusion->report().ins_start,
              fusion->report().zero_velocity_updates);
 }
 
@@ -282,28 +299,34 @@ void add_fuse_command(CommandParents& parents) {
                   "(GPS seconds since 1980-01-06) or unix-gps (GPS-scale seconds since 1970)")
       ->check(CLI::IsMember({"week-seconds", "gps", "unix-gps"}))
       ->capture_default_str();
-  cmd->add_option("--imu-time-scale", o->imu_time_scale, "Seconds per unit of the IMU time column")->capture_default_str();
+  cmd->add_option("--imu-time-scale", o->imu_time_scale, "Seconds per unit of the IMU time column")
+      ->capture_default_str();
   cmd->add_option("--imu-time-offset", o->imu_time_offset_s,
                   "Seconds added to the scaled IMU time: the time base's origin and any constant IMU-to-GNSS offset")
       ->capture_default_str();
   cmd->add_option("--imu-rate", o->imu_rate_hz, "Nominal IMU rate (Hz; 0: the log's mean rate)")->capture_default_str();
   cmd->add_option("--imu-mounting", o->imu_rpy_deg, "Body-to-IMU rotation roll pitch yaw (deg)")->expected(3);
-  cmd->add_option("--imu-position", o->imu_position_m, "IMU position from the body origin, body axes x y z (m)")->expected(3);
-  cmd->add_option("--antenna-position", o->antenna_position_m, "Antenna position from the body origin, body axes x y z (m)")
+  cmd->add_option("--imu-position", o->imu_position_m, "IMU position from the body origin, body axes x y z (m)")
+      ->expected(3);
+  cmd->add_option("--antenna-position", o->antenna_position_m,
+                  "Antenna position from the body origin, body axes x y z (m)")
       ->expected(3);
   cmd->add_option("--imu-grade", o->imu_grade, "The IMU's grade in --imu-grades-file")->capture_default_str();
-  cmd->add_option("--imu-grades-file", o->imu_grades_file, "IMU grades YAML file (relative: from here, else the project's data/)")
+  cmd->add_option("--imu-grades-file", o->imu_grades_file,
+                  "IMU grades YAML file (relative: from here, else the project's data/)")
       ->capture_default_str();
   cmd->add_flag("--zupt,!--no-zupt", o->zupt, "Zero-velocity updates when the IMU is still")->default_str("true");
   cmd->add_option("--pseudorange-sigma-scale", o->pseudorange_sigma_scale,
                   "tight: pseudorange sigma x this (the shared elevation and C/N0 model)")
       ->capture_default_str();
-  cmd->add_option("--doppler-sigma", o->doppler_sigma_mps,
-                  "Sigma of a pseudorange rate from a Doppler (m/s): tight rows; loose: the PVT velocity's, times its DOP")
+  cmd->add_option(
+         "--doppler-sigma", o->doppler_sigma_mps,
+         "Sigma of a pseudorange rate from a Doppler (m/s): tight rows; loose: the PVT velocity's, times its DOP")
       ->capture_default_str();
   cmd->add_flag("--smoothing,!--no-smoothing", o->smoothing, "Carrier smoothing (Hatch filter) of the pseudoranges")
       ->default_str("true");
-  cmd->add_option("--smoothing-window", o->smoothing_window_s, "Carrier smoothing window (s; restarts on loss of lock, slips, gaps)")
+  cmd->add_option("--smoothing-window", o->smoothing_window_s,
+                  "Carrier smoothing window (s; restarts on loss of lock, slips, gaps)")
       ->capture_default_str();
   cmd->add_option("--doppler-bridge", o->doppler_bridge_s,
                   "Carrier smoothing: longest phase break carried by the Dopplers instead of a restart (s; 0: none)")

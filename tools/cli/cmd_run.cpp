@@ -6,28 +6,28 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "aiding/navigation_session.hpp"
+#include "ins/imu_file.hpp"
+#include "ins/imu_model.hpp"
+#include "ins/imu_range_check.hpp"
 #include "receiver/build_date.hpp"
 #include "receiver/mitigation/mitigation_config.hpp"
 #include "receiver/products/file_products.hpp"
 #include "receiver/products/run_statistics.hpp"
 #include "receiver/products/truth_file.hpp"
+#include "receiver/sources/sample_source_factory.hpp"
 #include "signals/data_path.hpp"
 #include "signals/rinex_nav.hpp"
 #include "signals/text_output_file.hpp"
+#include "tools/bench/process_usage.hpp"
 #include "tools/cli/atmosphere_options.hpp"
-#include "tools/cli/long_integration_options.hpp"
 #include "tools/cli/cli_checks.hpp"
 #include "tools/cli/commands.hpp"
-#include "tools/bench/process_usage.hpp"
+#include "tools/cli/long_integration_options.hpp"
 #include "tools/cli/progress.hpp"
-#include "receiver/sources/sample_source_factory.hpp"
 #include "tools/cli/source_options.hpp"
 #include "tools/cli/stop_signals.hpp"
 #include "tools/cli/yaml_config.hpp"
-#include "aiding/navigation_session.hpp"
-#include "ins/imu_file.hpp"
-#include "ins/imu_model.hpp"
-#include "ins/imu_range_check.hpp"
 
 namespace deepnav::cli {
 using namespace deepnav::bench;  // the engines this command drives
@@ -73,10 +73,10 @@ ImuIntegrity check_imu(const RunOptions& o, const ImuLog& imu, const ImuErrorMod
                  g.t_before_s, g.t_after_s);
   ImuIntegrity out{imu.gaps, samples_beyond_range(imu.samples, grade)};
   if (out.beyond_range.samples > 0)
-    spdlog::warn("{}: {} samples beyond the {} grade's measurement range, the first at t = {:.3f} s ({}): a wrong "
-                 "--imu-grade, a unit error or a corrupt sample",
-                 o.imu_path, out.beyond_range.samples, o.imu_grade, *out.beyond_range.first_t_s,
-                 out.beyond_range.first_what);
+    spdlog::warn(
+        "{}: {} samples beyond the {} grade's measurement range, the first at t = {:.3f} s ({}): a wrong "
+        "--imu-grade, a unit error or a corrupt sample",
+        o.imu_path, out.beyond_range.samples, o.imu_grade, *out.beyond_range.first_t_s, out.beyond_range.first_what);
   return out;
 }
 
@@ -160,21 +160,30 @@ nlohmann::json run_summary(const RunOptions& o, const OpenedSource& opened, aidi
   // ephemeris points at corrupted navigation bits (or a wrong --week / spectrum sense).
   nlohmann::json navigation = nlohmann::json::array();
   for (const NavigationStatus& n : receiver.navigation_status()) {
-    navigation.push_back({{"prn", n.prn}, {"tracked_s", n.tracked_s}, {"subframes_decoded", n.subframes_decoded},
-                          {"parity_failures", n.parity_failures}, {"ephemeris_decoded", n.ephemeris}});
+    navigation.push_back({{"prn", n.prn},
+                          {"tracked_s", n.tracked_s},
+                          {"subframes_decoded", n.subframes_decoded},
+                          {"parity_failures", n.parity_failures},
+                          {"ephemeris_decoded", n.ephemeris}});
     if (n.tracked_s > 36.0 && !n.ephemeris)
-      spdlog::warn("PRN {:2d}: tracked {:.0f} s but no ephemeris decoded ({} subframes, {} failed parity): corrupted "
-                   "navigation bits?", n.prn, n.tracked_s, n.subframes_decoded, n.parity_failures);
+      spdlog::warn(
+          "PRN {:2d}: tracked {:.0f} s but no ephemeris decoded ({} subframes, {} failed parity): corrupted "
+          "navigation bits?",
+          n.prn, n.tracked_s, n.subframes_decoded, n.parity_failures);
   }
   summary["navigation"] = navigation;
   // Filter-guided searches (ultra-tight): where each untracked satellite was looked for and
   // what came of it.
   nlohmann::json guided = nlohmann::json::array();
   for (const GuidedSearchRecord& g : receiver.guided_searches()) {
-    nlohmann::json j = {{"prn", g.prn}, {"started_s", g.started_s}, {"ended_s", g.ended_s},
-                        {"elevation_deg", g.elevation_deg}, {"outcome", to_string(g.outcome)}};
+    nlohmann::json j = {{"prn", g.prn},
+                        {"started_s", g.started_s},
+                        {"ended_s", g.ended_s},
+                        {"elevation_deg", g.elevation_deg},
+                        {"outcome", to_string(g.outcome)}};
     if (g.detection)
-      j["detection"] = {{"dwell_s", g.detection->dwell_s}, {"cn0_dbhz", g.detection->cn0_dbhz},
+      j["detection"] = {{"dwell_s", g.detection->dwell_s},
+                        {"cn0_dbhz", g.detection->cn0_dbhz},
                         {"code_offset_chips", g.detection->code_offset_chips},
                         {"doppler_offset_hz", g.detection->doppler_offset_hz}};
     guided.push_back(j);
@@ -187,7 +196,8 @@ nlohmann::json run_summary(const RunOptions& o, const OpenedSource& opened, aidi
     summary["ins_start"] = aided->ins_start_method();
     summary["filter_restarts"] = aided->filter_restarts();
     nlohmann::json gaps = nlohmann::json::array();
-    for (const ImuGap& g : imu_integrity.gaps) gaps.push_back({{"from_s", g.t_before_s}, {"to_s", g.t_after_s}, {"line", g.line}});
+    for (const ImuGap& g : imu_integrity.gaps)
+      gaps.push_back({{"from_s", g.t_before_s}, {"to_s", g.t_after_s}, {"line", g.line}});
     summary["imu_gaps"] = gaps;
     summary["imu_samples_beyond_range"] = imu_integrity.beyond_range.samples;
     summary["satellite_exclusions"] = aided->satellite_exclusions();
@@ -206,11 +216,12 @@ nlohmann::json run_summary(const RunOptions& o, const OpenedSource& opened, aidi
   // What failed, if anything: the run itself (the products hold what came before), and
   // each product that could not be written (the others are).
   const std::optional<std::string> stream_failure = opened.failure();
-  summary["error"] = session.run_error()  ? nlohmann::json(*session.run_error())
-                     : stream_failure     ? nlohmann::json(*stream_failure)
-                                          : nlohmann::json(nullptr);
+  summary["error"] = session.run_error() ? nlohmann::json(*session.run_error())
+                     : stream_failure    ? nlohmann::json(*stream_failure)
+                                         : nlohmann::json(nullptr);
   nlohmann::json failed = nlohmann::json::array();
-  for (const ProductFailure& f : session.product_failures()) failed.push_back({{"product", f.product}, {"error", f.error}});
+  for (const ProductFailure& f : session.product_failures())
+    failed.push_back({{"product", f.product}, {"error", f.error}});
   summary["products_failed"] = failed;
   if (opened.is_stream) summary["stream"] = opened.report();
   // What the run cost: peak memory stays flat with run length (products are written as
@@ -222,7 +233,8 @@ nlohmann::json run_summary(const RunOptions& o, const OpenedSource& opened, aidi
 /// summary.json, written once the run has ended (the figures are the whole run's).
 class SummarySink : public ProductSink {
  public:
-  SummarySink(const std::string& path, std::function<nlohmann::json()> summary) : file_(path), summary_(std::move(summary)) {}
+  SummarySink(const std::string& path, std::function<nlohmann::json()> summary)
+      : file_(path), summary_(std::move(summary)) {}
   void finish(const NavData&) override {
     file_.write(summary_().dump(2) + "\n");
     file_.commit();
@@ -239,9 +251,10 @@ class SummarySink : public ProductSink {
 void check_week_option(int week) {
   const int last = build_time().week + 1024;
   if (week < 1 || week > last)
-    throw UserError(fmt::format("--week {} is not a GPS week of any recording: expected 1 (1980) to {} (1024 weeks after "
-                                "this program's build date)",
-                                week, last));
+    throw UserError(
+        fmt::format("--week {} is not a GPS week of any recording: expected 1 (1980) to {} (1024 weeks after "
+                    "this program's build date)",
+                    week, last));
 }
 
 void run_receiver(RunOptions o) {
@@ -264,8 +277,8 @@ void run_receiver(RunOptions o) {
   if (mode != aiding::NavMode::scalar) imu = read_imu(o);
   const aiding::NavigationSessionConfig config = session_config(o, mode);
   const ImuIntegrity imu_integrity = imu ? check_imu(o, *imu, config.navigator.imu) : ImuIntegrity{};
-  std::vector<std::unique_ptr<ProductSink>> products =
-      file_products(o.out_dir, std::filesystem::path(opened.input).filename().string(), 1.0 / o.receiver.observation_rate_hz);
+  std::vector<std::unique_ptr<ProductSink>> products = file_products(
+      o.out_dir, std::filesystem::path(opened.input).filename().string(), 1.0 / o.receiver.observation_rate_hz);
   aiding::NavigationSession session(config, *opened.source, std::move(imu), opened.duration_s);
   RunStatistics stats(truth ? &*truth : nullptr);
   SummarySink summary((std::filesystem::path(o.out_dir) / "summary.json").string(),
@@ -303,7 +316,8 @@ void add_run_command(CommandParents& parents) {
   auto o = std::make_shared<RunOptions>();
   CLI::App* cmd = parents.root.add_subcommand("run", "Run the receiver on an IF file: PVT and products in --out");
   add_source_options(*cmd, o->source, SourceUse::receiver);
-  cmd->add_option("--mitigation", o->mitigation, "Interference mitigation: none, notch, excision, blanking, auto (blanking then excision)")
+  cmd->add_option("--mitigation", o->mitigation,
+                  "Interference mitigation: none, notch, excision, blanking, auto (blanking then excision)")
       ->check(CLI::IsMember(mitigation_mode_names()))
       ->capture_default_str();
   cmd->add_option("--out", o->out_dir, "Output folder")->required();
@@ -311,10 +325,12 @@ void add_run_command(CommandParents& parents) {
   cmd->add_option("--channels", o->receiver.channels, "Tracking channels")
       ->check(CLI::Range(1, 32).description("1 to 32 (one per GPS PRN at most)"))
       ->capture_default_str();
-  cmd->add_option("--pll-order", o->receiver.pll_order, "Carrier loop order: 2, or 3 for high dynamics (follows Doppler ramps)")
+  cmd->add_option("--pll-order", o->receiver.pll_order,
+                  "Carrier loop order: 2, or 3 for high dynamics (follows Doppler ramps)")
       ->check(CLI::IsMember({2, 3}))
       ->capture_default_str();
-  cmd->add_option("--threads", o->receiver.threads, "Channel worker threads (0: all cores; every mode's products are the same for any count)")
+  cmd->add_option("--threads", o->receiver.threads,
+                  "Channel worker threads (0: all cores; every mode's products are the same for any count)")
       ->check(CLI::Range(0u, kMaxReceiverThreads))
       ->capture_default_str();
   cmd->add_option("--rate", o->receiver.observation_rate_hz, "Observation/PVT rate (Hz, up to 50)")
@@ -327,19 +343,25 @@ void add_run_command(CommandParents& parents) {
                   "RINEX navigation file whose ionosphere parameters are used until the broadcast ones are decoded")
       ->check(CLI::ExistingFile);
   add_atmosphere_options(*cmd, o->receiver.atmosphere);
-  cmd->add_option("--ephemeris-from", o->assist_ephemeris,
-                  "RINEX navigation file whose ephemerides are used until the broadcast ones are decoded (assisted start)")
+  cmd->add_option(
+         "--ephemeris-from", o->assist_ephemeris,
+         "RINEX navigation file whose ephemerides are used until the broadcast ones are decoded (assisted start)")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--mode", o->mode, "scalar, or INS-aided: loose (PVT), tight (pseudorange/rate), ultra (filter steers the channels)")
+  cmd->add_option("--mode", o->mode,
+                  "scalar, or INS-aided: loose (PVT), tight (pseudorange/rate), ultra (filter steers the channels)")
       ->check(CLI::IsMember({"scalar", "loose", "tight", "ultra"}))
       ->capture_default_str();
-  cmd->add_option("--imu", o->imu_path, "IMU CSV file (increments or rates, see docs/formats.md) for the aided modes")->check(CLI::ExistingFile);
-  cmd->add_option("--imu-grade", o->imu_grade, "The IMU's grade in --imu-grades-file (its noise and bias figures)")->capture_default_str();
-  cmd->add_option("--imu-grades-file", o->imu_grades_file, "IMU grades YAML file (relative: from here, else the project's data/)")->capture_default_str();
+  cmd->add_option("--imu", o->imu_path, "IMU CSV file (increments or rates, see docs/formats.md) for the aided modes")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--imu-grade", o->imu_grade, "The IMU's grade in --imu-grades-file (its noise and bias figures)")
+      ->capture_default_str();
+  cmd->add_option("--imu-grades-file", o->imu_grades_file,
+                  "IMU grades YAML file (relative: from here, else the project's data/)")
+      ->capture_default_str();
   cmd->add_flag("--filter-troposphere,!--no-filter-troposphere", o->filter_troposphere,
-               "Tight/ultra: estimate a zenith troposphere residual (an 18th filter state)");
+                "Tight/ultra: estimate a zenith troposphere residual (an 18th filter state)");
   cmd->add_flag("--filter-ionosphere,!--no-filter-ionosphere", o->filter_ionosphere,
-               "Tight/ultra: estimate the ionosphere model's scale error (a 19th filter state)");
+                "Tight/ultra: estimate the ionosphere model's scale error (a 19th filter state)");
   cmd->add_flag("--troposphere-mismatch,!--no-troposphere-mismatch", o->detect_troposphere_mismatch,
                 "Tight/ultra: take the zenith troposphere state when the fixes show the troposphere model wrong by "
                 "over 1.5 m at the zenith (a signal without troposphere)")
@@ -360,7 +382,8 @@ void add_run_command(CommandParents& parents) {
   cmd->add_flag("--fault-exclusion,!--no-fault-exclusion", o->fault_exclusion,
                 "Tight/ultra: exclude a satellite whose pseudorange innovations disagree with the filter")
       ->default_str("true");  // flags capture no default: --print-config reads this one
-  cmd->add_option("--imu-lever-arm", o->imu_lever_arm_m, "IMU position from the antenna, body axes x y z (m), as a scenario's imu.lever_arm_m")
+  cmd->add_option("--imu-lever-arm", o->imu_lever_arm_m,
+                  "IMU position from the antenna, body axes x y z (m), as a scenario's imu.lever_arm_m")
       ->expected(3)
       ->check(finite_in(-100.0, 100.0, "metres"));
   cmd->add_option("--week", o->receiver.reference_week,

@@ -7,16 +7,16 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "receiver/sources/sample_source_factory.hpp"
 #include "receiver/stream/stream_protocol.hpp"
 #include "receiver/stream/stream_server.hpp"
+#include "receiver/stream/thread_safe_logging.hpp"
 #include "signals/if_file_stream.hpp"
 #include "signals/rinex_nav.hpp"
 #include "signals/sim/scenario.hpp"
 #include "signals/sim/synthesized_if_stream.hpp"
 #include "tools/cli/commands.hpp"
-#include "receiver/sources/sample_source_factory.hpp"
 #include "tools/cli/stop_signals.hpp"
-#include "receiver/stream/thread_safe_logging.hpp"
 
 namespace deepnav::cli {
 namespace {
@@ -66,9 +66,10 @@ std::function<std::unique_ptr<IfByteStream>()> stream_opener(const ServeOptions&
       throw UserError(e.what());
     }
     if (!stream::streamable(sc.format))
-      throw UserError(fmt::format("{}: format {} cannot be streamed (the stream protocol carries ibyte, ishort, "
-                                  "gr_complex, byte and cu8; packed formats are for files)",
-                                  o.scenario_path, to_string(sc.format)));
+      throw UserError(
+          fmt::format("{}: format {} cannot be streamed (the stream protocol carries ibyte, ishort, "
+                      "gr_complex, byte and cu8; packed formats are for files)",
+                      o.scenario_path, to_string(sc.format)));
     spdlog::info("scenario '{}': {} s, {} satellites, {} jammer(s), {} at {} Hz", sc.name, sc.duration_s,
                  synth->satellites().size(), sc.jammers.size(), to_string(sc.format), sc.sample_rate_hz);
     return [synth, threads = o.threads] { return std::make_unique<SynthesizedIfStream>(synth, threads); };
@@ -81,9 +82,10 @@ std::function<std::unique_ptr<IfByteStream>()> stream_opener(const ServeOptions&
     throw UserError(std::string("--format: ") + e.what());
   }
   if (!stream::streamable(fo.format))
-    throw UserError(fmt::format("--format {} cannot be streamed (the stream protocol carries ibyte, ishort, "
-                                "gr_complex, byte and cu8; packed formats are for files)",
-                                to_string(fo.format)));
+    throw UserError(
+        fmt::format("--format {} cannot be streamed (the stream protocol carries ibyte, ishort, "
+                    "gr_complex, byte and cu8; packed formats are for files)",
+                    to_string(fo.format)));
   if (!(o.fs_hz > 0.0)) throw UserError("--file needs its sample rate (--fs)");
   fo.sample_rate_hz = o.fs_hz;
   fo.if_hz = o.if_hz;
@@ -130,9 +132,11 @@ void serve(ServeOptions o) {
 void add_serve_command(CommandParents& parents) {
   auto o = std::make_shared<ServeOptions>();
   CLI::App* cmd = parents.root.add_subcommand(
-      "serve", "Stream IF (a scenario synthesized on the fly, or a file) over TCP/UDP to `deepnav run --input tcp://...`");
-  auto* scenario = cmd->add_option("--scenario", o->scenario_path, "Scenario to synthesize for each client (jammers included)")
-                       ->check(CLI::ExistingFile);
+      "serve",
+      "Stream IF (a scenario synthesized on the fly, or a file) over TCP/UDP to `deepnav run --input tcp://...`");
+  auto* scenario =
+      cmd->add_option("--scenario", o->scenario_path, "Scenario to synthesize for each client (jammers included)")
+          ->check(CLI::ExistingFile);
   auto* file = cmd->add_option("--file", o->file_path, "IF file to serve instead")->check(CLI::ExistingFile);
   scenario->excludes(file);
   cmd->add_option("--format", o->format, "--file's format: " + sample_format_choices())->capture_default_str();
@@ -143,7 +147,8 @@ void add_serve_command(CommandParents& parents) {
   cmd->add_option("--tcp", o->tcp_port, "TCP port to listen on (0: any free port)");
   cmd->add_option("--udp", o->udp_port, "UDP port for subscriptions (0: any free port)");
   cmd->add_option("--bind", o->bind, "Address to listen on")->capture_default_str();
-  cmd->add_option("--pace", o->server.pace, "Multiple of real time by the sample clock; 0: as fast as each client reads")
+  cmd->add_option("--pace", o->server.pace,
+                  "Multiple of real time by the sample clock; 0: as fast as each client reads")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--raw", o->server.raw, "Bare samples, no header or frames (a plain IQ socket)");
@@ -154,7 +159,8 @@ void add_serve_command(CommandParents& parents) {
   cmd->add_option("--drop-rate", o->server.drop_probability, "UDP loss injection: probability of dropping each frame")
       ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--seed", o->server.drop_seed, "Seed of --drop-rate")->capture_default_str();
-  cmd->add_option("--sessions", o->sessions, "Exit after this many sessions ended (0: serve until Ctrl-C)")->capture_default_str();
+  cmd->add_option("--sessions", o->sessions, "Exit after this many sessions ended (0: serve until Ctrl-C)")
+      ->capture_default_str();
   cmd->add_option("--port-file", o->port_file, "Write the bound ports here ('tcp N' and 'udp N' lines) once listening");
   cmd->callback([o] { serve(*o); });
 }

@@ -8,8 +8,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "signals/sim/if_synthesizer.hpp"
 #include "signals/rinex_nav.hpp"
+#include "signals/sim/if_synthesizer.hpp"
 #include "signals/sim/scenario.hpp"
 #include "signals/text_output_file.hpp"
 #include "tools/cli/cli_checks.hpp"
@@ -54,11 +54,12 @@ nlohmann::json summary_json(const Scenario& sc, const SynthesisSummary& s) {
 }
 
 void print_summary(const Scenario& sc, const SynthesisSummary& s) {
-  fmt::print("wrote {} ({} samples, {:.3f} s, {} at {:.0f} Hz, IF {:.0f} Hz) in {:.1f} s ({:.1f}x real time)\n", s.if_path,
-             s.samples, s.duration_s, to_string(sc.format), sc.sample_rate_hz, sc.if_hz, s.wall_s,
+  fmt::print("wrote {} ({} samples, {:.3f} s, {} at {:.0f} Hz, IF {:.0f} Hz) in {:.1f} s ({:.1f}x real time)\n",
+             s.if_path, s.samples, s.duration_s, to_string(sc.format), sc.sample_rate_hz, sc.if_hz, s.wall_s,
              s.duration_s / std::max(s.wall_s, 1e-9));
   fmt::print("truth: {}  satellites: {}\n", s.truth_path, s.sat_truth_path);
-  fmt::print("{:>4} {:>8} {:>8} {:>11} {:>9} {:>11}\n", "PRN", "el_deg", "az_deg", "doppler_hz", "cn0_dbhz", "code_chips");
+  fmt::print("{:>4} {:>8} {:>8} {:>11} {:>9} {:>11}\n", "PRN", "el_deg", "az_deg", "doppler_hz", "cn0_dbhz",
+             "code_chips");
   for (const auto& sat : s.satellites) {
     fmt::print("{:>4} {:>8.2f} {:>8.2f} {:>11.2f} {:>9.1f} {:>11.3f}\n", sat.prn, sat.elevation_start_deg,
                sat.azimuth_start_deg, sat.doppler_start_hz, sat.cn0_start_dbhz, sat.code_phase_start_chips);

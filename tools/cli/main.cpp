@@ -19,8 +19,10 @@ int main(int argc, char** argv) {
   CLI::App app{"deepnav: software GPS L1 C/A receiver with ultra-tight INS aiding"};
   app.require_subcommand(1);
   add_yaml_config(app);
-  app.add_flag_callback("-v,--verbose", [] { spdlog::set_level(spdlog::level::debug); }, "Log debug messages to stderr");
-  app.add_flag_callback("-q,--quiet", [] { spdlog::set_level(spdlog::level::warn); }, "Log only warnings and errors");
+  app.add_flag_callback(
+      "-v,--verbose", [] { spdlog::set_level(spdlog::level::debug); }, "Log debug messages to stderr");
+  app.add_flag_callback(
+      "-q,--quiet", [] { spdlog::set_level(spdlog::level::warn); }, "Log only warnings and errors");
   CLI::App* bench = app.add_subcommand("bench", "Benchmarks: each prints a table, and writes JSON with --json FILE");
   bench->require_subcommand(1);
   CommandParents parents{app, *bench};

@@ -218,8 +218,9 @@ std::string YamlConfig::to_config(const CLI::App* app, bool default_also, bool w
 
 void add_yaml_config(CLI::App& root) {
   root.config_formatter(std::make_shared<YamlConfig>(root));
-  root.set_config("--config", "", "Read the command's options from a YAML file (keys: the long option names; "
-                                  "flags on the command line win); also accepted after the command");
+  root.set_config("--config", "",
+                  "Read the command's options from a YAML file (keys: the long option names; "
+                  "flags on the command line win); also accepted after the command");
   root.fallthrough();  // subcommands made after this pass --config up to the root
 }
 

@@ -18,8 +18,8 @@ int sample_bits_impl(const Sample* x, int n) {
   int k = 0;
   for (; k + 32 <= n; k += 32) {
     const auto* v = reinterpret_cast<const __m256i*>(p + k);
-    acc0 = _mm256_or_si256(acc0, _mm256_or_si256(_mm256_abs_epi16(_mm256_loadu_si256(v)),
-                                                 _mm256_abs_epi16(_mm256_loadu_si256(v + 1))));
+    acc0 = _mm256_or_si256(
+        acc0, _mm256_or_si256(_mm256_abs_epi16(_mm256_loadu_si256(v)), _mm256_abs_epi16(_mm256_loadu_si256(v + 1))));
     acc1 = _mm256_or_si256(acc1, _mm256_or_si256(_mm256_abs_epi16(_mm256_loadu_si256(v + 2)),
                                                  _mm256_abs_epi16(_mm256_loadu_si256(v + 3))));
   }
@@ -146,16 +146,17 @@ void kernel_wide(const Input& in, int m, const Run& run, const Setup& su, Acc& a
           _mm256_blend_epi16(_mm256_srli_epi32(_mm256_add_epi32(frac, off_a), 16), _mm256_add_epi32(frac, off_b), 0xAA);
       const __m256i win =
           _mm256_broadcastsi128_si256(_mm_loadu_si128(reinterpret_cast<const __m128i*>(su.code8 + first - su.h)));
-      const __m256i nwin = kN ? _mm256_broadcastsi128_si256(_mm_loadu_si128(reinterpret_cast<const __m128i*>(su.noise8 + first - su.h)))
-                              : win;
+      const __m256i nwin =
+          kN ? _mm256_broadcastsi128_si256(_mm_loadu_si128(reinterpret_cast<const __m128i*>(su.noise8 + first - su.h)))
+             : win;
       // Index words: high byte the chip (position >> 11), low byte 0x80 so that pshufb puts
       // the level (+-1) in the high byte: code words of +-256.
 #define DEEPNAV_IDX(D) _mm256_or_si256(_mm256_srli_epi16(D, kTapFracBits - 8), zero_low)
-#define DEEPNAV_TAP(IDX, WIN, RE, IM)                                   \
-  {                                                                     \
-    const __m256i code = _mm256_shuffle_epi8(WIN, IDX);                 \
-    RE = _mm256_add_epi32(RE, _mm256_madd_epi16(re, code));             \
-    IM = _mm256_add_epi32(IM, _mm256_madd_epi16(im, code));             \
+#define DEEPNAV_TAP(IDX, WIN, RE, IM)                       \
+  {                                                         \
+    const __m256i code = _mm256_shuffle_epi8(WIN, IDX);     \
+    RE = _mm256_add_epi32(RE, _mm256_madd_epi16(re, code)); \
+    IM = _mm256_add_epi32(IM, _mm256_madd_epi16(im, code)); \
   }
       const __m256i idx_p = DEEPNAV_IDX(w);
       DEEPNAV_TAP(idx_p, win, p_re, p_im)
@@ -214,9 +215,9 @@ void kernel_int8(const Input& in, int m, const Run& run, const Setup& su, Acc& a
   const auto* src = reinterpret_cast<const std::int32_t*>(in.x);
   const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
   const __m256i eight = _mm256_set1_epi32(8);
-  const __m256i tab = _mm256_broadcastsi128_si256(
-      _mm_packs_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(su.cos_tab)),
-                      _mm_loadu_si128(reinterpret_cast<const __m128i*>(su.cos_tab + 8))));
+  const __m256i tab =
+      _mm256_broadcastsi128_si256(_mm_packs_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(su.cos_tab)),
+                                                  _mm_loadu_si128(reinterpret_cast<const __m128i*>(su.cos_tab + 8))));
   const __m256i k_re = _mm256_set1_epi16(0x1800);  // bytes: p (cos), p + 24 (sin)
   const __m256i k_im = _mm256_set1_epi16(0x0008);  // bytes: p + 8 (-sin), p (cos)
   const __m256i sign_bits = _mm256_set1_epi16(static_cast<short>(0x8080));
@@ -335,7 +336,9 @@ KernelFn pick(bool small, bool noise) {
 
 }  // namespace
 
-KernelFn avx2_kernel(int taps, bool small, bool noise) { return taps == 3 ? pick<3>(small, noise) : pick<5>(small, noise); }
+KernelFn avx2_kernel(int taps, bool small, bool noise) {
+  return taps == 3 ? pick<3>(small, noise) : pick<5>(small, noise);
+}
 
 int sample_bits_avx2(const Sample* x, int n) { return sample_bits_impl(x, n); }
 

@@ -106,7 +106,8 @@ void kernel(const Input& in, int m, const Run& run, const Setup& su, Acc& acc) {
         x1 = _mm512_loadu_si512(src + k + 16);
       } else {  // masked loads: the missing samples are zero and add nothing
         x0 = _mm512_maskz_loadu_epi32(static_cast<__mmask16>(0xFFFFu >> (16 - (left < 16 ? left : 16))), src + k);
-        x1 = _mm512_maskz_loadu_epi32(static_cast<__mmask16>(0xFFFFu >> (16 - (left > 16 ? left - 16 : 0))), src + k + 16);
+        x1 = _mm512_maskz_loadu_epi32(static_cast<__mmask16>(0xFFFFu >> (16 - (left > 16 ? left - 16 : 0))),
+                                      src + k + 16);
       }
       i = _mm512_permutex2var_epi16(x0, even, x1);
       q = _mm512_permutex2var_epi16(x0, odd, x1);
@@ -130,11 +131,11 @@ void kernel(const Input& in, int m, const Run& run, const Setup& su, Acc& acc) {
     const __m512i w = _mm512_permutex2var_epi16(_mm512_add_epi32(frac, off_a), odd, _mm512_add_epi32(frac, off_b));
     const __m512i win = _mm512_loadu_si512(su.code16 + first - su.h);
     const __m512i nwin = _mm512_loadu_si512(su.noise16 + first - su.h);
-#define DEEPNAV_TAP(IDX, WIN, RE, IM)                  \
-  {                                                    \
+#define DEEPNAV_TAP(IDX, WIN, RE, IM)                        \
+  {                                                          \
     const __m512i code = _mm512_permutexvar_epi16(IDX, WIN); \
-    RE = _mm512_dpwssd_epi32(RE, re, code);            \
-    IM = _mm512_dpwssd_epi32(IM, im, code);            \
+    RE = _mm512_dpwssd_epi32(RE, re, code);                  \
+    IM = _mm512_dpwssd_epi32(IM, im, code);                  \
   }
     const __m512i idx_p = _mm512_srli_epi16(w, kTapFracBits);
     DEEPNAV_TAP(idx_p, win, p_re, p_im)
@@ -150,7 +151,7 @@ void kernel(const Input& in, int m, const Run& run, const Setup& su, Acc& acc) {
     if (pos >= kCodeWrap) pos -= kCodeWrap;
   }
   // A run adds at most 128 * 2 * 2^15 per lane: int32 lanes and their sum cannot overflow.
-#define DEEPNAV_ADD(T, RE, IM)                \
+#define DEEPNAV_ADD(T, RE, IM)              \
   acc[T][0] += _mm512_reduce_add_epi32(RE); \
   acc[T][1] += _mm512_reduce_add_epi32(IM);
   DEEPNAV_ADD(0, e_re, e_im)

@@ -50,8 +50,7 @@ void kernel(const Input& in, int m, const Run& run, const Setup& su, Acc& acc) {
 
   // Code positions of samples 0-3 and 4-7 relative to the block's first chip minus h.
   const uint32x4_t inc_v = vdupq_n_u32(static_cast<std::uint32_t>(run.inc));
-  const uint32x4_t off_a =
-      vmlaq_u32(vdupq_n_u32(static_cast<std::uint32_t>(su.h) << kCodeFracBits), lane, inc_v);
+  const uint32x4_t off_a = vmlaq_u32(vdupq_n_u32(static_cast<std::uint32_t>(su.h) << kCodeFracBits), lane, inc_v);
   const uint32x4_t off_b = vaddq_u32(off_a, vshlq_n_u32(inc_v, 2));
 
   Lanes sums[kTaps];

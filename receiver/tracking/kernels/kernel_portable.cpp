@@ -61,10 +61,8 @@ void kernel_impl(const Input& in, int m, const Run& run, const Setup& su, Acc& a
 template <bool kSmall, bool kN>
 void kernel(const Input& x, int m, const Run& run, const Setup& su, Acc& acc) {
   const bool near = su.h <= kPad;
-  if (su.taps == 3)
-    (near ? kernel_impl<kSmall, 3, true, kN> : kernel_impl<kSmall, 3, false, kN>)(x, m, run, su, acc);
-  else
-    (near ? kernel_impl<kSmall, 5, true, kN> : kernel_impl<kSmall, 5, false, kN>)(x, m, run, su, acc);
+  if (su.taps == 3) (near ? kernel_impl<kSmall, 3, true, kN> : kernel_impl<kSmall, 3, false, kN>)(x, m, run, su, acc);
+  else (near ? kernel_impl<kSmall, 5, true, kN> : kernel_impl<kSmall, 5, false, kN>)(x, m, run, su, acc);
 }
 
 template <bool kSmall>

@@ -17,13 +17,13 @@ using Sample = std::complex<std::int16_t>;  // as in receiver/sources/sample_sou
 
 namespace deepnav::correlator_detail {
 
-constexpr int kRun = 4096;                 // samples per run: phases restart exactly at each run
-constexpr int kCarrierBits = 21;           // carrier phase accumulator: 1 cycle = 2^21
-constexpr int kCodeFracBits = 27;          // code position: chips with 27 fraction bits
-constexpr int kTapFracBits = 11;           // tap offsets: chips with 11 fraction bits
+constexpr int kRun = 4096;         // samples per run: phases restart exactly at each run
+constexpr int kCarrierBits = 21;   // carrier phase accumulator: 1 cycle = 2^21
+constexpr int kCodeFracBits = 27;  // code position: chips with 27 fraction bits
+constexpr int kTapFracBits = 11;   // tap offsets: chips with 11 fraction bits
 constexpr std::int64_t kCodeWrap = std::int64_t{1023} << kCodeFracBits;
-constexpr int kPad = 64;   // code table chips before 0 and after 1022 (window loads, tap offsets)
-constexpr int kTaps = 6;   // early, prompt, late, very early, very late, noise
+constexpr int kPad = 64;  // code table chips before 0 and after 1022 (window loads, tap offsets)
+constexpr int kTaps = 6;  // early, prompt, late, very early, very late, noise
 constexpr int kNoise = 5;
 constexpr int kSmallBits = 7;  // |I|, |Q| <= 127: int8 carrier table, exact products (see the header)
 
@@ -35,9 +35,9 @@ struct Setup {
   const std::int16_t* noise16;
   const std::int8_t* code8;
   const std::int8_t* noise8;
-  int taps;    // 3 (E/P/L) or 5 (with VE/VL)
-  bool noise;  // the noise tap runs (else its sums stay 0)
-  int h;       // whole chips the widest tap reaches beyond the prompt (>= 1)
+  int taps;           // 3 (E/P/L) or 5 (with VE/VL)
+  bool noise;         // the noise tap runs (else its sums stay 0)
+  int h;              // whole chips the widest tap reaches beyond the prompt (>= 1)
   std::int16_t d[5];  // tap offsets in 2^-11 chip: E, P (0), L, VE, VL
 };
 
