@@ -9,7 +9,7 @@
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/udp.hpp>
 
-#include "receiver/navdata/frame_sequencer.hpp"
+#include "receiver/stream/frame_sequencer.hpp"
 #include "receiver/stream/stream_sample_source.hpp"
 
 namespace deepnav {

@@ -1,5 +1,5 @@
 // The framed UDP stream: datagrams (decode_datagram) put back in order by the frame
-// sequencer (receiver/navdata/frame_sequencer.hpp), as udp_sample_source does, and client
+// sequencer (receiver/stream/frame_sequencer.hpp), as udp_sample_source does, and client
 // requests (decode_request). The input is a list of datagrams, each preceded by its
 // length (one byte, 0: a 16-byte request, 255: a 56-byte header slot, else the length).
 // Frames must come out in sequence order, each exactly once.
@@ -7,7 +7,7 @@
 #include <optional>
 #include <vector>
 
-#include "receiver/navdata/frame_sequencer.hpp"
+#include "receiver/stream/frame_sequencer.hpp"
 #include "receiver/stream/stream_protocol.hpp"
 #include "tests/fuzz/fuzz_support.hpp"
 

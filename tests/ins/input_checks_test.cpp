@@ -9,18 +9,12 @@
 
 #include "ins/input_file.hpp"
 #include "ins/yaml_checks.hpp"
+#include "tests/support/error_message.hpp"
 
 namespace deepnav {
 namespace {
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::error_of;
 
 TEST(InputFile, RegularFilesOnlyAndWithinTheSizeLimit) {
   const auto dir = std::filesystem::path(DEEPNAV_BINARY_DIR) / "input_checks_test";

@@ -13,6 +13,7 @@
 
 #include "receiver/build_date.hpp"
 #include "signals/gps_constants.hpp"
+#include "tests/support/error_message.hpp"
 
 namespace deepnav {
 namespace {
@@ -20,14 +21,7 @@ namespace {
 constexpr double kFs = 4.0e6;
 const std::vector<double> kFourTransmitTimes{100.010, 100.020, 100.004, 100.015};
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::error_of;
 
 TEST(ReceiverClock, IsSetOnceFourTransmitTimesExist) {
   ReceiverClock clock(kFs, 2190, "--week");

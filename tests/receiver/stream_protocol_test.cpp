@@ -5,7 +5,7 @@
 #include <chrono>
 #include <random>
 
-#include "receiver/navdata/frame_sequencer.hpp"
+#include "receiver/stream/frame_sequencer.hpp"
 #include "receiver/stream/stream_protocol.hpp"
 
 namespace deepnav::stream {

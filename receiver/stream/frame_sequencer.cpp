@@ -1,4 +1,4 @@
-#include "receiver/navdata/frame_sequencer.hpp"
+#include "receiver/stream/frame_sequencer.hpp"
 
 #include <algorithm>
 
