@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <limits>
 #include <random>
 
 #include "aiding/navigation_session.hpp"
@@ -20,7 +21,8 @@ class Noise final : public SampleSource {
  public:
   explicit Noise(double seconds, double fail_after_s = -1.0)
       : total_(static_cast<std::int64_t>(seconds * 2.046e6)),
-        fail_at_(fail_after_s < 0.0 ? total_ : static_cast<std::int64_t>(fail_after_s * 2.046e6)) {}
+        fail_at_(fail_after_s < 0.0 ? std::numeric_limits<std::int64_t>::max()
+                                    : static_cast<std::int64_t>(fail_after_s * 2.046e6)) {}
   double sample_rate_hz() const override { return 2.046e6; }
   double intermediate_frequency_hz() const override { return 0.0; }
   bool is_real() const override { return false; }
