@@ -2,10 +2,12 @@
 // error in the run (and says why), and a product whose writer fails, while the run goes or
 // at its end, costs only itself.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <limits>
 #include <random>
+#include <string>
 
 #include "aiding/navigation_session.hpp"
 #include "receiver/products/file_products.hpp"
@@ -92,7 +94,10 @@ class ReportSink final : public ProductSink {
 class SessionFailure : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / "deepnav_session_failure";
+    // One folder per test and process: ctest runs the tests as parallel processes.
+    dir_ = fs::temp_directory_path() /
+           ("deepnav_session_failure_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
+            "_" + std::to_string(::getpid()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }

@@ -41,7 +41,10 @@ std::string error_of(Call&& call) {
 class OutputFileTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::path(DEEPNAV_BINARY_DIR) / "output_file_test";
+    // One folder per test and process: ctest runs the tests as parallel processes.
+    dir_ = fs::path(DEEPNAV_BINARY_DIR) /
+           ("output_file_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+            std::to_string(::getpid()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }

@@ -1,4 +1,4 @@
-// The file products as sinks: they write as the run goes, under `<name>.partial`, and
+// The file products as sinks: they write as the run goes, under `<name>.<pid>.partial`, and
 // take their final names only at finish(); the streamed files equal the whole-run
 // writers' output, and RINEX observations before the first fix wait for its position.
 #include <gtest/gtest.h>
@@ -45,8 +45,10 @@ std::string partial_of(const std::string& name) { return name + "." + std::to_st
 class ProductSinks : public ::testing::Test {
  protected:
   void SetUp() override {
+    // One folder per test and process: ctest runs the tests as parallel processes.
     dir_ = fs::temp_directory_path() /
-           ("deepnav_sinks_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+           ("deepnav_sinks_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+            std::to_string(::getpid()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
