@@ -6,7 +6,7 @@
 # and this run's, summary.json names the failed product and why, and the run exits 1 saying
 # so. First on a small tmpfs when one can be mounted here (as root, or in a user namespace),
 # then always on the output layer's simulated disk (DEEPNAV_TEST_DISK_BYTES). fuse the same;
-# acquire --json /dev/full is an error, not exit 0.
+# acquire --json /dev/full, or on a full disk, is an error, not exit 0 and an empty file.
 #   usage: products_disk_full.sh <deepnav binary> <source dir>
 source "$(dirname "$0")/lib/harness.sh" "$@"
 # 16 s from 3 s before a subframe: an assisted start fixes from about 11 s. tracking.csv
@@ -92,4 +92,10 @@ check "fuse: no partial file" '! ls "$work/fuse" | grep -q partial'
 # acquire --json on a full device: an error naming it.
 EXIT_STATUS=1 expect_failure "acquire --json /dev/full" "cannot write '/dev/full': No space left on device" -- \
   "$deepnav" -q acquire "${source[@]:0:6}" --json /dev/full
+# ... and on a full disk: no empty acq.json, nor an earlier one passing for this result.
+echo '{"earlier": true}' > "$work/acq.json"
+DEEPNAV_TEST_DISK_BYTES=100 EXIT_STATUS=1 expect_failure "acquire --json on a full disk" \
+  "cannot write '$work/acq.json': No space left on device (an earlier run's file of that name is removed)" -- \
+  "$deepnav" -q acquire "${source[@]:0:6}" --json "$work/acq.json"
+check "acquire: no acq.json left" '[[ -z $(compgen -G "$work/acq.json*") ]]'
 finish
