@@ -1,7 +1,5 @@
 #include "aiding/navigation_session.hpp"
 
-#include <fmt/format.h>
-
 #include <exception>
 #include <stdexcept>
 
@@ -63,7 +61,7 @@ NavigationSession::~NavigationSession() = default;
 
 GnssReceiver& NavigationSession::receiver() { return aided_ ? aided_->receiver() : *scalar_; }
 
-void NavigationSession::hand_out(const ReceiverEpoch& ep, const AidedEpoch* a, const std::vector<ProductSink*>& sinks) {
+void NavigationSession::hand_out(const ReceiverEpoch& ep, const AidedEpoch* a) {
   if (a) seconds_in_mode_[to_string(a->mode)] += 1.0 / config_.navigator.receiver.observation_rate_hz;
   const bool from_filter = a && a->valid;
   const PvtSolution filtered = from_filter ? aided_solution(*a) : PvtSolution{};
@@ -75,17 +73,18 @@ void NavigationSession::hand_out(const ReceiverEpoch& ep, const AidedEpoch* a, c
                           a ? a->filter_satellites : static_cast<int>(ep.pvt.used_prns.size()),
                           a ? gnss_measurements(*a) : (ep.pvt.valid ? static_cast<int>(ep.pvt.used_prns.size()) : 0),
                           utc.valid ? utc.delta_t_ls : 18};
-  for (ProductSink* s : sinks) s->on_epoch(e);
+  products_.on_epoch(e);
 }
 
 void NavigationSession::run(const std::vector<ProductSink*>& sinks, const std::function<void(double)>& progress) {
+  products_ = ProductGroup(sinks);
   const auto on_correlation = [&](const CorrelatorEpoch& e, const ChannelSnapshot& ch) {
-    for (ProductSink* s : sinks) s->on_correlation(e, ch);
+    products_.on_correlation(e, ch);
   };
   std::exception_ptr failure;
   try {
-    if (aided_) aided_->run([&](const AidedEpoch& a) { hand_out(a.receiver, &a, sinks); }, on_correlation, progress);
-    else scalar_->run([&](const ReceiverEpoch& ep) { hand_out(ep, nullptr, sinks); }, on_correlation, progress);
+    if (aided_) aided_->run([&](const AidedEpoch& a) { hand_out(a.receiver, &a); }, on_correlation, progress);
+    else scalar_->run([&](const ReceiverEpoch& ep) { hand_out(ep, nullptr); }, on_correlation, progress);
   } catch (const std::exception& e) {
     // The products keep what they were given up to here; the summary says why it ended.
     failure = std::current_exception();
@@ -95,14 +94,9 @@ void NavigationSession::run(const std::vector<ProductSink*>& sinks, const std::f
   for (const auto& [prn, eph] : receiver().decoded_ephemerides()) decoded.ephemerides.push_back(eph);
   decoded.iono = receiver().iono();
   decoded.utc = receiver().utc();
-  finish_all(sinks, decoded, product_failures_);
+  products_.finish(decoded);
   if (failure) std::rethrow_exception(failure);
-  if (!product_failures_.empty()) {
-    std::string what;
-    for (const ProductFailure& f : product_failures_) what += (what.empty() ? "" : "; ") + f.product + ": " + f.error;
-    throw std::runtime_error(
-        fmt::format("{} of the products could not be written (the others are): {}", product_failures_.size(), what));
-  }
+  if (!products_.failures().empty()) throw std::runtime_error(products_.failure_message());
 }
 
 }  // namespace deepnav::aiding

@@ -13,7 +13,7 @@
 
 #include "aiding/aided_receiver.hpp"
 #include "receiver/mitigation/mitigation_config.hpp"
-#include "receiver/products/product_sink.hpp"
+#include "receiver/products/product_group.hpp"
 #include "signals/rinex_nav.hpp"
 
 namespace deepnav::aiding {
@@ -43,12 +43,13 @@ class NavigationSession {
   /// finishes every sink (so each file takes its final name) even when the source ended
   /// early. A run that fails (an exception from the receiver or the filter) still finishes
   /// them, with what they were given up to the failure (run_error() says why, for the
-  /// summary), and then rethrows. A sink that fails to finish is recorded
-  /// (product_failures(), at once, so a later sink can report it) without stopping the
-  /// others; then run() throws std::runtime_error naming the products.
+  /// summary), and then rethrows. A sink that throws, while the run goes or when it
+  /// finishes, is abandoned and recorded (product_failures(), at once, so a later sink can
+  /// report it) without stopping the run or the others (product_group.hpp); then run()
+  /// throws std::runtime_error naming the products.
   void run(const std::vector<ProductSink*>& sinks, const std::function<void(double)>& progress = {});
   const std::optional<std::string>& run_error() const { return run_error_; }
-  const std::vector<ProductFailure>& product_failures() const { return product_failures_; }
+  const std::vector<ProductFailure>& product_failures() const { return products_.failures(); }
 
   GnssReceiver& receiver();
   /// The aided navigator (nullptr in scalar mode).
@@ -57,14 +58,14 @@ class NavigationSession {
   const std::map<std::string, double>& seconds_in_mode() const { return seconds_in_mode_; }
 
  private:
-  void hand_out(const ReceiverEpoch& epoch, const AidedEpoch* aided, const std::vector<ProductSink*>& sinks);
+  void hand_out(const ReceiverEpoch& epoch, const AidedEpoch* aided);
   NavigationSessionConfig config_;
   std::unique_ptr<SampleSource> mitigated_;
   std::unique_ptr<AidedReceiver> aided_;
   std::unique_ptr<GnssReceiver> scalar_;
   std::map<std::string, double> seconds_in_mode_;
   std::optional<std::string> run_error_;
-  std::vector<ProductFailure> product_failures_;
+  ProductGroup products_;
 };
 
 }  // namespace deepnav::aiding

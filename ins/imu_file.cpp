@@ -5,12 +5,12 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <fstream>
 #include <stdexcept>
 #include <string_view>
 
 #include "ins/input_file.hpp"
+#include "ins/output_file.hpp"
 
 namespace deepnav {
 namespace {
@@ -142,21 +142,9 @@ void write_imu_csv(const std::string& path, const std::vector<ImuSample>& sample
     text += '\n';
   }
 
-  const std::string partial = path + ".partial";
-  {
-    std::ofstream out(partial, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error("cannot write '" + partial + "'");
-    out.write(text.data(), static_cast<std::streamsize>(text.size()));
-    out.close();
-    if (!out) {
-      std::error_code ignored;
-      std::filesystem::remove(partial, ignored);
-      throw std::runtime_error("writing '" + partial + "' failed (disk full?)");
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(partial, path, ec);
-  if (ec) throw std::runtime_error("cannot rename '" + partial + "' to '" + path + "': " + ec.message());
+  OutputFile file(path);
+  file.write(text);
+  file.commit();
 }
 
 ImuLog read_imu_csv(const std::string& path) {

@@ -44,8 +44,8 @@ struct ImuLog {
   std::string source;  ///< the file it was read from (for messages)
 };
 
-/// Writes `<path>.partial` and renames it to `path` when complete; throws
-/// std::runtime_error naming the path on failure (the partial file is removed).
+/// Writes through an OutputFile (output_file.hpp): `path` appears only when complete;
+/// throws std::runtime_error naming the path on failure (the partial file is removed).
 /// Values are written with the shortest representation that reads back exactly.
 void write_imu_csv(const std::string& path, const std::vector<ImuSample>& samples, ImuFileForm form,
                    double sample_rate_hz);

@@ -1,40 +1,39 @@
 #include "signals/text_output_file.hpp"
 
-#include <cerrno>
-#include <cstring>
-#include <filesystem>
-#include <stdexcept>
-
 namespace deepnav {
+namespace {
 
-TextOutputFile::TextOutputFile(std::string path) : path_(std::move(path)), partial_path_(path_ + ".partial") {
-  out_.open(partial_path_, std::ios::binary | std::ios::trunc);
-  if (!out_) {
-    throw std::runtime_error("cannot write '" + partial_path_ + "': " + std::strerror(errno));
-  }
-}
+/// Text is handed to the file in blocks of this size (a product writes a line at a time).
+constexpr std::size_t kBufferBytes = 64 * 1024;
 
-TextOutputFile::~TextOutputFile() {
-  if (!committed_) {
-    out_.close();
-    std::error_code ec;
-    std::filesystem::remove(partial_path_, ec);
-  }
-}
+}  // namespace
+
+TextOutputFile::TextOutputFile(std::string path) : path_(std::move(path)), file_(path_) {}
 
 void TextOutputFile::write(std::string_view text) {
-  out_.write(text.data(), static_cast<std::streamsize>(text.size()));
-  if (!out_) throw std::runtime_error("write to '" + partial_path_ + "' failed (disk full?)");
+  buffer_.append(text);
+  if (buffer_.size() >= kBufferBytes) flush();
 }
 
+void TextOutputFile::flush() {
+  if (buffer_.empty()) return;
+  std::string block;
+  block.swap(buffer_);  // emptied even when the write throws: a failed file takes no more text
+  file_.write(block);
+  block.clear();
+  buffer_.swap(block);  // keeps the allocation for the next block
+}
+
+void TextOutputFile::reserve(std::uint64_t bytes) { file_.reserve(bytes); }
+
 void TextOutputFile::commit() {
-  out_.flush();
-  out_.close();
-  if (!out_) throw std::runtime_error("closing '" + partial_path_ + "' failed (disk full?)");
-  std::error_code ec;
-  std::filesystem::rename(partial_path_, path_, ec);
-  if (ec) throw std::runtime_error("cannot rename '" + partial_path_ + "' to '" + path_ + "': " + ec.message());
-  committed_ = true;
+  flush();
+  file_.commit();
+}
+
+void TextOutputFile::fail() noexcept {
+  buffer_.clear();
+  file_.fail();
 }
 
 }  // namespace deepnav

@@ -80,6 +80,11 @@ void TrackSink::finish(const NavData&) {
   gpx_.commit();
 }
 
+void TrackSink::abandon() noexcept {
+  kml_.fail();
+  gpx_.fail();
+}
+
 RinexObsSink::RinexObsSink(const std::string& path, double interval_s) : file_(path) {
   header_.interval_s = interval_s;
 }
@@ -110,6 +115,10 @@ void RinexNavSink::finish(const NavData& decoded) {
   write_rinex3_nav(rinex, decoded, "deepnav");
   file_.write(rinex.str());
   FileSink::finish(decoded);
+}
+
+std::vector<std::string> file_product_names() {
+  return {"pvt.csv", "tracking.csv", "nav.rnx", "obs.rnx", "fixes.nmea", "track.kml", "track.gpx"};
 }
 
 std::vector<std::unique_ptr<ProductSink>> file_products(const std::string& out_dir, const std::string& track_name,

@@ -21,6 +21,7 @@ namespace deepnav {
 class FileSink : public ProductSink {
  public:
   void finish(const NavData&) override { file_.commit(); }
+  void abandon() noexcept override { file_.fail(); }
   std::string name() const override;
 
  protected:
@@ -52,6 +53,7 @@ class TrackSink : public ProductSink {
   TrackSink(const std::string& kml_path, const std::string& gpx_path, const std::string& name);
   void on_epoch(const NavigationEpoch& e) override;
   void finish(const NavData&) override;
+  void abandon() noexcept override;
   std::string name() const override { return "track.kml/track.gpx"; }
 
  private:
@@ -63,6 +65,7 @@ class RinexObsSink : public ProductSink {
   RinexObsSink(const std::string& path, double interval_s);
   void on_epoch(const NavigationEpoch& e) override;
   void finish(const NavData&) override;
+  void abandon() noexcept override { file_.fail(); }
   std::string name() const override;
 
  private:
@@ -79,6 +82,9 @@ class RinexNavSink : public FileSink {
   explicit RinexNavSink(const std::string& path) : FileSink(path) {}
   void finish(const NavData& decoded) override;
 };
+
+/// The files of file_products(), in its order.
+std::vector<std::string> file_product_names();
 
 /// All of the above in `out_dir`, named as listed.
 std::vector<std::unique_ptr<ProductSink>> file_products(const std::string& out_dir, const std::string& track_name,

@@ -4,7 +4,8 @@
 // product writes as the run goes, to a file that takes its final name only in finish()
 // (text_output_file.hpp): memory stays flat with run length. A run that fails still
 // finishes its products (what was written up to the failure, and the run's summary says
-// so); a product whose writer fails is reported without costing the others.
+// so); a product whose writer fails is reported without costing the others
+// (product_group.hpp).
 #include <functional>
 #include <string>
 #include <string_view>
@@ -38,6 +39,9 @@ class ProductSink {
   /// The run has ended: write what is left and give the file its final name.
   /// `decoded`: the navigation data the run ended with (ephemerides, ionosphere, UTC).
   virtual void finish(const NavData& decoded) { (void)decoded; }
+  /// The product failed (a call threw): remove what it wrote, and an earlier run's file
+  /// under its name that it can no longer replace (so that none passes for this run's).
+  virtual void abandon() noexcept {}
   /// What the product is called in reports ("pvt.csv"; a sink that writes no file: what it does).
   virtual std::string name() const { return "product"; }
 };
@@ -61,16 +65,5 @@ class CallbackSink : public ProductSink {
   EpochCallback on_epoch_;
   CorrelationCallback on_correlation_;
 };
-
-/// A product that could not be finished, and why.
-struct ProductFailure {
-  std::string product;
-  std::string error;
-};
-
-/// Finishes every sink in order, each on its own: one that throws (a writer refusing a
-/// value, a full disk) is appended to `failures` at once (a later sink, the run's summary,
-/// can report it), and the others still finish and keep their files.
-void finish_all(const std::vector<ProductSink*>& sinks, const NavData& decoded, std::vector<ProductFailure>& failures);
 
 }  // namespace deepnav

@@ -1,7 +1,8 @@
-// The file products as sinks: they write as the run goes, under `<name>.partial`, and
+// The file products as sinks: they write as the run goes, under `<name>.<pid>.partial`, and
 // take their final names only at finish(); the streamed files equal the whole-run
 // writers' output, and RINEX observations before the first fix wait for its position.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -38,11 +39,16 @@ ReceiverEpoch epoch_at(double t_s, bool with_fix) {
   return e;
 }
 
+/// Where this process writes `name` until it is complete (ins/output_file.hpp).
+std::string partial_of(const std::string& name) { return name + "." + std::to_string(::getpid()) + ".partial"; }
+
 class ProductSinks : public ::testing::Test {
  protected:
   void SetUp() override {
+    // One folder per test and process: ctest runs the tests as parallel processes.
     dir_ = fs::temp_directory_path() /
-           ("deepnav_sinks_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+           ("deepnav_sinks_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+            std::to_string(::getpid()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
@@ -62,7 +68,7 @@ TEST_F(ProductSinks, FilesAppearOnlyWhenFinishedAndEqualTheWholeRunWriters) {
   }
   for (const char* name : {"pvt.csv", "obs.rnx", "track.kml", "fixes.nmea"}) {
     EXPECT_FALSE(fs::exists(dir_ / name)) << name << " exists before the run ended";
-    EXPECT_TRUE(fs::exists(dir_ / (std::string(name) + ".partial"))) << name;
+    EXPECT_TRUE(fs::exists(dir_ / partial_of(name))) << name;
   }
   for (auto& s : sinks) s->finish(NavData{});
   RinexObsHeader header;
@@ -74,7 +80,7 @@ TEST_F(ProductSinks, FilesAppearOnlyWhenFinishedAndEqualTheWholeRunWriters) {
   int lines = 0;
   for (std::string line; std::getline(pvt, line);) ++lines;
   EXPECT_EQ(lines, 1 + 3);  // header and one row per fix
-  EXPECT_FALSE(fs::exists(dir_ / "pvt.csv.partial"));
+  EXPECT_FALSE(fs::exists(dir_ / partial_of("pvt.csv")));
 }
 
 TEST_F(ProductSinks, WriteAsTheRunGoes) {
@@ -86,7 +92,7 @@ TEST_F(ProductSinks, WriteAsTheRunGoes) {
     fixes.push_back(ep.pvt);
   }
   // Beyond the stream's buffer, the points are on disk before the run ends (not held).
-  const std::string so_far = read_file(dir_ / "track.kml.partial");
+  const std::string so_far = read_file(dir_ / partial_of("track.kml"));
   EXPECT_GT(so_far.size(), kml_track(fixes, "run").size() / 2);
   EXPECT_EQ(so_far, kml_track(fixes, "run").substr(0, so_far.size()));
 }

@@ -4,15 +4,29 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <stdexcept>
 
 #include <unistd.h>
 
 #include "ins/input_error.hpp"
+#include "signals/text_output_file.hpp"
 
 namespace deepnav::bench {
+namespace {
+
+/// A report file, complete or absent (a full disk: an error naming it, nothing left).
+void write_text_file(const std::string& path, const std::string& text) {
+  try {
+    TextOutputFile out(path);
+    out.write(text);
+    out.commit();
+  } catch (const std::runtime_error& e) {
+    throw InputError(e.what());
+  }
+}
+
+}  // namespace
 
 BenchReport::BenchReport(std::string title, std::vector<std::string> columns)
     : title_(std::move(title)), columns_(std::move(columns)), precision_(columns_.size(), 3) {}
@@ -93,17 +107,11 @@ nlohmann::json BenchReport::to_json() const {
 void BenchReport::emit(const std::string& json_path) const {
   std::cout << to_text() << std::flush;
   if (json_path.empty()) return;
-  std::ofstream out(json_path);
-  if (!out) throw InputError("cannot write JSON report to '" + json_path + "'");
-  out << to_json().dump(2) << '\n';
-  if (!out.flush()) throw InputError("failed while writing JSON report to '" + json_path + "'");
+  write_text_file(json_path, to_json().dump(2) + "\n");
 }
 
 void write_json_file(const std::string& path, const nlohmann::json& value) {
-  std::ofstream out(path);
-  if (!out) throw InputError("cannot write '" + path + "'");
-  out << value.dump(1) << '\n';
-  if (!out.flush()) throw InputError("failed while writing '" + path + "'");
+  write_text_file(path, value.dump(1) + "\n");
 }
 
 void emit_reports(const std::string& benchmark, const std::vector<BenchReport>& reports, const std::string& json_path) {

@@ -4,10 +4,10 @@
 
 #include <Eigen/Core>
 #include <cmath>
-#include <fstream>
 #include <map>
 
 #include "ins/input_error.hpp"
+#include "signals/text_output_file.hpp"
 #include "tools/bench/coupling_scoring.hpp"
 
 namespace deepnav::bench {
@@ -127,16 +127,20 @@ nlohmann::json mismatch_counts(const std::vector<nlohmann::json>& points, const 
 }
 
 void write_coupling_csv(const std::string& path, const std::vector<nlohmann::json>& points) {
-  std::ofstream csv(path);
-  if (!csv) throw InputError("cannot write '" + path + "'");
-  csv << "trajectory,run,requested_mode,t_s,mode,valid,error_n_m,error_e_m,error_d_m,velocity_error_mps\n";
-  for (const auto& p : points)
-    for (const auto& [mode, r] : p["modes"].items())
-      for (const auto& e : r["epochs"])
-        csv << fmt::format("{},{},{},{:.2f},{},{},{:.4f},{:.4f},{:.4f},{:.4f}\n", p["trajectory"].get<std::string>(),
-                           p["run"].get<int>(), mode, e[0].get<double>(), e[1].get<std::string>(),
-                           e[2].get<bool>() ? 1 : 0, e[3].get<double>(), e[4].get<double>(), e[5].get<double>(),
-                           e[6].get<double>());
+  try {  // complete or absent (a full disk: an error naming it, nothing left)
+    TextOutputFile csv(path);
+    csv.write("trajectory,run,requested_mode,t_s,mode,valid,error_n_m,error_e_m,error_d_m,velocity_error_mps\n");
+    for (const auto& p : points)
+      for (const auto& [mode, r] : p["modes"].items())
+        for (const auto& e : r["epochs"])
+          csv.write(fmt::format("{},{},{},{:.2f},{},{},{:.4f},{:.4f},{:.4f},{:.4f}\n",
+                                p["trajectory"].get<std::string>(), p["run"].get<int>(), mode, e[0].get<double>(),
+                                e[1].get<std::string>(), e[2].get<bool>() ? 1 : 0, e[3].get<double>(),
+                                e[4].get<double>(), e[5].get<double>(), e[6].get<double>()));
+    csv.commit();
+  } catch (const std::runtime_error& e) {
+    throw InputError(e.what());
+  }
 }
 
 }  // namespace deepnav::bench

@@ -2,13 +2,14 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
-#include <fstream>
+#include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "receiver/acquisition/acquisition.hpp"
 #include "receiver/sources/sample_source_factory.hpp"
+#include "signals/text_output_file.hpp"
 #include "tools/cli/cli_checks.hpp"
 #include "tools/cli/commands.hpp"
 #include "tools/cli/source_options.hpp"
@@ -52,8 +53,18 @@ nlohmann::json to_json(const AcquisitionResult& r) {
           {"cross_correlation_suspect", r.cross_correlation_suspect}};
 }
 
+/// --json must not name the file read (or its metadata file).
+void refuse_replacing_inputs(const AcquireOptions& o, const OpenedSource& opened) {
+  for (const std::string& input : {opened.input, o.source.metadata}) {
+    std::error_code ec;
+    if (!input.empty() && std::filesystem::equivalent(o.json_path, input, ec) && !ec)
+      throw UserError(fmt::format("--json '{}' would replace the input '{}': choose another file", o.json_path, input));
+  }
+}
+
 void run_acquire(AcquireOptions o) {
   const OpenedSource opened = open_sample_source(o.source);
+  if (!o.json_path.empty() && o.json_path != "-" && !opened.is_stream) refuse_replacing_inputs(o, opened);
   SampleSource& source = *opened.source;
   o.acq.sample_rate_hz = source.sample_rate_hz();
   o.acq.if_hz = source.intermediate_frequency_hz();
@@ -88,10 +99,15 @@ void run_acquire(AcquireOptions o) {
             .dump(2) +
         "\n";
     if (o.json_path == "-") {
-      std::cout << text;
+      if (!(std::cout << text << std::flush)) throw UserError("cannot write the JSON to stdout");
     } else {
-      std::ofstream out(o.json_path);
-      if (!(out << text)) throw UserError("cannot write '" + o.json_path + "'");
+      try {  // complete or absent (a full disk, /dev/full: an error naming the file)
+        TextOutputFile out(o.json_path);
+        out.write(text);
+        out.commit();
+      } catch (const std::runtime_error& e) {
+        throw UserError(e.what());
+      }
     }
   }
   int detected = 0;

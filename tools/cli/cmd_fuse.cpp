@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 #include <yaml-cpp/yaml.h>
 
+#include <csignal>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
@@ -11,11 +12,14 @@
 #include "ins/imu_log_reader.hpp"
 #include "receiver/observations/solution_file.hpp"
 #include "receiver/products/file_products.hpp"
+#include "receiver/products/product_group.hpp"
 #include "receiver/products/run_statistics.hpp"
 #include "signals/data_path.hpp"
-#include "signals/text_output_file.hpp"
 #include "tools/cli/atmosphere_options.hpp"
 #include "tools/cli/commands.hpp"
+#include "tools/cli/output_folder.hpp"
+#include "tools/cli/stop_signals.hpp"
+#include "tools/cli/summary_file.hpp"
 #include "tools/cli/yaml_config.hpp"
 
 namespace deepnav::cli {
@@ -68,6 +72,21 @@ void resolve_config_paths(CLI::App& root, FuseOptions& o) {
   }
 }
 
+/// The files of `fuse`, in its --out folder.
+const std::vector<std::string> kFuseProducts{"pvt.csv", "fixes.nmea", "track.kml",       "track.gpx",   "obs.rnx",
+                                             "nav.rnx", "filter.csv", "innovations.csv", "summary.json"};
+
+/// A per-epoch trace of the fusion (filter.csv, innovations.csv): a header, then rows
+/// written from the fusion's trace callback.
+class TraceCsvSink final : public FileSink {
+ public:
+  TraceCsvSink(const std::string& path, std::string_view header) : FileSink(path) { file_.write(header); }
+  void write(std::string_view rows) { file_.write(rows); }
+};
+
+/// Thrown from the trace callback to end the fusion after SIGINT, SIGTERM or SIGHUP.
+struct Interrupted {};
+
 void require_file(const std::string& path, const char* option) {
   if (path.empty()) throw UserError(fmt::format("{} FILE is required", option));
   if (!std::filesystem::is_regular_file(path)) throw UserError(fmt::format("{}: no such file '{}'", option, path));
@@ -87,6 +106,8 @@ class SolutionCollector : public ProductSink {
 };
 
 void run_fuse(CLI::App& root, FuseOptions o) {
+  // From the start: a signal while the inputs are read ends the fusion at its first epoch.
+  StopOnSignals stop_signals;
   resolve_config_paths(root, o);
   require_file(o.obs, "--obs");
   require_file(o.nav, "--nav");
@@ -140,10 +161,12 @@ void run_fuse(CLI::App& root, FuseOptions o) {
   c.smoothing.max_doppler_bridge_s = o.doppler_bridge_s;
   c.stationarity.enabled = o.zupt;
 
-  std::error_code ec;
-  std::filesystem::create_directories(o.out_dir, ec);
-  if (ec) throw UserError("cannot create output folder '" + o.out_dir + "': " + ec.message());
-  const auto path = [&](const char* name) { return (std::filesystem::path(o.out_dir) / name).string(); };
+  std::vector<NamedInput> inputs = config_file_input(root);
+  inputs.insert(
+      inputs.end(),
+      {{"--obs", o.obs}, {"--nav", o.nav}, {"--imu", o.imu}, {"--reference", o.reference}, {"--compare", o.compare}});
+  const OutputFolder out(o.out_dir, kFuseProducts, inputs);
+  const auto path = [&](const char* name) { return out.path(name); };
   std::unique_ptr<aiding::RecordedFusion> fusion;
   try {
     fusion = std::make_unique<aiding::RecordedFusion>(c, obs, nav, imu.log);
@@ -155,31 +178,42 @@ void run_fuse(CLI::App& root, FuseOptions o) {
   TrackSink track(path("track.kml"), path("track.gpx"), std::filesystem::path(o.obs).filename().string());
   RinexObsSink obs_out(path("obs.rnx"), obs.report.nominal_interval_s > 0 ? obs.report.nominal_interval_s : 1.0);
   RinexNavSink nav_out(path("nav.rnx"));
+  TraceCsvSink filter_csv(path("filter.csv"),
+                          "t_s,filter,pvt_valid,pvt_satellites,rows,rows_rejected,zero_velocity,clock_jump_m,sigma_n_m,"
+                          "sigma_e_m,sigma_d_m\n");
+  TraceCsvSink innovations_csv(path("innovations.csv"),
+                               "t_s,prn,elevation_deg,cn0_dbhz,smoothing_epochs,code_residual_m,code_normalized,"
+                               "code_rejected,rate_residual_mps,rate_rejected\n");
+  SummaryFile summary_file(path("summary.json"));
+  // Each product on its own: one that fails (a full disk) costs only itself.
+  ProductGroup products({&pvt_csv, &nmea, &track, &obs_out, &nav_out, &filter_csv, &innovations_csv});
   RunStatistics stats(nullptr);
   SolutionCollector collected;
-  std::vector<ProductSink*> sinks{&stats, &collected, &pvt_csv, &nmea, &track, &obs_out, &nav_out};
-  TextOutputFile filter_csv(path("filter.csv")), innovations_csv(path("innovations.csv"));
-  filter_csv.write(
-      "t_s,filter,pvt_valid,pvt_satellites,rows,rows_rejected,zero_velocity,clock_jump_m,sigma_n_m,sigma_e_m,sigma_d_"
-      "m\n");
-  innovations_csv.write(
-      "t_s,prn,elevation_deg,cn0_dbhz,smoothing_epochs,code_residual_m,code_normalized,code_rejected,"
-      "rate_residual_mps,rate_rejected\n");
   const auto opt = [](const std::optional<double>& v) { return v ? fmt::format("{:.4f}", *v) : std::string(); };
   fusion->set_trace([&](const aiding::FusionEpochTrace& t) {
-    filter_csv.write(fmt::format("{:.3f},{:d},{:d},{},{},{},{:d},{:.3f},{:.3f},{:.3f},{:.3f}\n", t.t_s, t.filter,
-                                 t.pvt_valid, t.pvt_satellites, t.rows, t.rows_rejected, t.zero_velocity,
-                                 t.clock_jump_m, t.position_sigma_ned_m.x(), t.position_sigma_ned_m.y(),
-                                 t.position_sigma_ned_m.z()));
-    for (const aiding::FusionSatelliteTrace& st : t.satellites)
-      innovations_csv.write(fmt::format("{:.3f},{},{:.2f},{:.1f},{},{},{},{:d},{},{:d}\n", t.t_s, st.prn,
-                                        st.elevation_deg, st.cn0_dbhz, st.smoothing_epochs, opt(st.code_residual_m),
-                                        opt(st.code_normalized), st.code_rejected, opt(st.rate_residual_mps),
-                                        st.rate_rejected));
+    // The fusion has no stop of its own: a signal ends it here, at an epoch's start.
+    if (stop_signals.flag().load()) throw Interrupted{};
+    products.write_for(filter_csv, [&] {
+      filter_csv.write(fmt::format("{:.3f},{:d},{:d},{},{},{},{:d},{:.3f},{:.3f},{:.3f},{:.3f}\n", t.t_s, t.filter,
+                                   t.pvt_valid, t.pvt_satellites, t.rows, t.rows_rejected, t.zero_velocity,
+                                   t.clock_jump_m, t.position_sigma_ned_m.x(), t.position_sigma_ned_m.y(),
+                                   t.position_sigma_ned_m.z()));
+    });
+    products.write_for(innovations_csv, [&] {
+      for (const aiding::FusionSatelliteTrace& st : t.satellites)
+        innovations_csv.write(fmt::format("{:.3f},{},{:.2f},{:.1f},{},{},{},{:d},{},{:d}\n", t.t_s, st.prn,
+                                          st.elevation_deg, st.cn0_dbhz, st.smoothing_epochs, opt(st.code_residual_m),
+                                          opt(st.code_normalized), st.code_rejected, opt(st.rate_residual_mps),
+                                          st.rate_rejected));
+    });
   });
-  fusion->run(sinks);
-  filter_csv.commit();
-  innovations_csv.commit();
+  bool interrupted = false;
+  try {
+    fusion->run({&stats, &collected, &products});
+  } catch (const Interrupted&) {
+    interrupted = true;  // the products keep the epochs before the signal
+    products.finish(nav);
+  }
 
   const ObservationReport& r = obs.report;
   nlohmann::json gaps = nlohmann::json::array(), jumps = nlohmann::json::array(), imu_gaps = nlohmann::json::array();
@@ -230,7 +264,11 @@ void run_fuse(CLI::App& root, FuseOptions o) {
         {"time_scale", imu.report.time_scale},
         {"time_offset_s", imu.report.time_offset_s},
         {"time_base", o.imu_time_base},
-        {"gaps", imu_gaps}}}};
+        {"gaps", imu_gaps}}},
+      {"interrupted", interrupted}};
+  nlohmann::json failed = nlohmann::json::array();
+  for (const ProductFailure& f : products.failures()) failed.push_back({{"product", f.product}, {"error", f.error}});
+  summary["products_failed"] = failed;
   if (!reference.empty()) {
     const ReferenceErrors ours = reference_errors(collected.points(), reference);
     summary["reference"] = o.reference;
@@ -259,13 +297,23 @@ void run_fuse(CLI::App& root, FuseOptions o) {
           base.scatter_rms_horizontal_m, base.scatter_max_horizontal_m);
     }
   }
-  TextOutputFile summary_file(path("summary.json"));
-  summary_file.write(summary.dump(2) + "\n");
-  summary_file.commit();
-  fmt::print("{} epochs, {} with the {} filter; INS start: {}; {} zero-velocity updates\n", stats.epochs(),
-             fusion->report().filter_epochs, o.mode,
-             fusion->report().ins_start.empty() ? "none" : fusion->report().ins_start,
-             fusion->report().zero_velocity_updates);
+  try {
+    summary_file.write(summary);
+  } catch (const std::runtime_error& e) {
+    summary_file.fail();
+    throw UserError(products.failures().empty() ? e.what() : products.failure_message() + "; " + e.what());
+  }
+  if (stop_signals.signal() != SIGHUP)  // after a hangup the terminal is gone
+    fmt::print("{} epochs, {} with the {} filter; INS start: {}; {} zero-velocity updates\n", stats.epochs(),
+               fusion->report().filter_epochs, o.mode,
+               fusion->report().ins_start.empty() ? "none" : fusion->report().ins_start,
+               fusion->report().zero_velocity_updates);
+  if (!products.failures().empty()) throw UserError(products.failure_message());
+  if (interrupted)
+    throw UserError(fmt::format("interrupted by {}: the products hold the epochs before it (summary.json: "
+                                "\"interrupted\": true)",
+                                signal_name(stop_signals.signal())),
+                    interrupted_exit_status(stop_signals.signal()));
 }
 
 }  // namespace

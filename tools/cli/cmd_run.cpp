@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
+#include <csignal>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
@@ -18,15 +19,16 @@
 #include "receiver/sources/sample_source_factory.hpp"
 #include "signals/data_path.hpp"
 #include "signals/rinex_nav.hpp"
-#include "signals/text_output_file.hpp"
 #include "tools/bench/process_usage.hpp"
 #include "tools/cli/atmosphere_options.hpp"
 #include "tools/cli/cli_checks.hpp"
 #include "tools/cli/commands.hpp"
 #include "tools/cli/long_integration_options.hpp"
+#include "tools/cli/output_folder.hpp"
 #include "tools/cli/progress.hpp"
 #include "tools/cli/source_options.hpp"
 #include "tools/cli/stop_signals.hpp"
+#include "tools/cli/summary_file.hpp"
 #include "tools/cli/yaml_config.hpp"
 
 namespace deepnav::cli {
@@ -230,21 +232,33 @@ nlohmann::json run_summary(const RunOptions& o, const OpenedSource& opened, aidi
   return summary;
 }
 
-/// summary.json, written once the run has ended (the figures are the whole run's).
+/// summary.json, written once the run has ended (the figures are the whole run's), last of
+/// the products so that it can list those that failed.
 class SummarySink : public ProductSink {
  public:
   SummarySink(const std::string& path, std::function<nlohmann::json()> summary)
       : file_(path), summary_(std::move(summary)) {}
-  void finish(const NavData&) override {
-    file_.write(summary_().dump(2) + "\n");
-    file_.commit();
-  }
+  void finish(const NavData&) override { file_.write(summary_()); }
+  void abandon() noexcept override { file_.fail(); }
   std::string name() const override { return "summary.json"; }
 
  private:
-  TextOutputFile file_;
+  SummaryFile file_;
   std::function<nlohmann::json()> summary_;
 };
+
+/// The files `run` reads, which its products must not replace.
+std::vector<NamedInput> run_inputs(CLI::App& root, const RunOptions& o, const OpenedSource& opened) {
+  std::vector<NamedInput> inputs = config_file_input(root);
+  if (!opened.is_stream) inputs.push_back({"--input", opened.input});
+  for (const NamedInput& input : std::vector<NamedInput>{{"--metadata", o.source.metadata},
+                                                         {"--truth", o.truth_path},
+                                                         {"--iono-from", o.assist_nav},
+                                                         {"--ephemeris-from", o.assist_ephemeris},
+                                                         {"--imu", o.imu_path}})
+    inputs.push_back(input);
+  return inputs;
+}
 
 /// --week names a week near the data: from the first GPS week to 1024 weeks (about 20
 /// years) after this program was built.
@@ -257,7 +271,7 @@ void check_week_option(int week) {
                     week, last));
 }
 
-void run_receiver(RunOptions o) {
+void run_receiver(CLI::App& root, RunOptions o) {
   std::optional<TruthFile> truth;
   try {
     if (!o.truth_path.empty()) truth.emplace(o.truth_path);
@@ -268,9 +282,9 @@ void run_receiver(RunOptions o) {
   StopOnSignals stop_signals;
   o.source.stop = &stop_signals.flag();
   OpenedSource opened = open_sample_source(o.source);
-  std::error_code ec;
-  std::filesystem::create_directories(o.out_dir, ec);
-  if (ec) throw UserError("cannot create output folder '" + o.out_dir + "': " + ec.message());
+  std::vector<std::string> product_names = file_product_names();
+  product_names.push_back("summary.json");
+  const OutputFolder out(o.out_dir, product_names, run_inputs(root, o, opened));
 
   const aiding::NavMode mode = parse_mode(o);
   std::optional<ImuLog> imu;
@@ -281,7 +295,7 @@ void run_receiver(RunOptions o) {
       o.out_dir, std::filesystem::path(opened.input).filename().string(), 1.0 / o.receiver.observation_rate_hz);
   aiding::NavigationSession session(config, *opened.source, std::move(imu), opened.duration_s);
   RunStatistics stats(truth ? &*truth : nullptr);
-  SummarySink summary((std::filesystem::path(o.out_dir) / "summary.json").string(),
+  SummarySink summary(out.path("summary.json"),
                       [&] { return run_summary(o, opened, session, stats, truth.has_value(), imu_integrity); });
   std::vector<ProductSink*> sinks{&stats};
   for (const auto& p : products) sinks.push_back(p.get());
@@ -299,21 +313,30 @@ void run_receiver(RunOptions o) {
     throw UserError(e.what());
   }
   progress.finish();
-  fmt::print("{} fixes in {} epochs; first fix at {} s; satellites acquired: {}\n", stats.fixes(), stats.epochs(),
-             stats.first_fix_s() ? fmt::format("{:.1f}", *stats.first_fix_s()) : std::string("-"),
-             session.receiver().acquired_prns().size());
-  if (truth && !stats.horizontal_error_m().values.empty())
-    fmt::print("error vs truth: horizontal RMS {:.2f} m, vertical RMS {:.2f} m, velocity RMS {:.3f} m/s\n",
-               stats.horizontal_error_m().rms(), stats.vertical_error_m().rms(), stats.velocity_error_mps().rms());
-  if (opened.interrupted())
-    spdlog::warn("interrupted: products written up to sample {}", opened.source->next_sample_index());
+  // After a hangup the terminal is gone: the results stay in the products.
+  if (stop_signals.signal() != SIGHUP) {
+    fmt::print("{} fixes in {} epochs; first fix at {} s; satellites acquired: {}\n", stats.fixes(), stats.epochs(),
+               stats.first_fix_s() ? fmt::format("{:.1f}", *stats.first_fix_s()) : std::string("-"),
+               session.receiver().acquired_prns().size());
+    if (truth && !stats.horizontal_error_m().values.empty())
+      fmt::print("error vs truth: horizontal RMS {:.2f} m, vertical RMS {:.2f} m, velocity RMS {:.3f} m/s\n",
+                 stats.horizontal_error_m().rms(), stats.vertical_error_m().rms(), stats.velocity_error_mps().rms());
+  }
   if (const auto failure = opened.failure()) throw UserError(*failure + " (products written up to there)");
+  if (opened.interrupted()) {
+    const int signal = stop_signals.signal();
+    throw UserError(fmt::format("interrupted by {}: the products are written up to sample {} (summary.json: "
+                                "\"interrupted\": true)",
+                                signal_name(signal), opened.source->next_sample_index()),
+                    interrupted_exit_status(signal));
+  }
 }
 
 }  // namespace
 
 void add_run_command(CommandParents& parents) {
   auto o = std::make_shared<RunOptions>();
+  CLI::App* root = &parents.root;
   CLI::App* cmd = parents.root.add_subcommand("run", "Run the receiver on an IF file: PVT and products in --out");
   add_source_options(*cmd, o->source, SourceUse::receiver);
   cmd->add_option("--mitigation", o->mitigation,
@@ -390,12 +413,12 @@ void add_run_command(CommandParents& parents) {
                   "GPS week near the data: resolves the week number the satellites broadcast modulo 1024, and must "
                   "agree with it (default: the --ephemeris-from file's epoch, else the build date)");
   add_print_config(*cmd, o->print_config);
-  cmd->callback([o, cmd] {
+  cmd->callback([o, cmd, root] {
     if (o->print_config) return fmt::print("{}", effective_config(*cmd));
     if (cmd->get_option("--week")->count() > 0) check_week_option(o->receiver.reference_week);
     o->receiver.reference_week_origin = "--week";
     note_given_source_options(*cmd, o->source);
-    run_receiver(*o);
+    run_receiver(*root, *o);
   });
 }
 

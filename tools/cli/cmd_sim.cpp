@@ -4,17 +4,21 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "signals/if_metadata.hpp"
 #include "signals/rinex_nav.hpp"
 #include "signals/sim/if_synthesizer.hpp"
 #include "signals/sim/scenario.hpp"
 #include "signals/text_output_file.hpp"
 #include "tools/cli/cli_checks.hpp"
 #include "tools/cli/commands.hpp"
+#include "tools/cli/output_folder.hpp"
 #include "tools/cli/progress.hpp"
+#include "tools/cli/stop_signals.hpp"
 
 namespace deepnav::cli {
 namespace {
@@ -66,7 +70,28 @@ void print_summary(const Scenario& sc, const SynthesisSummary& s) {
   }
 }
 
-void run_sim(const SimOptions& o) {
+/// The files `sim` writes into --out for this scenario.
+std::vector<std::string> sim_products(const Scenario& sc) {
+  const std::string if_file = if_file_name(sc.format);
+  return {
+      if_file,         metadata_path_for(if_file).string(), "truth.csv", "sat_truth.csv", "scenario.yaml", "imu.csv",
+      "synthesis.json"};
+}
+
+/// The files `sim` reads, which its products must not replace.
+std::vector<NamedInput> sim_inputs(CLI::App& root, const SimOptions& o, const Scenario& sc) {
+  std::vector<NamedInput> inputs = config_file_input(root);
+  inputs.insert(inputs.end(), {{"--scenario", o.scenario_path},
+                               {"the scenario's nav_file", sc.nav_file},
+                               {"the scenario's trajectory file", sc.trajectory.csv_path}});
+  if (sc.imu.enabled) inputs.push_back({"the scenario's IMU grades file", sc.imu.grades_file});
+  return inputs;
+}
+
+/// Thrown from the progress callback to end the synthesis after SIGINT, SIGTERM or SIGHUP.
+struct Interrupted {};
+
+void run_sim(CLI::App& root, const SimOptions& o) {
   Scenario sc;
   try {
     sc = load_scenario(o.scenario_path, DEEPNAV_SOURCE_DIR);
@@ -81,22 +106,35 @@ void run_sim(const SimOptions& o) {
   } catch (const std::exception& e) {
     throw UserError(e.what());
   }
+  const OutputFolder out(o.out_dir, sim_products(sc), sim_inputs(root, o, sc));
   IfSynthesizer synth(sc, std::move(nav));
   SynthesisOptions options;
   options.threads = o.threads;
   ProgressLine progress("sim", sc.duration_s);
-  options.progress = [&](double fraction) { progress.update(fraction); };
+  StopOnSignals stop_signals;
+  options.progress = [&](double fraction) {
+    // The synthesizer has no stop of its own: a signal ends it here, between two chunks.
+    if (stop_signals.flag().load()) throw Interrupted{};
+    progress.update(fraction);
+  };
   SynthesisSummary summary;
   try {
-    summary = synth.run(o.out_dir, options);
+    summary = synth.run(out.dir(), options);
   } catch (const std::runtime_error& e) {
     throw UserError(e.what());
+  } catch (const Interrupted&) {
+    progress.finish();
+    const int signal = stop_signals.signal();
+    throw UserError(
+        fmt::format("interrupted by {}: nothing is written (an incomplete IF file would pass for a short one)",
+                    signal_name(signal)),
+        interrupted_exit_status(signal));
   }
   progress.finish();
-  TextOutputFile json((std::filesystem::path(o.out_dir) / "synthesis.json").string());
+  TextOutputFile json(out.path("synthesis.json"));
   json.write(summary_json(sc, summary).dump(2) + "\n");
   json.commit();
-  print_summary(sc, summary);
+  if (stop_signals.signal() != SIGHUP) print_summary(sc, summary);  // after a hangup the terminal is gone
 }
 
 }  // namespace
@@ -113,7 +151,8 @@ void add_sim_command(CommandParents& parents) {
       ->capture_default_str();
   cmd->add_option("--duration", opts->duration_s, "Override the scenario's duration (s)")
       ->check(finite_in(1e-3, 86400.0, "seconds"));
-  cmd->callback([opts] { run_sim(*opts); });
+  CLI::App* root = &parents.root;
+  cmd->callback([opts, root] { run_sim(*root, *opts); });
 }
 
 }  // namespace deepnav::cli

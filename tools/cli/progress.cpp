@@ -26,15 +26,18 @@ void ProgressLine::update(double fraction) {
   const double done_s = fraction * total_s_;
   const double speed = wall > 0.0 ? done_s / wall : 0.0;
   const double eta = speed > 0.0 ? (total_s_ - done_s) / speed : 0.0;
-  fmt::print(stderr, "\r{}: {:5.1f}%  {:.1f} of {:.1f} s  {:.1f}x real time  eta {:.0f} s   ", label_, 100.0 * fraction,
-             done_s, total_s_, speed, eta);
-  std::fflush(stderr);
+  draw(fmt::format("\r{}: {:5.1f}%  {:.1f} of {:.1f} s  {:.1f}x real time  eta {:.0f} s   ", label_, 100.0 * fraction,
+                   done_s, total_s_, speed, eta));
+}
+
+void ProgressLine::draw(const std::string& text) {
+  // The line is cosmetic: a terminal gone (a hangup) ends the drawing, never the run.
+  if (std::fputs(text.c_str(), stderr) < 0 || std::fflush(stderr) != 0) enabled_ = false;
 }
 
 void ProgressLine::finish() {
   if (enabled_ && drawn_) {
-    fmt::print(stderr, "\r{:80}\r", "");
-    std::fflush(stderr);
+    draw(fmt::format("\r{:80}\r", ""));
     drawn_ = false;
   }
 }

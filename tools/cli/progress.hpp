@@ -17,6 +17,7 @@ class ProgressLine {
   void finish();
 
  private:
+  void draw(const std::string& text);
   std::string label_;
   double total_s_;
   bool enabled_;
