@@ -131,6 +131,7 @@ void run_fuse(CLI::App& root, FuseOptions o) {
   } catch (const std::exception& e) {
     throw UserError(e.what());
   }
+  for (const std::string& w : imu.report.warnings) spdlog::warn("{}", w);
   c.coupling.atmosphere = o.atmosphere;
   c.pvt.elevation_mask_rad = o.elevation_mask_deg * M_PI / 180.0;
   c.pseudorange_sigma_scale = o.pseudorange_sigma_scale;
@@ -220,8 +221,7 @@ void run_fuse(CLI::App& root, FuseOptions o) {
         {"samples", imu.report.samples},
         {"duplicate_rows", imu.report.duplicate_rows},
         {"repeated_time", imu.report.repeated_time},
-        {"backward_time", imu.report.backward_time},
-        {"first_backward_line", imu.report.first_backward_line},
+        {"repeated_values", imu.report.repeated_values},
         {"truncated_lines", imu.report.truncated_lines},
         {"interval_s",
          {{"nominal", imu.report.nominal_interval_s},
@@ -230,7 +230,8 @@ void run_fuse(CLI::App& root, FuseOptions o) {
         {"time_scale", imu.report.time_scale},
         {"time_offset_s", imu.report.time_offset_s},
         {"time_base", o.imu_time_base},
-        {"gaps", imu_gaps}}}};
+        {"gaps", imu_gaps},
+        {"warnings", imu.report.warnings}}}};
   if (!reference.empty()) {
     const ReferenceErrors ours = reference_errors(collected.points(), reference);
     summary["reference"] = o.reference;
