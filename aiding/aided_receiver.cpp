@@ -10,6 +10,7 @@
 #include <string>
 
 #include "aiding/gnss_coupling.hpp"
+#include "aiding/imu_feed.hpp"
 #include "aiding/innovation_monitor.hpp"
 #include "aiding/ins_initializer.hpp"
 #include "aiding/measurement_models.hpp"
@@ -42,9 +43,7 @@ struct AidedReceiver::Impl : ChannelAiding {
   CouplingSettings coupling;
   GnssReceiver rx;
   ImuLog imu;
-  std::size_t next_imu = 0;
-  std::size_t next_gap = 0;                ///< first IMU gap not reached yet
-  std::optional<std::size_t> current_gap;  ///< the IMU gap the receiver is in (no INS there)
+  ImuFeed imu_feed;  ///< the log's samples, gaps and end (no INS where it has no data)
   InsInitializer init;
   std::optional<AidedNavigator> nav;
   UltraTightTracker ultra;
@@ -65,7 +64,6 @@ struct AidedReceiver::Impl : ChannelAiding {
   double last_pvt_t_s = -1e9;
   int ranging = 0;
   int last_tight_satellites = 0;
-  bool imu_end_reported = false;
   // The receiver's sum of clock steps the filter's clock has followed.
   double followed_clock_steps_s = 0.0;
 
@@ -74,6 +72,7 @@ struct AidedReceiver::Impl : ChannelAiding {
         coupling(coupling_settings(cfg)),
         rx(cfg.receiver, source),
         imu(std::move(log)),
+        imu_feed(imu),
         init(cfg.imu, cfg.lever_arm_imu_to_antenna_b_m),
         ultra(cfg.ultra, source.sample_rate_hz(), cfg.receiver.pvt.range_errors,
               cfg.fault_exclusion ? &faults : nullptr, cfg.receiver.atmosphere),
@@ -129,34 +128,25 @@ struct AidedReceiver::Impl : ChannelAiding {
   }
 
   void propagate_to(double t) {
-    // A gap in the IMU data: nothing to propagate the INS with, so it stops (and restarts
-    // from the fixes after the gap) instead of driving channels and publishing solutions
-    // from a state that no longer moves with the vehicle.
-    if (current_gap && t >= imu.gaps[*current_gap].t_after_s) current_gap.reset();
-    while (next_gap < imu.gaps.size() && t > imu.gaps[next_gap].t_before_s + 1.5 * imu.nominal_interval_s) {
-      const ImuGap& g = imu.gaps[next_gap++];
-      if (t >= g.t_after_s) continue;  // passed within one block
-      spdlog::warn(
-          "t = {:.2f} s: IMU data missing from t = {:.3f} s to {:.3f} s (IMU file line {}): INS stopped, "
-          "scalar receiver until it restarts after the gap",
-          t, g.t_before_s, g.t_after_s, g.line);
-      stop_ins();  // an alignment under way starts over too: its samples end before the gap
-      current_gap = next_gap - 1;
-    }
-    while (next_imu < imu.samples.size() && imu.samples[next_imu].t_s <= t + 1e-9) {
-      const ImuSample& s = imu.samples[next_imu++];
-      if (!nav) {
-        init.add_imu(s);
-      } else if (s.t_s > nav->time_s()) {
-        nav->propagate(s);
-      }
-    }
-    if (next_imu == imu.samples.size() && t > imu.samples.back().t_s + 0.05 && !imu_end_reported) {
-      imu_end_reported = true;
-      spdlog::error("IMU data end at t = {:.2f} s but the IF data go on: INS stopped, scalar receiver from here",
-                    imu.samples.back().t_s);
-      nav.reset();
-    }
+    // Where the IMU log has no data (a gap, its end) there is nothing to propagate the INS
+    // with, so it stops (and restarts from the fixes after a gap) instead of driving
+    // channels and publishing solutions from a state that no longer moves with the vehicle.
+    imu_feed.advance(
+        t,
+        [&](const ImuSample& s) {
+          if (!nav) init.add_imu(s);
+          else if (s.t_s > nav->time_s()) nav->propagate(s);
+        },
+        [&](const ImuGap& g) {
+          spdlog::warn("t = {:.2f} s: {}: INS stopped, scalar receiver until it restarts after the gap", t,
+                       imu_feed.describe(g));
+          stop_ins();  // an alignment under way starts over too: its samples end before the gap
+        },
+        [&] {
+          spdlog::error("IMU data end at t = {:.2f} s but the IF data go on: INS stopped, scalar receiver from here",
+                        imu_feed.last_sample_t_s());
+          stop_ins();
+        });
   }
 
   /// The scalar receiver re-sets its clock after fixes (steps of its bias); the filter's
@@ -387,7 +377,7 @@ struct AidedReceiver::Impl : ChannelAiding {
     ranging = 0;
     for (const auto& o : ep.observations)
       if (rx.ephemeris(o.prn)) ++ranging;
-    if (!nav && ep.pvt.valid && !current_gap) start_ins(ep);
+    if (!nav && ep.pvt.valid && imu_feed.covers()) start_ins(ep);
     watch_atmosphere(ep);
     ultra.clear_pseudorange_residuals();
     if (nav) {

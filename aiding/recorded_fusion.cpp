@@ -6,6 +6,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "aiding/imu_feed.hpp"
+#include "aiding/innovation_monitor.hpp"
 #include "aiding/ins_initializer.hpp"
 #include "ins/frames.hpp"
 #include "ins/wgs84.hpp"
@@ -80,6 +82,7 @@ class FusionRun {
         nav_(nav),
         imu_(imu),
         report_(report),
+        imu_feed_(imu),
         t_first_(fusion_time_s(obs, obs.epochs.front().t)),
         solver_(cfg.pvt, cfg.coupling.atmosphere),
         iono_(cfg.iono ? *cfg.iono : nav.iono),
@@ -112,7 +115,8 @@ class FusionRun {
                    e.clock_jump_m / gps::kSpeedOfLight_mps * 1e6);
     }
     int filter_satellites = 0;
-    if (!nav_filter_ && fe.receiver.pvt.valid && fe.dopplers && last_imu_t_ > t - kStartImuLag_s) {
+    if (!nav_filter_ && fe.receiver.pvt.valid && fe.dopplers && imu_feed_.covers() &&
+        imu_feed_.last_sample_t_s() > t - kStartImuLag_s) {
       try_start(fe);
     } else if (nav_filter_) {
       filter_satellites = update(fe);
@@ -136,14 +140,38 @@ class FusionRun {
     return c.coupling.imu.gyro.bias_sigma + c.coupling.imu.gyro.bias_instability_sigma;
   }
 
+  /// The IMU up to the epoch at `t`. Where the log has no data (a gap, its end) the INS
+  /// stops: the epochs there publish the single point, and after a gap the INS starts
+  /// again from the fixes.
   void feed_imu_until(double t) {
-    while (next_imu_ < imu_.samples.size() && imu_.samples[next_imu_].t_s <= t + 1e-9) {
-      const ImuSample& s = imu_.samples[next_imu_++];
-      still_.add(s, s.t_s - last_imu_t_);
-      last_imu_t_ = s.t_s;
-      if (!nav_filter_) init_.add_imu(s);
-      else if (s.t_s > nav_filter_->time_s()) nav_filter_->propagate(s);
-    }
+    imu_feed_.advance(
+        t,
+        [&](const ImuSample& s) {
+          still_.add(s, s.t_s - imu_feed_.last_sample_t_s());
+          if (!nav_filter_) init_.add_imu(s);
+          else if (s.t_s > nav_filter_->time_s()) nav_filter_->propagate(s);
+        },
+        [&](const ImuGap& g) {
+          ++report_.imu_gap_stops;
+          spdlog::warn("t = {:.2f} s: {}: INS stopped, single-point solutions until it restarts after the gap",
+                       t - t_first_, imu_feed_.describe(g, t_first_));
+          stop_ins();
+        },
+        [&] {
+          report_.imu_end_t_s = imu_feed_.last_sample_t_s() - t_first_;
+          spdlog::warn(
+              "t = {:.2f} s: the IMU log ends at t = {:.2f} s but the observations go on to t = {:.2f} s: INS "
+              "stopped, single-point solutions from here",
+              t - t_first_, *report_.imu_end_t_s, fusion_time_s(obs_, obs_.epochs.back().t) - t_first_);
+          stop_ins();
+        });
+  }
+
+  /// Drops the INS and its filter; the initializer starts over from the next IMU samples.
+  void stop_ins() {
+    nav_filter_.reset();
+    innovations_.clear();
+    init_ = InsInitializer(cfg_.coupling.imu, cfg_.coupling.lever_arm_imu_to_antenna_b_m);
   }
 
   /// The epoch's observables (carrier-smoothed code), ephemerides and PVT, and its trace.
@@ -218,10 +246,16 @@ class FusionRun {
     if (!nav_filter_->healthy()) {
       spdlog::error("t = {:.2f} s: navigation filter failed ({}); INS restarted from the next fix", fe.receiver.t_s,
                     nav_filter_->health_reason());
-      nav_filter_.reset();
-      init_ = InsInitializer(cfg_.coupling.imu, cfg_.coupling.lever_arm_imu_to_antenna_b_m);
-      ++report_.filter_restarts;
+    } else if (innovations_.inconsistent()) {
+      spdlog::error(
+          "t = {:.2f} s: navigation filter rejects {} of its last {} measurement rows: it no longer agrees with the "
+          "observations; INS restarted from the next fix",
+          fe.receiver.t_s, innovations_.rejected(), innovations_.rows());
+    } else {
+      return filter_satellites;
     }
+    stop_ins();
+    ++report_.filter_restarts;
     return filter_satellites;
   }
 
@@ -283,6 +317,7 @@ class FusionRun {
       r = nav_filter_->update_ranges(rows);
     }
     count_rows(fe, r);
+    innovations_.add(fe.t, r);
     // The rows in order: each measurement's pseudorange row, then its rate row.
     std::size_t k = 0;
     for (const RangeMeasurement& m : rows) {
@@ -339,19 +374,21 @@ class FusionRun {
   const NavData& nav_;
   const ImuLog& imu_;
   RecordedFusionReport& report_;
+  ImuFeed imu_feed_;
   double t_first_;
   PvtSolver solver_;
   IonoParameters iono_;
   wgs84::Llh site_;
   InsInitializer init_;
   std::optional<AidedNavigator> nav_filter_;
+  /// Tight: how many range rows the gate turns away (a filter that no longer agrees with
+  /// the observations restarts, as in `deepnav run`).
+  InnovationMonitor innovations_;
   StationarityDetector still_;
   bool rest_start_;
   int leap_;
   double interval_s_;
   std::optional<CarrierSmoother> smoother_;
-  std::size_t next_imu_ = 0;
-  double last_imu_t_ = -1e300;
 };
 
 }  // namespace
@@ -371,6 +408,8 @@ nlohmann::json RecordedFusionReport::json() const {
           {"smoothing_doppler_steps", smoothing_doppler_steps},
           {"ins_start", ins_start},
           {"ins_start_s", ins_start_t_s ? nlohmann::json(*ins_start_t_s) : nlohmann::json(nullptr)},
+          {"imu_gap_stops", imu_gap_stops},
+          {"imu_end_s", imu_end_t_s ? nlohmann::json(*imu_end_t_s) : nlohmann::json(nullptr)},
           {"seconds_in_mode", seconds_in_mode}};
 }
 

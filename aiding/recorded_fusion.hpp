@@ -20,11 +20,18 @@
 //    stops; stationarity_detector.hpp) and the PVT's Doppler speed (when there is one) is
 //    low;
 //  - a satellite flagged with loss of lock keeps its pseudorange (code does not slip);
-//    a satellite without Doppler gives a pseudorange row only.
+//    a satellite without Doppler gives a pseudorange row only;
+//  - an IMU log with gaps, or one that ends before the observations: the INS stops where it
+//    has no data, as in `deepnav run` (imu_feed.hpp), and those epochs publish the single
+//    point, labelled so ("scalar"); after a gap the INS starts again from the fixes;
+//  - tight: a filter whose gate turns away too many range rows (innovation_monitor.hpp:
+//    more than a fifth over 3 s) no longer agrees with the observations (a Doppler or
+//    pseudorange sigma far below the data's noise, a wrong lever arm) and restarts from
+//    the next fix, as in `deepnav run`.
 // What it does not have: the IF path's watch for atmosphere models the signal does not
 // match (TroposphereResidualConfig::enable_on_mismatch and the ionosphere's are not read
 // here: a residual state is estimated from the start when enabled, else never), its
-// per-satellite fault exclusion and innovation monitor.
+// per-satellite fault exclusion.
 #include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -105,6 +112,9 @@ struct RecordedFusionReport {
   int smoothing_restarts = 0, smoothing_slips = 0, smoothing_doppler_steps = 0;
   std::string ins_start;
   std::optional<double> ins_start_t_s;  ///< seconds since the first epoch
+  int imu_gap_stops = 0;                ///< IMU gaps the INS stopped at (imu_feed.hpp)
+  std::optional<double>
+      imu_end_t_s;  ///< the IMU log's end, when the observations go on (seconds since the first epoch)
   std::map<std::string, double> seconds_in_mode;
   nlohmann::json json() const;
 };

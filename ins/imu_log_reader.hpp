@@ -11,21 +11,26 @@
 // (the fuse command takes GPS seconds of week, GPS seconds or GPS seconds since 1970);
 // the offset includes any constant IMU-to-GNSS time offset.
 //
-// A real log is irregular, and the reader says how (ImuLogReport):
-//  - csv: a row whose sensor values repeat the previous row's exactly is the same sample
-//    read twice (a logger polling faster than the sensor's output rate): dropped, counted
-//    (KF-GINS rows are increments the IMU time-tagged itself: equal ones are kept);
-//  - a row whose time does not move forward (repeated or backward time): dropped, counted
-//    with the first line where it happened;
+// A real log is irregular, and the reader says how (ImuLogReport, warnings):
+//  - a row repeating the previous row whole (time and values) is the same row written
+//    twice: dropped, counted, warned about;
+//  - a row at the previous row's time with other values: two samples cannot share a time
+//    and which one is right cannot be told: dropped, counted, warned about;
+//  - a row whose time goes back before the previous row's (rows out of order, a logger's
+//    clock re-set) is an error naming both lines: the log's order cannot be trusted past it;
+//  - a row whose sensor values repeat the previous row's at a new time is data (a still
+//    IMU of fine resolution, a simulator's, a logger reading its IMU faster than the IMU
+//    samples): kept, counted;
 //  - a cut first or last line (a log started or stopped mid-line: too few fields) is
 //    skipped, counted; anywhere else it is an error;
 //  - irregular intervals are integrated as they come (a rate is held over the interval
 //    ending at its time); an interval over gap_factor x the nominal interval is a gap,
 //    listed and never interpolated across (the sample after it covers one nominal
 //    interval).
-// Errors (no such file, a field that is not a number, a bad column map, no samples)
-// throw std::runtime_error naming the file, the line and the field or column.
+// Errors (no such file, a field that is not a number, a bad column map, time going back,
+// no samples) throw std::runtime_error naming the file, the line and the field or column.
 #include <Eigen/Core>
+#include <iosfwd>
 #include <optional>
 #include <string>
 #include <vector>
@@ -54,20 +59,21 @@ struct ImuLogOptions {
 
 struct ImuLogReport {
   std::string format;
-  int lines = 0;                ///< lines in the file
-  int header_lines = 0;         ///< comment and header lines
-  int rows = 0;                 ///< data rows read
-  int samples = 0;              ///< samples kept
-  int duplicate_rows = 0;       ///< same sensor values as the row before (dropped)
-  int repeated_time = 0;        ///< time equal to the previous kept sample's (dropped)
-  int backward_time = 0;        ///< time before the previous kept sample's (dropped)
-  int first_backward_line = 0;  ///< 0: none
-  int truncated_lines = 0;      ///< cut first or last line (skipped)
+  int lines = 0;            ///< lines in the file
+  int header_lines = 0;     ///< comment and header lines
+  int rows = 0;             ///< data rows read
+  int samples = 0;          ///< samples kept
+  int duplicate_rows = 0;   ///< the previous row again, time and values (dropped)
+  int repeated_time = 0;    ///< the previous row's time with other values (dropped)
+  int repeated_values = 0;  ///< the previous row's values at a new time (kept: data)
+  int truncated_lines = 0;  ///< cut first or last line (skipped)
   double nominal_interval_s = 0.0;
   double min_interval_s = 0.0, max_interval_s = 0.0, mean_interval_s = 0.0;
   double first_t_s = 0.0, last_t_s = 0.0;
   double time_scale = 1.0, time_offset_s = 0.0;
   std::vector<ImuGap> gaps;
+  /// What a user should know about the log (each names the file and the first line).
+  std::vector<std::string> warnings;
 };
 
 struct ImuLogRead {
@@ -77,6 +83,8 @@ struct ImuLogRead {
 
 /// Reads an IMU log in any of the formats above.
 ImuLogRead read_imu_log(const std::string& path, const ImuLogOptions& options);
+/// Same from a stream (csv and kf-gins; `name` stands for the file in messages).
+ImuLogRead read_imu_log(std::istream& in, const std::string& name, const ImuLogOptions& options);
 
 /// "deepnav", "csv", "kf-gins" (throws std::invalid_argument listing them otherwise).
 ImuLogFormat parse_imu_log_format(const std::string& name);

@@ -19,6 +19,8 @@ namespace deepnav {
 namespace {
 
 constexpr double kMillisecondRange_m = gps::kSpeedOfLight_mps * 1e-3;
+/// BDT = GPS time - 14 s (BDT began on 2006-01-01, when GPS - UTC was 14 s).
+constexpr int kBdtBehindGps_s = 14;
 
 using rinex::column;
 using rinex::parse_number;
@@ -41,8 +43,12 @@ class LineReader {
     if (!std::getline(in_, line)) return false;
     ++line_no_;
     if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (captured_ != nullptr) captured_->push_back(line);
     return true;
   }
+  /// From now on every line read is also appended to `lines` (nullptr: no longer).
+  void capture_into(std::vector<std::string>* lines) { captured_ = lines; }
+  const std::string& name() const { return name_; }
   /// The next line, or an error saying what was expected there.
   std::string require(const std::string& what) {
     std::string line;
@@ -59,6 +65,7 @@ class LineReader {
   std::istream& in_;
   std::string name_;
   int line_no_ = 0;
+  std::vector<std::string>* captured_ = nullptr;
 };
 
 template <typename F>
@@ -78,11 +85,19 @@ struct GpsTypes {
 
 struct Header {
   double version = 0.0;
+  bool v2 = false;
   char file_system = 'G';
   GpsTypes gps;
   std::map<char, int> type_counts;  ///< number of observation types per system
+  /// SYS / SCALE FACTOR of the GPS types (RINEX 3): stored values are divided by it.
+  std::map<std::string, double> gps_scale;
+  std::optional<double> gps_scale_all;  ///< one factor for every GPS type
   std::optional<double> interval_s;
+  int interval_line = 0;
   std::optional<Eigen::Vector3d> approx_position;
+  std::string time_system;  ///< TIME OF FIRST OBS, columns 49-51 (blank: the file's system's)
+  int time_system_line = 0;
+  std::optional<int> leap_seconds;  ///< GPS - UTC, from LEAP SECONDS
 };
 
 std::string_view label(std::string_view line) { return trim(column(line, 60, 20)); }
@@ -94,11 +109,195 @@ void locate_l1(GpsTypes& types, bool rinex2) {
   const std::array<const char*, 4> codes3 = {"C1C", "L1C", "D1C", "S1C"};
   const std::array<const char*, 4> codes2 = {"C1", "L1", "D1", "S1"};
   const auto& codes = rinex2 ? codes2 : codes3;
+  types.pseudorange = types.phase = types.doppler = types.cn0 = -1;
   std::array<int*, 4> slots = {&types.pseudorange, &types.phase, &types.doppler, &types.cn0};
   for (std::size_t k = 0; k < codes.size(); ++k) {
     const auto it = std::find(types.all.begin(), types.all.end(), codes[k]);
     if (it != types.all.end()) *slots[k] = static_cast<int>(it - types.all.begin());
   }
+}
+
+/// The header records that say how the observation records read, one line at a time:
+/// those of the file's header, and those an event epoch (flags 2-5) carries, which apply
+/// from there on (observation types, scale factors, the interval). A record spanning lines
+/// (a type list) goes on at the next line; finish() says where a block of records ends.
+class HeaderRecords {
+ public:
+  HeaderRecords(Header& h, LineReader& reader) : h_(h), reader_(reader) {}
+
+  void apply(const std::string& line) {
+    const std::string_view lab = label(line);
+    if (lab == "SYS / # / OBS TYPES" && !h_.v2) obs_types_v3(line);
+    else if (lab == "# / TYPES OF OBSERV" && h_.v2) obs_types_v2(line);
+    else if (lab == "SYS / SCALE FACTOR" && !h_.v2) scale_factor(line);
+    else if (lab == "INTERVAL") interval(line);
+    else if (lab == "TIME OF FIRST OBS") time_system(line);
+    else if (lab == "LEAP SECONDS") leap_seconds(line);
+    else if (lab == "APPROX POSITION XYZ") approx_position(line);
+  }
+
+  /// The records end here (`where`: the header, or the event at a line): nothing may still
+  /// be announced, and the GPS types must hold an L1 C/A pseudorange.
+  void finish(const std::string& where) {
+    if (remaining_ > 0)
+      reader_.fail(fmt::format("{} ends with {} observation types still announced", where, remaining_));
+    if (scale_remaining_ > 0)
+      reader_.fail(fmt::format("{} ends with {} scale factor types still announced", where, scale_remaining_));
+    locate_l1(h_.gps, h_.v2);
+    const char* record = h_.v2 ? "# / TYPES OF OBSERV" : "SYS / # / OBS TYPES";
+    if (h_.gps.all.empty())
+      reader_.fail(fmt::format("no GPS observation types in {} ({}): nothing to read", where, record));
+    if (h_.gps.pseudorange < 0)
+      reader_.fail(fmt::format("the GPS observation types of {} have no L1 C/A pseudorange ({}); they are: {}", where,
+                               h_.v2 ? "C1" : "C1C", fmt::join(h_.gps.all, " ")));
+  }
+
+  int type_records() const { return type_records_; }
+
+ private:
+  void obs_types_v3(const std::string& line) {
+    char sys = line.empty() ? ' ' : line[0];
+    if (sys == ' ') {
+      if (continuing_ == 0) reader_.fail("SYS / # / OBS TYPES: continuation line without a system line before it");
+      sys = continuing_;
+    } else {
+      remaining_ = with_context(reader_, fmt::format("SYS / # / OBS TYPES of '{}': number of types (columns 4-6)", sys),
+                                [&] { return parse_int(column(line, 3, 3), "number of types", 1, 999); });
+      h_.type_counts[sys] = remaining_;
+      if (sys == 'G') h_.gps.all.clear();  // a new list replaces the one before
+      ++type_records_;
+    }
+    for (int k = 0; k < 13 && remaining_ > 0; ++k, --remaining_) {
+      const std::string code(trim(column(line, 7 + 4 * static_cast<std::size_t>(k), 3)));
+      if (code.size() != 3)
+        reader_.fail(
+            fmt::format("SYS / # / OBS TYPES of '{}': type {} (columns {}-{}) is '{}', expected a 3-character "
+                        "code such as C1C",
+                        sys, k + 1, 8 + 4 * k, 10 + 4 * k, code));
+      if (sys == 'G') h_.gps.all.push_back(code);
+    }
+    continuing_ = remaining_ > 0 ? sys : 0;
+  }
+
+  void obs_types_v2(const std::string& line) {
+    if (!trim(column(line, 0, 6)).empty()) {
+      remaining_ = with_context(reader_, "# / TYPES OF OBSERV: number of types (columns 1-6)",
+                                [&] { return parse_int(column(line, 0, 6), "number of types", 1, 99); });
+      for (char s : std::string("GRESJCI")) h_.type_counts[s] = remaining_;
+      h_.gps.all.clear();  // a new list replaces the one before
+      ++type_records_;
+    } else if (remaining_ == 0) {
+      reader_.fail("# / TYPES OF OBSERV: continuation line without a count line before it");
+    }
+    for (int k = 0; k < 9 && remaining_ > 0; ++k, --remaining_) {
+      const std::string code(trim(column(line, 6 + 6 * static_cast<std::size_t>(k), 6)));
+      if (code.size() != 2)
+        reader_.fail(
+            fmt::format("# / TYPES OF OBSERV: type {} (columns {}-{}) is '{}', expected a 2-character code "
+                        "such as C1",
+                        k + 1, 11 + 6 * k, 12 + 6 * k, code));
+      h_.gps.all.push_back(code);
+    }
+  }
+
+  /// SYS / SCALE FACTOR: A1 system, I4 factor (1, 10, 100, 1000), I2 number of types
+  /// (blank or 0: all of the system's), then the types, 12 a line (continued after 10X).
+  void scale_factor(const std::string& line) {
+    char sys = line.empty() ? ' ' : line[0];
+    if (sys == ' ') {
+      if (scale_continuing_ == 0) reader_.fail("SYS / SCALE FACTOR: continuation line without a system line before it");
+      sys = scale_continuing_;
+    } else {
+      const int factor = with_context(reader_, fmt::format("SYS / SCALE FACTOR of '{}': factor (columns 3-6)", sys),
+                                      [&] { return parse_int(column(line, 2, 4), "factor", 1, 1000); });
+      if (factor != 1 && factor != 10 && factor != 100 && factor != 1000)
+        reader_.fail(
+            fmt::format("SYS / SCALE FACTOR of '{}': factor {} (columns 3-6) is not 1, 10, 100 or 1000", sys, factor));
+      scale_ = factor;
+      const std::string_view count = trim(column(line, 8, 2));
+      scale_remaining_ =
+          count.empty()
+              ? 0
+              : with_context(reader_, fmt::format("SYS / SCALE FACTOR of '{}': number of types (columns 9-10)", sys),
+                             [&] { return parse_int(count, "number of types", 0, 99); });
+      if (sys == 'G' && scale_remaining_ == 0) h_.gps_scale_all = scale_;
+    }
+    for (int k = 0; k < 12 && scale_remaining_ > 0; ++k, --scale_remaining_) {
+      const std::string code(trim(column(line, 11 + 4 * static_cast<std::size_t>(k), 3)));
+      if (code.size() != 3)
+        reader_.fail(fmt::format(
+            "SYS / SCALE FACTOR of '{}': type {} (columns {}-{}) is '{}', expected a 3-character code such as L1C", sys,
+            k + 1, 12 + 4 * k, 14 + 4 * k, code));
+      if (sys == 'G') h_.gps_scale[code] = scale_;
+    }
+    scale_continuing_ = scale_remaining_ > 0 ? sys : 0;
+  }
+
+  void interval(const std::string& line) {
+    h_.interval_s = with_context(reader_, "INTERVAL (columns 1-10)", [&] { return parse_number(column(line, 0, 10)); });
+    if (h_.interval_s && *h_.interval_s <= 0.0) h_.interval_s.reset();
+    h_.interval_line = reader_.line_no();
+  }
+
+  void time_system(const std::string& line) {
+    h_.time_system = std::string(trim(column(line, 48, 3)));
+    h_.time_system_line = reader_.line_no();
+  }
+
+  /// LEAP SECONDS: I6 the current number; RINEX 3 adds, in columns 25-27, the system they
+  /// count from (GPS, or BDS: BDT - UTC, 14 s less than GPS - UTC).
+  void leap_seconds(const std::string& line) {
+    const int n = with_context(reader_, "LEAP SECONDS: current number (columns 1-6)",
+                               [&] { return parse_int(column(line, 0, 6), "leap seconds", -100, 100); });
+    h_.leap_seconds = trim(column(line, 24, 3)) == "BDS" ? n + kBdtBehindGps_s : n;
+  }
+
+  void approx_position(const std::string& line) {
+    Eigen::Vector3d r;
+    for (int i = 0; i < 3; ++i) {
+      const auto v = with_context(
+          reader_, fmt::format("APPROX POSITION XYZ, {} (columns {}-{})", "XYZ"[i], 1 + 14 * i, 14 + 14 * i),
+          [&] { return parse_number(column(line, 14 * static_cast<std::size_t>(i), 14)); });
+      r(i) = v.value_or(0.0);
+    }
+    if (r.norm() > 1e6 && !h_.approx_position) h_.approx_position = r;
+  }
+
+  Header& h_;
+  LineReader& reader_;
+  char continuing_ = 0;  // the system whose type list goes on on the next line (RINEX 3)
+  int remaining_ = 0;
+  char scale_continuing_ = 0;
+  int scale_remaining_ = 0;
+  double scale_ = 1.0;
+  int type_records_ = 0;
+};
+
+/// Seconds from the time system's tags to GPS time (TIME OF FIRST OBS, RINEX 2 and 3): GPS,
+/// Galileo, QZSS and IRNSS system times run with GPS time (to within a microsecond); BDT
+/// is 14 s behind; GLO tags are UTC, GPS time less the leap seconds, which only the LEAP
+/// SECONDS record can give.
+double seconds_to_gps(Header& h, const LineReader& reader) {
+  if (h.time_system.empty()) {  // the default of a single-system file; a mixed file's is GPS
+    static const std::map<char, std::string> defaults = {
+        {'R', "GLO"}, {'E', "GAL"}, {'J', "QZS"}, {'C', "BDT"}, {'I', "IRN"}};
+    const auto it = defaults.find(h.file_system);
+    h.time_system = it == defaults.end() ? "GPS" : it->second;
+  }
+  const std::string& ts = h.time_system;
+  if (ts == "GPS" || ts == "GAL" || ts == "QZS" || ts == "IRN") return 0.0;
+  if (ts == "BDT") return kBdtBehindGps_s;
+  if (ts == "GLO") {
+    if (!h.leap_seconds)
+      reader.fail(h.time_system_line,
+                  "TIME OF FIRST OBS: time system GLO (UTC) needs the leap seconds to be put on GPS time, and the "
+                  "header has no LEAP SECONDS record");
+    return *h.leap_seconds;
+  }
+  reader.fail(h.time_system_line,
+              fmt::format("TIME OF FIRST OBS: time system '{}' (columns 49-51) is not one of GPS, GAL, QZS, IRN, "
+                          "BDT, GLO",
+                          ts));
 }
 
 Header read_header(LineReader& reader) {
@@ -116,75 +315,18 @@ Header read_header(LineReader& reader) {
   const bool v3 = h.version >= 2.995 && h.version < 3.055;
   if (!v2 && !v3)
     reader.fail(fmt::format("unsupported RINEX version {:.2f} (supported: 2.10, 2.11, 3.00 to 3.05)", h.version));
+  h.v2 = v2;
   const char type = line.size() > 20 ? line[20] : ' ';
   if (type != 'O') reader.fail(fmt::format("not an observation file: file type '{}' in column 21, expected 'O'", type));
   h.file_system = system_letter(line.size() > 40 ? line[40] : ' ');
 
-  char continuing = 0;  // the system whose type list goes on on the next line (RINEX 3)
-  int remaining = 0;
+  HeaderRecords records(h, reader);
   while (true) {
     if (!reader.next(line)) reader.fail(reader.line_no(), "no 'END OF HEADER' line: the header never ends");
-    const std::string_view lab = label(line);
-    if (lab == "END OF HEADER") break;
-    if (lab == "SYS / # / OBS TYPES" && v3) {
-      char sys = line.empty() ? ' ' : line[0];
-      if (sys == ' ') {
-        if (continuing == 0) reader.fail("SYS / # / OBS TYPES: continuation line without a system line before it");
-        sys = continuing;
-      } else {
-        remaining = with_context(reader, fmt::format("SYS / # / OBS TYPES of '{}': number of types (columns 4-6)", sys),
-                                 [&] { return parse_int(column(line, 3, 3), "number of types", 1, 999); });
-        h.type_counts[sys] = remaining;
-      }
-      for (int k = 0; k < 13 && remaining > 0; ++k, --remaining) {
-        const std::string code(trim(column(line, 7 + 4 * static_cast<std::size_t>(k), 3)));
-        if (code.size() != 3)
-          reader.fail(
-              fmt::format("SYS / # / OBS TYPES of '{}': type {} (columns {}-{}) is '{}', expected a 3-character "
-                          "code such as C1C",
-                          sys, k + 1, 8 + 4 * k, 10 + 4 * k, code));
-        if (sys == 'G') h.gps.all.push_back(code);
-      }
-      continuing = remaining > 0 ? sys : 0;
-    } else if (lab == "# / TYPES OF OBSERV" && v2) {
-      if (!trim(column(line, 0, 6)).empty()) {
-        remaining = with_context(reader, "# / TYPES OF OBSERV: number of types (columns 1-6)",
-                                 [&] { return parse_int(column(line, 0, 6), "number of types", 1, 99); });
-        for (char s : std::string("GRESJCI")) h.type_counts[s] = remaining;
-      } else if (remaining == 0) {
-        reader.fail("# / TYPES OF OBSERV: continuation line without a count line before it");
-      }
-      for (int k = 0; k < 9 && remaining > 0; ++k, --remaining) {
-        const std::string code(trim(column(line, 6 + 6 * static_cast<std::size_t>(k), 6)));
-        if (code.size() != 2)
-          reader.fail(
-              fmt::format("# / TYPES OF OBSERV: type {} (columns {}-{}) is '{}', expected a 2-character code "
-                          "such as C1",
-                          k + 1, 11 + 6 * k, 12 + 6 * k, code));
-        h.gps.all.push_back(code);
-      }
-    } else if (lab == "INTERVAL") {
-      h.interval_s = with_context(reader, "INTERVAL (columns 1-10)", [&] { return parse_number(column(line, 0, 10)); });
-      if (h.interval_s && *h.interval_s <= 0.0) h.interval_s.reset();
-    } else if (lab == "APPROX POSITION XYZ") {
-      Eigen::Vector3d r;
-      for (int i = 0; i < 3; ++i) {
-        const auto v = with_context(
-            reader, fmt::format("APPROX POSITION XYZ, {} (columns {}-{})", "XYZ"[i], 1 + 14 * i, 14 + 14 * i),
-            [&] { return parse_number(column(line, 14 * static_cast<std::size_t>(i), 14)); });
-        r(i) = v.value_or(0.0);
-      }
-      if (r.norm() > 1e6) h.approx_position = r;
-    }
+    if (label(line) == "END OF HEADER") break;
+    records.apply(line);
   }
-  if (remaining > 0) reader.fail(fmt::format("the header ends with {} observation types still announced", remaining));
-  locate_l1(h.gps, v2);
-  if (h.gps.all.empty())
-    reader.fail(fmt::format("no GPS observation types in the header ({}): nothing to read",
-                            v2 ? "# / TYPES OF OBSERV" : "SYS / # / OBS TYPES"));
-  if (h.gps.pseudorange < 0)
-    reader.fail(fmt::format("the GPS observation types have no L1 C/A pseudorange ({}); they are: {}",
-                            v2 ? "C1" : "C1C", fmt::join(h.gps.all, " ")));
+  records.finish("the header");
   return h;
 }
 
@@ -211,6 +353,9 @@ struct Parser {
   Header h;
   bool v2;
   ObservationFile out;
+  double to_gps_s = 0.0;  ///< added to every epoch's tag: the file's time system to GPS time
+  /// The lines of the last epoch kept (epoch line and records), to tell a repeat.
+  std::vector<std::string> last_epoch_lines;
 
   GpsTime epoch_time(std::string_view line, bool rinex2) {
     CalendarTime c;
@@ -239,6 +384,12 @@ struct Parser {
     return gps_time_from_calendar(c);
   }
 
+  /// What a GPS type's stored values are divided by (SYS / SCALE FACTOR; 1 without one).
+  double scale_of(const std::string& type) const {
+    const auto it = h.gps_scale.find(type);
+    return it != h.gps_scale.end() ? it->second : h.gps_scale_all.value_or(1.0);
+  }
+
   /// Reads one satellite's observations from `text` (all its fields in one string) and
   /// files it: GPS L1 C/A kept, the rest counted.
   void take_satellite(std::string_view sat, const std::string& text, int line_no, ObservationEpoch& epoch, bool keep) {
@@ -256,7 +407,8 @@ struct Parser {
       const std::string what =
           fmt::format("G{:02d} {} (line {} columns {}-{})", prn, h.gps.all[k], line_no,
                       (v2 ? 1 + 16 * (k % 5) : 4 + 16 * k), (v2 ? 14 + 16 * (k % 5) : 17 + 16 * k));
-      const Field f = parse_field(reader, text, 16 * k, what);
+      Field f = parse_field(reader, text, 16 * k, what);
+      if (f.value) *f.value /= scale_of(h.gps.all[k]);
       const int i = static_cast<int>(k);
       if (i == h.gps.pseudorange) o.pseudorange_m = f.value;
       else if (i == h.gps.phase) o.carrier_phase_cycles = f.value;
@@ -330,6 +482,47 @@ struct Parser {
     return ids;
   }
 
+  /// An event (flags 2-5) and its special records: header records, which apply from here
+  /// on (new observation types, scale factors), or comments.
+  void event(int flag, int count) {
+    ++out.report.event_epochs;
+    const int event_line = reader.line_no();
+    HeaderRecords records(h, reader);
+    for (int k = 0; k < count; ++k) {
+      const std::string line = reader.require(
+          fmt::format("special record {} of {} of the event (flag {}) at line {}", k + 1, count, flag, event_line));
+      if (!v2 && !line.empty() && line[0] == '>')
+        reader.fail(
+            fmt::format("special record {} of {} of the event (flag {}) at line {} expected, got an epoch "
+                        "line (the event's record count is wrong)",
+                        k + 1, count, flag, event_line));
+      records.apply(line);
+    }
+    records.finish(fmt::format("the event at line {}", event_line));
+    out.report.observation_type_changes += records.type_records();
+  }
+
+  /// Files an epoch read whole (`lines`: its epoch line and records): a repeat of the last
+  /// one, record for record, is skipped and counted; any other epoch not after it is an error.
+  void file_epoch(ObservationEpoch epoch, std::vector<std::string> lines, const ObservationReport& before) {
+    if (!out.epochs.empty()) {
+      const double dt = epoch.t.seconds_since(out.epochs.back().t);
+      if (dt == 0.0 && lines == last_epoch_lines) {
+        out.report = before;  // its records were counted as they were read
+        if (out.report.repeated_epochs++ == 0) out.report.first_repeated_epoch_line = epoch.line;
+        return;
+      }
+      if (dt <= 0.0)
+        reader.fail(epoch.line, fmt::format("epoch time {} goes {} the epoch at line {} (epochs must increase)",
+                                            fmt::format("{} {:.7f}", epoch.t.week, epoch.t.sow),
+                                            dt == 0.0 ? "no further than (with other records)" : "back before",
+                                            out.epochs.back().line));
+    }
+    out.report.power_failure_epochs += epoch.flag == 1;
+    last_epoch_lines = std::move(lines);
+    out.epochs.push_back(std::move(epoch));
+  }
+
   void run() {
     std::string line;
     while (reader.next(line)) {
@@ -342,37 +535,33 @@ struct Parser {
       const int count =
           with_context(reader, fmt::format("number of satellites (columns {}-{})", flag_col + 2, flag_col + 4),
                        [&] { return parse_int(column(line, flag_col + 1, 3), "number of satellites", 0, 999); });
-      if (flag >= 2 && flag <= 5) {  // special records: header lines, events
-        ++out.report.event_epochs;
-        for (int k = 0; k < count; ++k)
-          reader.require(fmt::format("special record {} of {} after the event flag {} at line {}", k + 1, count, flag,
-                                     reader.line_no() - k));
+      if (flag >= 2 && flag <= 5) {
+        event(flag, count);
         continue;
       }
       ObservationEpoch epoch;
       epoch.line = reader.line_no();
       epoch.flag = flag;
-      epoch.t = epoch_time(line, v2);
+      epoch.t = epoch_time(line, v2).plus_seconds(to_gps_s);
       const auto clock =
           with_context(reader, v2 ? "receiver clock offset (columns 69-80)" : "receiver clock offset (columns 42-56)",
                        [&] { return parse_number(v2 ? column(line, 68, 12) : column(line, 41, 15)); });
       epoch.receiver_clock_offset_s = clock;
+      std::vector<std::string> lines{line};
+      reader.capture_into(&lines);
       const std::vector<std::string> ids = v2 ? v2_satellites(line, count) : std::vector<std::string>{};
       if (flag == 6) {  // cycle slip records: in the observation format, not observations
         ++out.report.cycle_slip_epochs;
         read_records(count, ids, epoch, false);
+        reader.capture_into(nullptr);
         continue;
       }
+      // Only an epoch at the last one's time can be a repeat, whose counts are undone.
+      const bool may_repeat = !out.epochs.empty() && epoch.t.seconds_since(out.epochs.back().t) == 0.0;
+      const ObservationReport before = may_repeat ? out.report : ObservationReport{};
       read_records(count, ids, epoch, true);
-      if (!out.epochs.empty()) {
-        const double dt = epoch.t.seconds_since(out.epochs.back().t);
-        if (dt <= 0.0)
-          reader.fail(epoch.line, fmt::format("epoch time {} goes {} the epoch at line {} (epochs must increase)",
-                                              fmt::format("{} {:.7f}", epoch.t.week, epoch.t.sow),
-                                              dt == 0.0 ? "no further than" : "back before", out.epochs.back().line));
-      }
-      out.report.power_failure_epochs += flag == 1;
-      out.epochs.push_back(std::move(epoch));
+      reader.capture_into(nullptr);
+      file_epoch(std::move(epoch), std::move(lines), before);
     }
   }
 };
@@ -383,16 +572,25 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-void find_gaps(ObservationFile& f, std::optional<double> interval_s) {
+/// The epochs' own spacing (their median interval) is the nominal interval; a header
+/// INTERVAL that disagrees is reported, and used only where the data have no interval.
+void find_gaps(ObservationFile& f, const Header& h, const std::string& name) {
   std::vector<double> dts;
   for (std::size_t i = 1; i < f.epochs.size(); ++i) dts.push_back(f.epochs[i].t.seconds_since(f.epochs[i - 1].t));
-  f.report.nominal_interval_s = interval_s.value_or(median(dts));
-  if (f.report.nominal_interval_s <= 0.0) return;
+  ObservationReport& r = f.report;
+  r.header_interval_s = h.interval_s;
+  r.nominal_interval_s = dts.empty() ? h.interval_s.value_or(0.0) : median(dts);
+  if (h.interval_s && !dts.empty() && std::abs(*h.interval_s - r.nominal_interval_s) > 1e-3 * r.nominal_interval_s)
+    r.warnings.push_back(fmt::format(
+        "{}:{}: INTERVAL says {:g} s, but the epochs are {:g} s apart (the median of {} intervals): the data's "
+        "spacing is used",
+        name, h.interval_line, *h.interval_s, r.nominal_interval_s, dts.size()));
+  if (r.nominal_interval_s <= 0.0) return;
   for (std::size_t i = 1; i < f.epochs.size(); ++i) {
     const double dt = dts[i - 1];
-    if (dt <= 1.5 * f.report.nominal_interval_s) continue;
+    if (dt <= 1.5 * r.nominal_interval_s) continue;
     f.epochs[i].after_gap = true;
-    f.report.gaps.push_back({f.epochs[i].line, f.epochs[i - 1].t, f.epochs[i].t, dt});
+    r.gaps.push_back({f.epochs[i].line, f.epochs[i - 1].t, f.epochs[i].t, dt});
   }
 }
 
@@ -434,14 +632,20 @@ void find_clock_jumps(ObservationFile& f) {
 
 ObservationFile read_rinex_obs(std::istream& in, const std::string& name) {
   LineReader reader(in, name);
-  Parser p{reader, read_header(reader), false, {}};
-  p.v2 = p.h.version < 2.5;
-  p.out.report.version = p.h.version;
-  p.out.report.approx_position_ecef_m = p.h.approx_position;
+  Parser p{reader, read_header(reader), false, {}, 0.0, {}};
+  p.v2 = p.h.v2;
+  p.to_gps_s = seconds_to_gps(p.h, reader);
+  ObservationReport& r = p.out.report;
+  r.version = p.h.version;
+  r.approx_position_ecef_m = p.h.approx_position;
+  r.time_system = p.h.time_system;
   p.run();
   if (p.out.epochs.empty()) reader.fail(reader.line_no(), "no observation epochs after the header");
-  p.out.report.epochs = static_cast<int>(p.out.epochs.size());
-  find_gaps(p.out, p.h.interval_s);
+  r.epochs = static_cast<int>(p.out.epochs.size());
+  if (r.repeated_epochs > 0)
+    r.warnings.push_back(fmt::format("{}:{}: {} epoch(s) repeat the epoch before them record for record: skipped", name,
+                                     r.first_repeated_epoch_line, r.repeated_epochs));
+  find_gaps(p.out, p.h, name);
   find_clock_jumps(p.out);
   return std::move(p.out);
 }

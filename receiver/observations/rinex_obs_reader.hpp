@@ -5,21 +5,34 @@
 // skipped and counted in the report.
 //
 // What recordings contain, and what the reader does with it:
+//  - the time system of the epochs (TIME OF FIRST OBS, columns 49-51; blank: the file's
+//    system's): GPS, GAL, QZS and IRN tags run with GPS time, BDT tags are 14 s behind it,
+//    GLO tags are UTC (GPS time less the LEAP SECONDS record's count); every epoch is put
+//    on GPS time, and a system that cannot be (GLO without LEAP SECONDS, an unknown one)
+//    is an error naming the record;
 //  - loss-of-lock indicator (bit 0 of the LLI digit of any L1 C/A field): kept per
 //    satellite (the carrier phase may have slipped); an epoch flagged 1 (power failure
 //    since the previous epoch) marks every satellite so;
 //  - a missing pseudorange or Doppler: the field stays empty (nullopt), counted;
+//  - SYS / SCALE FACTOR (RINEX 3): the stored values divided by it;
 //  - receiver clock jumps (a receiver that keeps its clock within a millisecond of GPS
 //    time re-sets it by whole milliseconds, and every pseudorange jumps by c x 1 ms; one
 //    that steers its time tags steps them by microseconds, hundreds of metres): found
 //    from the pseudorange change between epochs against the Doppler's, reported per epoch
 //    (ObservationEpoch::clock_jump_m) and in the report; the data are left as recorded;
-//  - epoch flags 2-5 (moving antenna, new site, header records, external event) and 6
-//    (cycle slip records): their records are skipped and counted;
-//  - gaps (an interval over 1.5 times the nominal one) are reported, never interpolated.
+//  - epoch flags 2-5 (moving antenna, new site, header records, external event): their
+//    special records are header records, and those that change how the observation
+//    records read (observation types, scale factors) apply from there on; counted;
+//  - epoch flag 6 (cycle slip records): read with the epoch's types, skipped, counted;
+//  - an epoch written twice (the same time and the same records as the one before it):
+//    skipped, counted, warned about;
+//  - the nominal interval is the epochs' own spacing (their median interval); a header
+//    INTERVAL that disagrees is warned about; gaps (an interval over 1.5 times the
+//    nominal one) are reported, never interpolated.
 // Errors (not a RINEX observation file, an unsupported version, no GPS C1C/C1 type, a
-// malformed epoch or field, a truncated epoch, epochs going backwards) throw
-// std::runtime_error naming the file, the line and the field.
+// malformed epoch or field, a truncated epoch, an epoch at the time of the one before
+// with other records, epochs going backwards) throw std::runtime_error naming the file,
+// the line and the field.
 #include <Eigen/Core>
 #include <iosfwd>
 #include <map>
@@ -69,19 +82,26 @@ struct ClockJump {
 
 struct ObservationReport {
   double version = 0.0;
-  int epochs = 0;                   ///< epochs with observations (flags 0 and 1)
-  double nominal_interval_s = 0.0;  ///< INTERVAL, else the median epoch spacing
+  std::string time_system;                  ///< of the epochs' tags, as the file gives it (now on GPS time)
+  int epochs = 0;                           ///< epochs with observations (flags 0 and 1)
+  double nominal_interval_s = 0.0;          ///< the median epoch spacing (INTERVAL for a single epoch)
+  std::optional<double> header_interval_s;  ///< the INTERVAL record's
   std::optional<Eigen::Vector3d> approx_position_ecef_m;
   std::map<std::string, int> skipped_satellite_records;  ///< by system ("E", "R", "S", "C", "J", "I")
   std::map<std::string, int> skipped_gps_values;         ///< GPS observables of other signals, by type
   int gps_satellite_records = 0;                         ///< GPS satellite records with an L1 C/A observable
   int missing_pseudorange = 0, missing_doppler = 0, missing_phase = 0, missing_cn0 = 0;
   int loss_of_lock = 0;
-  int power_failure_epochs = 0;  ///< flag 1
-  int event_epochs = 0;          ///< flags 2-5 (their records skipped)
-  int cycle_slip_epochs = 0;     ///< flag 6 (their records skipped)
+  int power_failure_epochs = 0;      ///< flag 1
+  int event_epochs = 0;              ///< flags 2-5
+  int observation_type_changes = 0;  ///< observation type records applied from events
+  int cycle_slip_epochs = 0;         ///< flag 6 (their records skipped)
+  int repeated_epochs = 0;           ///< epochs written twice (skipped)
+  int first_repeated_epoch_line = 0;
   std::vector<ObservationGap> gaps;
   std::vector<ClockJump> clock_jumps;
+  /// What a user should know about the file (each names the file and a line).
+  std::vector<std::string> warnings;
 };
 
 struct ObservationFile {

@@ -115,19 +115,22 @@ ReferenceErrors reference_errors(const std::vector<SolutionPoint>& solution,
 }
 
 nlohmann::json ReferenceErrors::json() const {
-  const auto round = [](double v) { return std::round(v * 1000.0) / 1000.0; };
-  return {
-      {"epochs", epochs},
-      {"mean_offset_enu_m", {round(mean_offset_enu_m.x()), round(mean_offset_enu_m.y()), round(mean_offset_enu_m.z())}},
-      {"rms_horizontal_m", round(rms_horizontal_m)},
-      {"rms_vertical_m", round(rms_vertical_m)},
-      {"rms_3d_m", round(rms_3d_m)},
-      {"about_mean_offset",
-       {{"rms_horizontal_m", round(scatter_rms_horizontal_m)},
-        {"rms_vertical_m", round(scatter_rms_vertical_m)},
-        {"p95_horizontal_m", round(scatter_p95_horizontal_m)},
-        {"max_horizontal_m", round(scatter_max_horizontal_m)},
-        {"max_3d_m", round(scatter_max_3d_m)}}}};
+  // No epoch scored: no statistic, rather than a perfect score of zeros.
+  const auto value = [&](double v) { return epochs > 0 ? nlohmann::json(std::round(v * 1000.0) / 1000.0) : nullptr; };
+  return {{"epochs", epochs},
+          {"mean_offset_enu_m", epochs > 0
+                                    ? nlohmann::json::array({value(mean_offset_enu_m.x()), value(mean_offset_enu_m.y()),
+                                                             value(mean_offset_enu_m.z())})
+                                    : nlohmann::json(nullptr)},
+          {"rms_horizontal_m", value(rms_horizontal_m)},
+          {"rms_vertical_m", value(rms_vertical_m)},
+          {"rms_3d_m", value(rms_3d_m)},
+          {"about_mean_offset",
+           {{"rms_horizontal_m", value(scatter_rms_horizontal_m)},
+            {"rms_vertical_m", value(scatter_rms_vertical_m)},
+            {"p95_horizontal_m", value(scatter_p95_horizontal_m)},
+            {"max_horizontal_m", value(scatter_max_horizontal_m)},
+            {"max_3d_m", value(scatter_max_3d_m)}}}};
 }
 
 }  // namespace deepnav

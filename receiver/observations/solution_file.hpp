@@ -37,6 +37,7 @@ struct ReferenceErrors {
   double scatter_rms_horizontal_m = 0, scatter_rms_vertical_m = 0, scatter_p95_horizontal_m = 0;
   double scatter_max_horizontal_m = 0, scatter_max_3d_m = 0;
   std::vector<GpsTime> matched;  ///< the epochs compared
+  /// The statistics (null where no epoch was scored: there is nothing to state).
   nlohmann::json json() const;
 };
 

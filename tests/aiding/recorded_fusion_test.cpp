@@ -2,7 +2,9 @@
 // trajectory (the satellites of data/brdc0010.22n above 10 deg, a drifting receiver clock,
 // seeded noise) and the trajectory's simulated IMU. It starts the INS, converges, labels
 // each epoch with what navigated, coasts on the IMU across missing epochs and an epoch
-// with two satellites, and takes each Doppler at the time the recording says it refers to.
+// with two satellites, stops the INS where the IMU log has no data, restarts a filter
+// that turns its rows away, and takes each Doppler at the time the recording says it
+// refers to.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -73,6 +75,15 @@ class SyntheticRecording {
   ObservationFile& observations() { return obs_; }
   const NavData& navigation() const { return nav_; }
   const ImuLog& imu() const { return imu_; }
+  /// Drops the IMU samples after `from_s` and before `to_s` (trajectory time; to_s past the
+  /// end: the log ends at from_s), listing the gap as the log readers do.
+  void cut_imu(double from_s, double to_s) {
+    std::vector<ImuSample> kept;
+    for (const ImuSample& s : imu_.samples)
+      if (s.t_s - t0_.sow <= from_s + 1e-9 || s.t_s - t0_.sow >= to_s - 1e-9) kept.push_back(s);
+    imu_.samples = kept;
+    if (to_s <= spec_.duration_s) imu_.gaps.push_back({1, t0_.sow + from_s, t0_.sow + to_s});
+  }
   std::size_t satellites() const { return satellites_.size(); }
 
  private:
@@ -227,6 +238,45 @@ TEST(RecordedFusion, CoastsAcrossMissingEpochsAndFewSatellites) {
     }
   }
   EXPECT_LT(horizontal_rms_m(o, 60.0), 1.0);
+}
+
+TEST_P(RecordedFusionModes, StopsTheInsWhereTheImuLogHasNoData) {
+  // 6 s without IMU data (40 s to 46 s) and a log that ends at 90 s: no solution there may
+  // come from the INS, which never saw the motion; the single point is published, labelled
+  // so, and the INS starts again after the gap.
+  SyntheticRecording rec({});
+  rec.cut_imu(40.0, 46.0);
+  rec.cut_imu(90.0, 1e9);
+  const FusionOutcome o = fuse(rec, rec.config(GetParam()));
+  EXPECT_EQ(o.report.imu_gap_stops, 1);
+  ASSERT_TRUE(o.report.imu_end_t_s.has_value());
+  EXPECT_NEAR(*o.report.imu_end_t_s, 90.0, 1e-6);
+  bool filter_after_gap = false;
+  for (const PublishedEpoch& p : o.epochs) {
+    const bool no_imu = (p.t_s > 40.5 && p.t_s < 46.5) || p.t_s > 90.5;
+    if (no_imu) {
+      EXPECT_FALSE(p.from_filter) << "t = " << p.t_s;
+      EXPECT_EQ(p.mode, "scalar") << "t = " << p.t_s;
+    }
+    if (p.t_s > 46.0 && p.t_s < 90.0 && p.from_filter) filter_after_gap = true;
+    EXPECT_LT(p.error_ned_m.head<2>().norm(), 5.0) << "t = " << p.t_s;
+  }
+  EXPECT_TRUE(filter_after_gap);
+  EXPECT_LT(horizontal_rms_m(o, 60.0), 1.0);
+}
+
+TEST(RecordedFusion, RestartsAFilterThatTurnsAwayItsRows) {
+  // Pseudoranges weighed as if a hundred times better than their 1 m of noise: the gate
+  // turns most rows away and the filter no longer agrees with the observations; the
+  // innovation monitor restarts it each time (as `deepnav run` does) rather than let it
+  // run on unwatched.
+  SyntheticRecording rec({});
+  RecordedFusionConfig c = rec.config(NavMode::tight);
+  c.pseudorange_sigma_scale = 0.01;
+  const FusionOutcome o = fuse(rec, c);
+  EXPECT_GT(o.report.rows_rejected, 100);
+  EXPECT_GT(o.report.filter_restarts, 5);
+  for (const PublishedEpoch& p : o.epochs) EXPECT_LT(p.error_ned_m.head<2>().norm(), 10.0) << "t = " << p.t_s;
 }
 
 /// RMS over the epochs from t_from_s of the rate residuals against the filter's prior (m/s).

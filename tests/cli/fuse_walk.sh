@@ -2,8 +2,8 @@
 # deepnav fuse on the real walk (data/walk_0827) from another working directory through
 # its configuration file, scored against the RTK reference about its mean offset (the
 # reference's base was not surveyed) and against RTKLIB's GPS L1 single point on the same
-# epochs; the bounds are the figures results/fuse/README.md reports (0.623 m and 2.10 m
-# tight, 0.666 m and 2.62 m loose) with a little to spare, and the issue's
+# epochs; the bounds are the figures results/fuse/README.md reports (0.579 m and 2.06 m
+# tight, 0.637 m and 2.61 m loose) with a little to spare, and the issue's
 # targets (tight scatter 0.7 m, no solution 5 m off, loose no worse than single point).
 # Then bad inputs of each reader fail naming the file and the line.
 #   usage: fuse_walk.sh <deepnav binary> <source dir>

@@ -1,7 +1,14 @@
 #!/usr/bin/env python3
-"""Writes the binary seeds of the stream and sample-converter harnesses (corpus/stream_tcp,
-corpus/stream_udp, corpus/sample_converter): valid streams in the layouts of docs/streaming.md,
-"Protocol", tables, so that fuzzing starts from inputs that reach the frame checks.
+"""Writes the seeds made rather than taken from data/ (tests/fuzz/seeds.txt lists those):
+- the binary seeds of the stream and sample-converter harnesses (corpus/stream_tcp,
+  corpus/stream_udp, corpus/sample_converter): valid streams in the layouts of
+  docs/streaming.md, "Protocol", tables, so that fuzzing starts from inputs that reach the
+  frame checks;
+- IMU logs that fall short (corpus/imu_csv, corpus/imu_log): gaps, a log cut mid-line,
+  time going back (a reset or rows out of order), rows and times repeated;
+- RINEX observation files with event records (corpus/rinex_obs): flag 4 with header
+  records (new type lists, scale factors), flags 2, 3 and 5 with theirs, cycle slip records,
+  an epoch written twice, time systems other than GPS.
 Run from anywhere: python3 tests/fuzz/make_seeds.py"""
 import os
 import random
@@ -71,3 +78,84 @@ for kind in range(5):
     write("sample_converter", f"kind{kind}.bin", bytes([kind, 0, 0]) + noise(96))
 for a, b in ((0x00, 0x00), (0x05, 0x05), (0x1e, 0x15), (0x2a, 0x92), (0x0c, 0x08)):
     write("sample_converter", f"packed_{a:02x}_{b:02x}.bin", bytes([5, a, b]) + noise(96))
+
+
+# IMU logs. The walk's layout (ax, ay, az in g; gx, gy, gz in deg/s; a millisecond tick) and
+# KF-GINS increments (time, angle and velocity increments) for imu_log; our CSV for imu_csv.
+def write_text(harness, name, text):
+    write(harness, name, text.encode())
+
+
+def walk_rows(ticks):
+    return "".join(f"{0.01 * (k % 7):.3f},-0.007,1.011,{0.5 * k:.3f},-0.160,0.160,{t}\n"
+                   for k, t in enumerate(ticks))
+
+
+ticks = list(range(3326339, 3326339 + 6 * 40, 6))
+cut_first_line = "0.007,1.011,0.038,-0.160\n"
+write_text("imu_log", "walk_gap.csv", cut_first_line + walk_rows(ticks[:20] + [t + 400 for t in ticks[20:]]))
+write_text("imu_log", "walk_end_cut.csv", walk_rows(ticks) + "-0.017,-0.007,1.0")
+write_text("imu_log", "walk_reset.csv", walk_rows(ticks[:20] + [t - 100000 for t in ticks[20:]]))
+write_text("imu_log", "walk_swapped.csv", walk_rows(ticks[:10] + [ticks[11], ticks[10]] + ticks[12:]))
+repeated = walk_rows(ticks[:10])
+write_text("imu_log", "walk_repeats.csv", repeated + repeated.splitlines(True)[-1] +
+           walk_rows([ticks[9]]) + walk_rows(ticks[10:]))
+write_text("imu_log", "kfgins_gap.txt", "".join(
+    f"{456300.0 + 0.005 * k + (1.0 if k >= 30 else 0.0):.3f} 1e-4 2e-4 3e-4 0.01 0.02 -0.049\n" for k in range(60)))
+deepnav_header = "# sample_rate_hz=100\nt_s,dtheta_x_rad,dtheta_y_rad,dtheta_z_rad,dv_x_mps,dv_y_mps,dv_z_mps\n"
+increments = [f"{0.01 * k:.2f},1e-5,0,0,0,0,-0.0980665\n" for k in range(1, 60)]
+write_text("imu_csv", "gap.csv", deepnav_header + "".join(increments[:20] + increments[40:]))
+write_text("imu_csv", "reset.csv", deepnav_header + "".join(increments[:30] + increments[5:20]))
+write_text("imu_csv", "end_cut.csv", deepnav_header + "".join(increments) + "0.60,1e-5,0,")
+
+
+# RINEX observation files with events.
+def rinex_record(content, label):
+    return f"{content:<60}{label:<20}\n"
+
+
+def field(value, lli=" "):
+    return f"{value:14.3f}{lli} "
+
+
+def epoch3(sec, count, flag=0):
+    return f"> 2025 08 28 17 30 {sec:10.7f}  {flag}{count:3d}\n"
+
+
+def gps3(prn, pr, phase, doppler, cn0, lli=" "):
+    return f"G{prn:02d}" + field(pr) + field(phase, lli) + field(doppler) + field(cn0) + "\n"
+
+
+v3 = rinex_record(f"{'3.04':>9}{'':11}{'OBSERVATION DATA':<20}{'M: Mixed':<20}", "RINEX VERSION / TYPE")
+v3 += rinex_record(" -1276965.2487 -4717231.7278  4087230.1460", "APPROX POSITION XYZ")
+v3 += rinex_record("G    4 C1C L1C D1C S1C", "SYS / # / OBS TYPES")
+v3 += rinex_record("E    4 C1C L1C D1C S1C", "SYS / # / OBS TYPES")
+v3 += rinex_record("  2025    08    28    17    30   10.0000000     BDT", "TIME OF FIRST OBS")
+v3 += rinex_record("     0.100", "INTERVAL")
+v3 += rinex_record("", "END OF HEADER")
+body = epoch3(10.0, 2) + gps3(1, 2.1e7, 1.1e8, 1000.0, 45.0) + gps3(2, 2.2e7, 1.2e8, -500.0, 40.0)
+body += epoch3(10.0, 2) + gps3(1, 2.1e7, 1.1e8, 1000.0, 45.0) + gps3(2, 2.2e7, 1.2e8, -500.0, 40.0)
+body += epoch3(10.25, 4, 4) + rinex_record("G    4 L1C C1C S1C D1C", "SYS / # / OBS TYPES")
+body += rinex_record("G   10   1 D1C", "SYS / SCALE FACTOR") + rinex_record("G  100", "SYS / SCALE FACTOR")
+body += rinex_record("new GPS types from here", "COMMENT")
+body += "G01" + field(1.1e8 + 1300.0) + field(2.1e7 - 250.0) + field(45.0) + field(10000.0) + "\n"
+body += epoch3(10.5, 1, 2) + rinex_record("the antenna moves", "COMMENT")
+body += epoch3(10.5, 2, 3) + rinex_record("SITE 2", "MARKER NAME") + rinex_record(
+    " -1276960.0000 -4717230.0000  4087231.0000", "APPROX POSITION XYZ")
+body += epoch3(10.6, 0, 5)
+body += epoch3(10.75, 1, 6) + "G01" + field(0.0) + field(1.1e8 + 2600.0, "1") + "\n"
+body += epoch3(11.0, 1, 1) + "G01" + field(1.1e8 + 3900.0) + field(2.1e7 - 750.0) + field(45.0) + field(10000.0) + "\n"
+write_text("rinex_obs", "events_v3.obs", v3 + body)
+
+v2 = rinex_record("     2.11           OBSERVATION DATA    M (MIXED)", "RINEX VERSION / TYPE")
+v2 += rinex_record("     3    C1    L1    D1", "# / TYPES OF OBSERV")
+v2 += rinex_record("  2025     8    28    17    30   40.0000000     GLO", "TIME OF FIRST OBS")
+v2 += rinex_record("    18", "LEAP SECONDS")
+v2 += rinex_record("", "END OF HEADER")
+v2 += " 25  8 28 17 30 40.0000000  0  2G01R03\n" + field(2.1e7) + field(1.1e8) + field(1000.0) + "\n"
+v2 += field(2.3e7) + field(1.2e8) + field(-10.0) + "\n"
+v2 += "                            4  2\n" + rinex_record("     4    D1    C1    S1    L1", "# / TYPES OF OBSERV")
+v2 += rinex_record("D1 first from here", "COMMENT")
+v2 += " 25  8 28 17 30 41.0000000  0  1G01\n" + field(1001.0) + field(2.1e7 - 190.0) + field(44.0) + field(1.1e8) + "\n"
+v2 += " 25  8 28 17 30 41.0000000  0  1G01\n" + field(1001.0) + field(2.1e7 - 190.0) + field(44.0) + field(1.1e8) + "\n"
+write_text("rinex_obs", "events_v2.obs", v2)

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 namespace deepnav {
 namespace {
@@ -36,7 +37,8 @@ ImuLogOptions walk_options() {
 }
 
 TEST(ImuLogReader, LoggerStyleCsvWithRepeatsCutLinesAndIrregularTicks) {
-  // A cut first line, a row read twice (same values, new tick), irregular ticks, a cut last line.
+  // A cut first line, a row repeating the previous one's values at a new tick (data: kept),
+  // irregular ticks, a cut last line.
   const std::string text =
       "0.011,0.038,-0.160,0.160,3326339\n"
       "0.0,0.0,1.0,0.0,0.0,10.0,1000\n"
@@ -47,23 +49,46 @@ TEST(ImuLogReader, LoggerStyleCsvWithRepeatsCutLinesAndIrregularTicks) {
   const ImuLogRead r = read_imu_log(write_text("walk.csv", text), walk_options());
   EXPECT_EQ(r.report.truncated_lines, 2);
   EXPECT_EQ(r.report.rows, 4);
-  EXPECT_EQ(r.report.duplicate_rows, 1);
-  EXPECT_EQ(r.report.samples, 3);
-  ASSERT_EQ(r.log.samples.size(), 3u);
+  EXPECT_EQ(r.report.repeated_values, 1);
+  EXPECT_EQ(r.report.duplicate_rows, 0);
+  EXPECT_EQ(r.report.samples, 4);
+  ASSERT_EQ(r.log.samples.size(), 4u);
   EXPECT_DOUBLE_EQ(r.log.samples[0].t_s, 101.0);
-  EXPECT_DOUBLE_EQ(r.log.samples[2].t_s, 101.021);
-  // Rates held over the interval ending at the sample: 15 ms for the last one (the repeat dropped).
+  EXPECT_DOUBLE_EQ(r.log.samples[3].t_s, 101.021);
+  // Rates held over the interval ending at the sample: the repeat's 6 ms, the last one's 9 ms.
   const double g = 9.80665, d2r = M_PI / 180.0;
-  EXPECT_NEAR(r.log.samples[2].dtheta_b_rad.z(), 30.0 * d2r * 0.015, 1e-12);
-  EXPECT_NEAR(r.log.samples[2].dv_b_mps.x(), 0.5 * g * 0.015, 1e-12);
+  EXPECT_NEAR(r.log.samples[2].dtheta_b_rad.z(), 20.0 * d2r * 0.006, 1e-12);
+  EXPECT_NEAR(r.log.samples[3].dtheta_b_rad.z(), 30.0 * d2r * 0.009, 1e-12);
+  EXPECT_NEAR(r.log.samples[3].dv_b_mps.x(), 0.5 * g * 0.009, 1e-12);
   EXPECT_NEAR(r.log.samples[1].dv_b_mps.z(), g * 0.006, 1e-12);
-  EXPECT_NEAR(r.report.nominal_interval_s, 0.0105, 1e-12);
+  EXPECT_NEAR(r.report.nominal_interval_s, 0.007, 1e-12);
   EXPECT_NEAR(r.report.min_interval_s, 0.006, 1e-12);
-  EXPECT_NEAR(r.report.max_interval_s, 0.015, 1e-12);
+  EXPECT_NEAR(r.report.max_interval_s, 0.009, 1e-12);
   EXPECT_TRUE(r.report.gaps.empty());
+  EXPECT_TRUE(r.report.warnings.empty());
 }
 
-TEST(ImuLogReader, BackwardAndRepeatedTimesAreDroppedAndGapsListed) {
+TEST(ImuLogReader, EqualValuesAtNewTimesAreData) {
+  // A still IMU without noise (a simulator's) writes the same increments at every time: each
+  // row is a sample, none lost, no gap.
+  ImuLogOptions o;
+  o.format = ImuLogFormat::csv;
+  o.columns = "t,gx,gy,gz,ax,ay,az";
+  o.quantity = ImuQuantity::increments;
+  o.accel_unit = "m/s";
+  o.gyro_unit = "rad";
+  std::string text;
+  for (int k = 1; k <= 100; ++k) text += std::to_string(0.01 * k) + ",5.78e-07,0,-4.45e-07,0,0,-0.0980665\n";
+  const ImuLogRead r = read_imu_log(write_text("still.csv", text), o);
+  EXPECT_EQ(r.report.samples, 100);
+  EXPECT_EQ(r.report.repeated_values, 99);
+  EXPECT_TRUE(r.report.gaps.empty());
+  double dv = 0.0;
+  for (const ImuSample& s : r.log.samples) dv += s.dv_b_mps.z();
+  EXPECT_NEAR(dv, -9.80665, 1e-9);  // one second of gravity's increments, whole
+}
+
+TEST(ImuLogReader, RepeatedTimesAreDroppedWithAWarningAndGapsListed) {
   ImuLogOptions o;
   o.format = ImuLogFormat::csv;
   o.nominal_rate_hz = 100.0;
@@ -71,22 +96,58 @@ TEST(ImuLogReader, BackwardAndRepeatedTimesAreDroppedAndGapsListed) {
       "t,ax,ay,az,gx,gy,gz\n"
       "0.00,0,0,-9.8,0,0,0.01\n"
       "0.01,0,0,-9.8,0,0,0.02\n"
+      "0.01,0,0,-9.8,0,0,0.02\n"
       "0.01,0,0,-9.8,0,0,0.03\n"
-      "0.005,0,0,-9.8,0,0,0.04\n"
       "0.02,0,0,-9.8,0,0,0.05\n"
       "0.50,0,0,-9.8,0,0,0.06\n"
       "0.51,0,0,-9.8,0,0,0.07\n";
-  const ImuLogRead r = read_imu_log(write_text("back.csv", text), o);
+  const std::string path = write_text("repeat.csv", text);
+  const ImuLogRead r = read_imu_log(path, o);
   EXPECT_EQ(r.report.header_lines, 1);
-  EXPECT_EQ(r.report.repeated_time, 1);
-  EXPECT_EQ(r.report.backward_time, 1);
-  EXPECT_EQ(r.report.first_backward_line, 5);
+  EXPECT_EQ(r.report.duplicate_rows, 1);  // the row written twice
+  EXPECT_EQ(r.report.repeated_time, 1);   // another sample at the same time
   EXPECT_EQ(r.report.samples, 5);
+  ASSERT_EQ(r.report.warnings.size(), 2u);
+  EXPECT_EQ(r.report.warnings[0],
+            path + ":4: 1 row(s) repeat the row before them, time and values: dropped (written twice)");
+  EXPECT_NE(r.report.warnings[1].find(path + ":5: 1 row(s) at the time of the row before them with other values: "
+                                             "dropped"),
+            std::string::npos);
   ASSERT_EQ(r.report.gaps.size(), 1u);
   EXPECT_EQ(r.report.gaps[0].line, 7u);
   EXPECT_DOUBLE_EQ(r.report.gaps[0].t_before_s, 0.02);
   // The sample after the gap covers one nominal interval, not the gap.
   EXPECT_NEAR(r.log.samples[3].dtheta_b_rad.z(), 0.06 * 0.01, 1e-15);
+}
+
+TEST(ImuLogReader, TimeGoingBackIsAnErrorNamingBothLines) {
+  // Two rows swapped (or a logger's clock re-set): the log's order cannot be trusted.
+  ImuLogOptions o;
+  o.format = ImuLogFormat::csv;
+  const std::string text =
+      "0.00,0,0,-9.8,0,0,0.01\n"
+      "0.02,0,0,-9.8,0,0,0.02\n"
+      "0.01,0,0,-9.8,0,0,0.03\n"
+      "0.03,0,0,-9.8,0,0,0.04\n";
+  const std::string path = write_text("swapped.csv", text);
+  EXPECT_EQ(error_of(path, o), path +
+                                   ":3: time 0.01 goes back before line 2's: the log's times must increase (rows out "
+                                   "of order, or the logger's clock re-set)");
+  ImuLogOptions kf;
+  kf.format = ImuLogFormat::kf_gins;
+  const std::string kf_path = write_text("kf_back.txt", "1.0 0 0 0 0 0 0\n1.01 0 0 0 0 0 0\n0.5 0 0 0 0 0 0\n");
+  EXPECT_NE(error_of(kf_path, kf).find(kf_path + ":3: time 0.5 goes back before line 2's"), std::string::npos);
+}
+
+TEST(ImuLogReader, ReadsFromAStream) {
+  ImuLogOptions o = walk_options();
+  std::istringstream in("0,0,1,0,0,0,1000\n0,0,1,0,0,0,1010\n0,0,1,0,0,0,1020\n");
+  const ImuLogRead r = read_imu_log(in, "stream.csv", o);
+  EXPECT_EQ(r.report.samples, 3);
+  EXPECT_EQ(r.log.source, "stream.csv");
+  o.format = ImuLogFormat::deepnav;
+  std::istringstream again("");
+  EXPECT_THROW(read_imu_log(again, "stream.csv", o), std::invalid_argument);
 }
 
 TEST(ImuLogReader, KfGinsIncrements) {

@@ -15,7 +15,8 @@ std::string pad(const std::string& content, const std::string& label) {
   return fmt::format("{:<60}{:<20}\n", content, label);
 }
 
-std::string header3(const std::string& types = "G    4 C1C L1C D1C S1C", const std::string& version = "3.04") {
+std::string header3(const std::string& types = "G    4 C1C L1C D1C S1C", const std::string& version = "3.04",
+                    const std::string& extra_records = "") {
   std::string h =
       pad(fmt::format("{:>9}{:11}{:<20}{:<20}", version, "", "OBSERVATION DATA", "M: Mixed"), "RINEX VERSION / TYPE");
   h += pad("test", "PGM / RUN BY / DATE");
@@ -23,8 +24,14 @@ std::string header3(const std::string& types = "G    4 C1C L1C D1C S1C", const s
   h += pad(types, "SYS / # / OBS TYPES");
   h += pad("E    4 C1C L1C D1C S1C", "SYS / # / OBS TYPES");
   h += pad("     0.250", "INTERVAL");
+  h += extra_records;
   h += pad("", "END OF HEADER");
   return h;
+}
+
+/// A TIME OF FIRST OBS record in time system `system` (blank: none given).
+std::string first_obs(const std::string& system) {
+  return pad(fmt::format("  2025    08    28    17    30   39.7480000     {:<3}", system), "TIME OF FIRST OBS");
 }
 
 std::string obs(double v, char lli = ' ') { return fmt::format("{:14.3f}{} ", v, lli); }
@@ -193,7 +200,7 @@ TEST(RinexObsReader, FindsMicrosecondStepsOfASteeredClockButNotCodeNoise) {
   EXPECT_TRUE(f.epochs[5].after_gap);
 }
 
-TEST(RinexObsReader, SkipsEventRecordsAndCycleSlipRecords) {
+TEST(RinexObsReader, SkipsCommentsOfEventsAndCycleSlipRecords) {
   std::string t = header3();
   t += epoch3(0.0, 1) + sat3("G01", 2.1e7, 1.0, 0.0, 45.0);
   t += epoch3(0.1, 2, 4) + pad("some new header line", "COMMENT") + pad("another", "COMMENT");
@@ -204,6 +211,131 @@ TEST(RinexObsReader, SkipsEventRecordsAndCycleSlipRecords) {
   EXPECT_EQ(f.report.event_epochs, 1);
   EXPECT_EQ(f.report.cycle_slip_epochs, 1);
   EXPECT_EQ(f.report.loss_of_lock, 0);
+}
+
+TEST(RinexObsReader, PutsEveryTimeSystemOnGpsTime) {
+  // The same epoch tag in each system: GPS, GAL, QZS and IRN run with GPS time, BDT is 14 s
+  // behind it, GLO tags are UTC (GPS time less the leap seconds: 18 since 2017).
+  const GpsTime tag = gps_time_from_calendar({2025, 8, 28, 17, 30, 39.748});
+  const auto first_epoch = [&](const std::string& extra) {
+    const ObservationFile f = parse(header3("G    4 C1C L1C D1C S1C", "3.04", extra) + epoch3(39.748, 1) +
+                                    sat3("G01", 2.1e7, 1.0, 0.0, 45.0));
+    return std::pair{f.epochs[0].t.seconds_since(tag), f.report.time_system};
+  };
+  EXPECT_EQ(first_epoch(first_obs("GPS")), std::pair(0.0, std::string("GPS")));
+  EXPECT_EQ(first_epoch(first_obs("GAL")), std::pair(0.0, std::string("GAL")));
+  EXPECT_EQ(first_epoch(first_obs("")), std::pair(0.0, std::string("GPS")));  // a mixed file's default
+  EXPECT_EQ(first_epoch(""), std::pair(0.0, std::string("GPS")));
+  EXPECT_EQ(first_epoch(first_obs("BDT")), std::pair(14.0, std::string("BDT")));
+  EXPECT_EQ(first_epoch(first_obs("GLO") + pad("    18", "LEAP SECONDS")), std::pair(18.0, std::string("GLO")));
+  // Leap seconds counted from BDT (RINEX 3: "BDS" in columns 25-27) are 14 fewer.
+  EXPECT_EQ(first_epoch(first_obs("GLO") + pad("     4     4  2185     7BDS", "LEAP SECONDS")),
+            std::pair(18.0, std::string("GLO")));
+  // What cannot be put on GPS time is refused, naming the record.
+  const std::string glo = header3("G    4 C1C L1C D1C S1C", "3.04", first_obs("GLO")) + epoch3(39.748, 1) +
+                          sat3("G01", 2.1e7, 1.0, 0.0, 45.0);
+  EXPECT_EQ(error_of(glo),
+            "test.obs:7: TIME OF FIRST OBS: time system GLO (UTC) needs the leap seconds to be put on GPS time, and "
+            "the header has no LEAP SECONDS record");
+  const std::string tai = header3("G    4 C1C L1C D1C S1C", "3.04", first_obs("TAI")) + epoch3(39.748, 1) +
+                          sat3("G01", 2.1e7, 1.0, 0.0, 45.0);
+  EXPECT_EQ(error_of(tai),
+            "test.obs:7: TIME OF FIRST OBS: time system 'TAI' (columns 49-51) is not one of GPS, GAL, QZS, IRN, BDT, "
+            "GLO");
+}
+
+TEST(RinexObsReader, TheEpochsSpacingIsTheIntervalNotTheHeaders) {
+  // The header says 0.25 s; the epochs are 1 s apart, one of them after a 3 s gap.
+  std::string t = header3();
+  for (double sec : {0.0, 1.0, 2.0, 3.0, 6.0, 7.0}) t += epoch3(sec, 1) + sat3("G01", 2.1e7, 1.0, 0.0, 45.0);
+  const ObservationFile f = parse(t);
+  EXPECT_DOUBLE_EQ(f.report.nominal_interval_s, 1.0);
+  ASSERT_TRUE(f.report.header_interval_s);
+  EXPECT_DOUBLE_EQ(*f.report.header_interval_s, 0.25);
+  ASSERT_EQ(f.report.gaps.size(), 1u);  // not five gaps of the header's interval
+  EXPECT_DOUBLE_EQ(f.report.gaps[0].seconds, 3.0);
+  ASSERT_EQ(f.report.warnings.size(), 1u);
+  EXPECT_EQ(f.report.warnings[0],
+            "test.obs:6: INTERVAL says 0.25 s, but the epochs are 1 s apart (the median of 5 intervals): the data's "
+            "spacing is used");
+  // A header that agrees says nothing; a single epoch has only the header's interval.
+  const ObservationFile agree = parse(header3() + epoch3(0.0, 1) + sat3("G01", 2.1e7, 1.0, 0.0, 45.0) +
+                                      epoch3(0.25, 1) + sat3("G01", 2.1e7, 1.0, 0.0, 45.0));
+  EXPECT_TRUE(agree.report.warnings.empty());
+  const ObservationFile single = parse(header3() + epoch3(0.0, 1) + sat3("G01", 2.1e7, 1.0, 0.0, 45.0));
+  EXPECT_DOUBLE_EQ(single.report.nominal_interval_s, 0.25);
+}
+
+TEST(RinexObsReader, HeaderRecordsOfAnEventApplyFromThere) {
+  // Flag 4 brings a new GPS type list (the phase first) and a scale factor of 10 for the
+  // Doppler: the records after it read by them.
+  std::string t = header3();
+  t += epoch3(0.0, 1) + sat3("G01", 2.1e7, 1.0, 1000.0, 45.0);
+  t += epoch3(0.1, 3, 4) + pad("G    4 L1C C1C D1C S1C", "SYS / # / OBS TYPES") +
+       pad("G   10   1 D1C", "SYS / SCALE FACTOR") + pad("new types", "COMMENT");
+  t += epoch3(0.25, 1) + "G01" + obs(5.0) + obs(2.1e7 + 10.0) + obs(10001.0) + obs(44.0) + "\n";
+  const ObservationFile f = parse(t);
+  ASSERT_EQ(f.epochs.size(), 2u);
+  EXPECT_EQ(f.report.event_epochs, 1);
+  EXPECT_EQ(f.report.observation_type_changes, 1);
+  const GpsL1Observation& o = f.epochs[1].gps[0];
+  EXPECT_DOUBLE_EQ(*o.pseudorange_m, 2.1e7 + 10.0);
+  EXPECT_DOUBLE_EQ(*o.carrier_phase_cycles, 5.0);
+  EXPECT_DOUBLE_EQ(*o.doppler_hz, 1000.1);
+  EXPECT_DOUBLE_EQ(*o.cn0_dbhz, 44.0);
+  // RINEX 2: a new # / TYPES OF OBSERV list.
+  std::string v2 = pad("     2.11           OBSERVATION DATA    G (GPS)", "RINEX VERSION / TYPE");
+  v2 += pad("     2    C1    D1", "# / TYPES OF OBSERV") + pad("", "END OF HEADER");
+  v2 += " 25  8 28 17 30 40.0000000  0  1G01\n" + obs(2.1e7) + obs(100.0) + "\n";
+  v2 += "                            4  1\n" + pad("     3    D1    S1    C1", "# / TYPES OF OBSERV");
+  v2 += " 25  8 28 17 30 41.0000000  0  1G01\n" + obs(101.0) + obs(40.0) + obs(2.2e7) + "\n";
+  const ObservationFile f2 = parse(v2);
+  ASSERT_EQ(f2.epochs.size(), 2u);
+  EXPECT_DOUBLE_EQ(*f2.epochs[1].gps[0].pseudorange_m, 2.2e7);
+  EXPECT_DOUBLE_EQ(*f2.epochs[1].gps[0].doppler_hz, 101.0);
+  // An event's types without the L1 C/A pseudorange, and an event that announces more
+  // records than it has, are errors naming the event.
+  std::string no_code = header3() + epoch3(0.0, 1) + sat3("G01", 2.1e7, 1.0, 1000.0, 45.0) + epoch3(0.1, 1, 4) +
+                        pad("G    2 L1C D1C", "SYS / # / OBS TYPES") + epoch3(0.25, 1) + "G01" + obs(5.0) + obs(1.0) +
+                        "\n";
+  EXPECT_EQ(error_of(no_code),
+            "test.obs:11: the GPS observation types of the event at line 10 have no L1 C/A pseudorange (C1C); they "
+            "are: L1C D1C");
+  std::string count = header3() + epoch3(0.0, 1) + sat3("G01", 2.1e7, 1.0, 1000.0, 45.0) + epoch3(0.1, 2, 4) +
+                      pad("comment", "COMMENT") + epoch3(0.25, 1) + sat3("G01", 2.1e7, 1.0, 1000.0, 45.0);
+  EXPECT_EQ(error_of(count),
+            "test.obs:12: special record 2 of 2 of the event (flag 4) at line 10 expected, got an epoch line (the "
+            "event's record count is wrong)");
+}
+
+TEST(RinexObsReader, ScaleFactorOfTheHeaderDividesTheStoredValues) {
+  const std::string scale = pad("G  100   2 L1C S1C", "SYS / SCALE FACTOR");
+  const ObservationFile f = parse(header3("G    4 C1C L1C D1C S1C", "3.04", scale) + epoch3(0.0, 1) +
+                                  sat3("G01", 2.1e7, 12345.0, 1000.0, 4500.0));
+  EXPECT_DOUBLE_EQ(*f.epochs[0].gps[0].pseudorange_m, 2.1e7);
+  EXPECT_DOUBLE_EQ(*f.epochs[0].gps[0].carrier_phase_cycles, 123.45);
+  EXPECT_DOUBLE_EQ(*f.epochs[0].gps[0].cn0_dbhz, 45.0);
+  const std::string bad = pad("G   20   2 L1C S1C", "SYS / SCALE FACTOR");
+  EXPECT_EQ(error_of(header3("G    4 C1C L1C D1C S1C", "3.04", bad)),
+            "test.obs:7: SYS / SCALE FACTOR of 'G': factor 20 (columns 3-6) is not 1, 10, 100 or 1000");
+}
+
+TEST(RinexObsReader, AnEpochWrittenTwiceIsSkippedAndCounted) {
+  const std::string e0 = epoch3(0.0, 2) + sat3("G01", 2.1e7, 1.0, 0.0, 45.0) + sat3("E07", 2.3e7, 1.0, 0.0, 45.0);
+  const std::string e1 = epoch3(0.25, 1) + sat3("G01", 2.1e7, 1.0, 0.0, 45.0);
+  const ObservationFile f = parse(header3() + e0 + e0 + e1 + e1 + e1);
+  ASSERT_EQ(f.epochs.size(), 2u);
+  EXPECT_EQ(f.report.repeated_epochs, 3);
+  EXPECT_EQ(f.report.first_repeated_epoch_line, 11);
+  EXPECT_EQ(f.report.gps_satellite_records, 2);  // the repeats' records not counted again
+  EXPECT_EQ(f.report.skipped_satellite_records.at("E"), 1);
+  ASSERT_EQ(f.report.warnings.size(), 1u);
+  EXPECT_EQ(f.report.warnings[0], "test.obs:11: 3 epoch(s) repeat the epoch before them record for record: skipped");
+  // The same time with other records is no repeat: an error.
+  const std::string other = epoch3(0.0, 1) + sat3("G01", 2.1e7 + 1.0, 1.0, 0.0, 45.0);
+  EXPECT_NE(error_of(header3() + e0 + other).find("test.obs:11: epoch time"), std::string::npos);
+  EXPECT_NE(error_of(header3() + e0 + other).find("goes no further than (with other records) the epoch at line 8"),
+            std::string::npos);
 }
 
 TEST(RinexObsReader, BadFilesGiveErrorsNamingFileLineAndField) {

@@ -99,6 +99,25 @@ TEST(SolutionFile, ErrorsAboutTheMeanOffset) {
   EXPECT_NEAR(e.scatter_max_horizontal_m, 0.5, 1e-3);
   EXPECT_NEAR(e.scatter_max_3d_m, 0.5, 1e-3);
   EXPECT_NEAR(e.rms_horizontal_m, std::sqrt((3.5 * 3.5 + 2.5 * 2.5) / 2.0 + 4.0), 1e-3);
+  EXPECT_DOUBLE_EQ(e.json()["about_mean_offset"]["rms_horizontal_m"].get<double>(), 0.5);
+}
+
+TEST(SolutionFile, NoEpochScoredGivesNoStatistics) {
+  // Not a perfect score of zeros: nothing was compared, so nothing is stated.
+  SolutionPoint r;
+  r.t = GpsTime{2381, 408600.0};
+  r.llh = {0.7, -1.8, 1600.0};
+  SolutionPoint s = r;
+  s.t = r.t.plus_seconds(1.0);
+  const ReferenceErrors e = reference_errors({s}, {r});
+  EXPECT_EQ(e.epochs, 0);
+  const nlohmann::json j = e.json();
+  EXPECT_EQ(j["epochs"], 0);
+  EXPECT_TRUE(j["mean_offset_enu_m"].is_null());
+  EXPECT_TRUE(j["rms_horizontal_m"].is_null());
+  EXPECT_TRUE(j["rms_3d_m"].is_null());
+  for (const auto& [key, value] : j["about_mean_offset"].items()) EXPECT_TRUE(value.is_null()) << key;
+  EXPECT_TRUE(reference_errors({}, {}).json()["about_mean_offset"]["max_3d_m"].is_null());
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include "receiver/products/run_statistics.hpp"
 #include "signals/data_path.hpp"
 #include "tools/cli/atmosphere_options.hpp"
+#include "tools/cli/cli_checks.hpp"
 #include "tools/cli/commands.hpp"
 #include "tools/cli/output_folder.hpp"
 #include "tools/cli/stop_signals.hpp"
@@ -24,6 +25,13 @@
 
 namespace deepnav::cli {
 namespace {
+
+/// Where an IMU or an antenna can be from the body's origin (m): a vehicle's size, not a
+/// unit error.
+constexpr double kMaxBodyOffset_m = 100.0;
+/// The largest IMU time offset (s): beyond GPS seconds since 1970 (1.8e9 now) by far, and
+/// small enough that a time of the log keeps its microseconds.
+constexpr double kMaxTimeOffset_s = 1e10;
 
 struct FuseOptions {
   std::string obs, nav, imu, out_dir, mode = "tight";
@@ -92,6 +100,17 @@ void require_file(const std::string& path, const char* option) {
   if (!std::filesystem::is_regular_file(path)) throw UserError(fmt::format("{}: no such file '{}'", option, path));
 }
 
+/// An observation file without a GPS L1 C/A observable gives fuse nothing to navigate with.
+void require_gps(const std::string& path, const ObservationReport& r) {
+  if (r.gps_satellite_records > 0) return;
+  std::string others;
+  for (const auto& [system, records] : r.skipped_satellite_records)
+    others += fmt::format("{}{} {}", others.empty() ? "" : ", ", system, records);
+  throw UserError(fmt::format(
+      "--obs {}: no GPS L1 C/A observation in its {} epochs ({}): fuse navigates with GPS L1 C/A only", path, r.epochs,
+      others.empty() ? "no other system's either" : "records of other systems skipped: " + others));
+}
+
 /// Collects the run's solutions (for the reference statistics).
 class SolutionCollector : public ProductSink {
  public:
@@ -152,6 +171,9 @@ void run_fuse(CLI::App& root, FuseOptions o) {
   } catch (const std::exception& e) {
     throw UserError(e.what());
   }
+  for (const std::string& w : obs.report.warnings) spdlog::warn("{}", w);
+  for (const std::string& w : imu.report.warnings) spdlog::warn("{}", w);
+  require_gps(o.obs, obs.report);
   c.coupling.atmosphere = o.atmosphere;
   c.pvt.elevation_mask_rad = o.elevation_mask_deg * M_PI / 180.0;
   c.pseudorange_sigma_scale = o.pseudorange_sigma_scale;
@@ -214,6 +236,9 @@ void run_fuse(CLI::App& root, FuseOptions o) {
     interrupted = true;  // the products keep the epochs before the signal
     products.finish(nav);
   }
+  if (!interrupted && fusion->report().fixes == 0)
+    spdlog::warn("--obs {}: none of its {} epochs gave a fix (do the ephemerides of --nav {} cover them?)", o.obs,
+                 fusion->report().epochs, o.nav);
 
   const ObservationReport& r = obs.report;
   nlohmann::json gaps = nlohmann::json::array(), jumps = nlohmann::json::array(), imu_gaps = nlohmann::json::array();
@@ -232,8 +257,11 @@ void run_fuse(CLI::App& root, FuseOptions o) {
       {"fusion", fusion->report().json()},
       {"observation_file",
        {{"rinex_version", r.version},
+        {"time_system", r.time_system},
         {"epochs", r.epochs},
         {"interval_s", r.nominal_interval_s},
+        {"header_interval_s", r.header_interval_s ? nlohmann::json(*r.header_interval_s) : nlohmann::json(nullptr)},
+        {"repeated_epochs", r.repeated_epochs},
         {"gps_l1_records", r.gps_satellite_records},
         {"skipped_satellite_records", r.skipped_satellite_records},
         {"skipped_gps_values", r.skipped_gps_values},
@@ -243,9 +271,11 @@ void run_fuse(CLI::App& root, FuseOptions o) {
         {"loss_of_lock", r.loss_of_lock},
         {"power_failure_epochs", r.power_failure_epochs},
         {"event_epochs", r.event_epochs},
+        {"observation_type_changes", r.observation_type_changes},
         {"cycle_slip_epochs", r.cycle_slip_epochs},
         {"gaps", gaps},
-        {"clock_jumps", jumps}}},
+        {"clock_jumps", jumps},
+        {"warnings", r.warnings}}},
       {"navigation_file", {{"gps_ephemerides", nav.ephemerides.size()}, {"iono_valid", nav.iono.valid}}},
       {"imu_log",
        {{"format", imu.report.format},
@@ -254,8 +284,7 @@ void run_fuse(CLI::App& root, FuseOptions o) {
         {"samples", imu.report.samples},
         {"duplicate_rows", imu.report.duplicate_rows},
         {"repeated_time", imu.report.repeated_time},
-        {"backward_time", imu.report.backward_time},
-        {"first_backward_line", imu.report.first_backward_line},
+        {"repeated_values", imu.report.repeated_values},
         {"truncated_lines", imu.report.truncated_lines},
         {"interval_s",
          {{"nominal", imu.report.nominal_interval_s},
@@ -264,7 +293,8 @@ void run_fuse(CLI::App& root, FuseOptions o) {
         {"time_scale", imu.report.time_scale},
         {"time_offset_s", imu.report.time_offset_s},
         {"time_base", o.imu_time_base},
-        {"gaps", imu_gaps}}},
+        {"gaps", imu_gaps},
+        {"warnings", imu.report.warnings}}},
       {"interrupted", interrupted}};
   nlohmann::json failed = nlohmann::json::array();
   for (const ProductFailure& f : products.failures()) failed.push_back({{"product", f.product}, {"error", f.error}});
@@ -273,11 +303,14 @@ void run_fuse(CLI::App& root, FuseOptions o) {
     const ReferenceErrors ours = reference_errors(collected.points(), reference);
     summary["reference"] = o.reference;
     summary["reference_errors"] = ours.json();
-    fmt::print(
-        "against the reference ({} epochs): mean offset E {:.2f} N {:.2f} U {:.2f} m; horizontal RMS {:.2f} m, "
-        "about the mean offset {:.2f} m (max {:.2f} m, 3-D max {:.2f} m)\n",
-        ours.epochs, ours.mean_offset_enu_m.x(), ours.mean_offset_enu_m.y(), ours.mean_offset_enu_m.z(),
-        ours.rms_horizontal_m, ours.scatter_rms_horizontal_m, ours.scatter_max_horizontal_m, ours.scatter_max_3d_m);
+    if (ours.epochs == 0)
+      fmt::print("against the reference: no epoch scored (no solution within 10 ms of a reference epoch)\n");
+    else
+      fmt::print(
+          "against the reference ({} epochs): mean offset E {:.2f} N {:.2f} U {:.2f} m; horizontal RMS {:.2f} m, "
+          "about the mean offset {:.2f} m (max {:.2f} m, 3-D max {:.2f} m)\n",
+          ours.epochs, ours.mean_offset_enu_m.x(), ours.mean_offset_enu_m.y(), ours.mean_offset_enu_m.z(),
+          ours.rms_horizontal_m, ours.scatter_rms_horizontal_m, ours.scatter_max_horizontal_m, ours.scatter_max_3d_m);
     if (!baseline.empty()) {
       // The baseline on the epochs this run has a solution at.
       std::vector<SolutionPoint> same;
@@ -290,11 +323,15 @@ void run_fuse(CLI::App& root, FuseOptions o) {
       const ReferenceErrors base = reference_errors(same, reference);
       summary["compare"] = o.compare;
       summary["compare_errors"] = base.json();
-      fmt::print(
-          "baseline {} on the same epochs ({}): horizontal RMS {:.2f} m, about the mean offset {:.2f} m (max {:.2f} "
-          "m)\n",
-          std::filesystem::path(o.compare).filename().string(), base.epochs, base.rms_horizontal_m,
-          base.scatter_rms_horizontal_m, base.scatter_max_horizontal_m);
+      const std::string baseline_name = std::filesystem::path(o.compare).filename().string();
+      if (base.epochs == 0)
+        fmt::print("baseline {}: no epoch scored (none on the epochs of this run's solutions)\n", baseline_name);
+      else
+        fmt::print(
+            "baseline {} on the same epochs ({}): horizontal RMS {:.2f} m, about the mean offset {:.2f} m (max "
+            "{:.2f} m)\n",
+            baseline_name, base.epochs, base.rms_horizontal_m, base.scatter_rms_horizontal_m,
+            base.scatter_max_horizontal_m);
     }
   }
   try {
@@ -348,17 +385,25 @@ void add_fuse_command(CommandParents& parents) {
       ->check(CLI::IsMember({"week-seconds", "gps", "unix-gps"}))
       ->capture_default_str();
   cmd->add_option("--imu-time-scale", o->imu_time_scale, "Seconds per unit of the IMU time column")
+      ->check(finite_above(0.0, 1e6, "seconds per unit"))
       ->capture_default_str();
   cmd->add_option("--imu-time-offset", o->imu_time_offset_s,
                   "Seconds added to the scaled IMU time: the time base's origin and any constant IMU-to-GNSS offset")
+      ->check(finite_in(-kMaxTimeOffset_s, kMaxTimeOffset_s, "seconds"))
       ->capture_default_str();
-  cmd->add_option("--imu-rate", o->imu_rate_hz, "Nominal IMU rate (Hz; 0: the log's mean rate)")->capture_default_str();
-  cmd->add_option("--imu-mounting", o->imu_rpy_deg, "Body-to-IMU rotation roll pitch yaw (deg)")->expected(3);
+  cmd->add_option("--imu-rate", o->imu_rate_hz, "Nominal IMU rate (Hz; 0: the log's mean rate)")
+      ->check(finite_in(0.0, 1e5, "a rate in Hz"))
+      ->capture_default_str();
+  cmd->add_option("--imu-mounting", o->imu_rpy_deg, "Body-to-IMU rotation roll pitch yaw (deg)")
+      ->expected(3)
+      ->check(finite_in(-360.0, 360.0, "an angle in degrees"));
   cmd->add_option("--imu-position", o->imu_position_m, "IMU position from the body origin, body axes x y z (m)")
-      ->expected(3);
+      ->expected(3)
+      ->check(finite_in(-kMaxBodyOffset_m, kMaxBodyOffset_m, "metres"));
   cmd->add_option("--antenna-position", o->antenna_position_m,
                   "Antenna position from the body origin, body axes x y z (m)")
-      ->expected(3);
+      ->expected(3)
+      ->check(finite_in(-kMaxBodyOffset_m, kMaxBodyOffset_m, "metres"));
   cmd->add_option("--imu-grade", o->imu_grade, "The IMU's grade in --imu-grades-file")->capture_default_str();
   cmd->add_option("--imu-grades-file", o->imu_grades_file,
                   "IMU grades YAML file (relative: from here, else the project's data/)")
@@ -366,20 +411,26 @@ void add_fuse_command(CommandParents& parents) {
   cmd->add_flag("--zupt,!--no-zupt", o->zupt, "Zero-velocity updates when the IMU is still")->default_str("true");
   cmd->add_option("--pseudorange-sigma-scale", o->pseudorange_sigma_scale,
                   "tight: pseudorange sigma x this (the shared elevation and C/N0 model)")
+      ->check(finite_in(0.01, 100.0, "a scale"))
       ->capture_default_str();
   cmd->add_option(
          "--doppler-sigma", o->doppler_sigma_mps,
          "Sigma of a pseudorange rate from a Doppler (m/s): tight rows; loose: the PVT velocity's, times its DOP")
+      ->check(finite_in(0.001, 100.0, "a sigma in m/s"))
       ->capture_default_str();
   cmd->add_flag("--smoothing,!--no-smoothing", o->smoothing, "Carrier smoothing (Hatch filter) of the pseudoranges")
       ->default_str("true");
   cmd->add_option("--smoothing-window", o->smoothing_window_s,
-                  "Carrier smoothing window (s; restarts on loss of lock, slips, gaps)")
+                  "Carrier smoothing window (s; restarts on loss of lock, slips, gaps; 0: none)")
+      ->check(finite_in(0.0, 3600.0, "seconds"))
       ->capture_default_str();
   cmd->add_option("--doppler-bridge", o->doppler_bridge_s,
                   "Carrier smoothing: longest phase break carried by the Dopplers instead of a restart (s; 0: none)")
+      ->check(finite_in(0.0, 60.0, "seconds"))
       ->capture_default_str();
-  cmd->add_option("--elevation-mask", o->elevation_mask_deg, "Elevation mask (deg)")->capture_default_str();
+  cmd->add_option("--elevation-mask", o->elevation_mask_deg, "Elevation mask (deg)")
+      ->check(finite_in(-10.0, 90.0, "an elevation in degrees"))
+      ->capture_default_str();
   add_atmosphere_options(*cmd, o->atmosphere);
   cmd->add_option("--reference", o->reference, "RTKLIB .pos reference: error statistics in summary.json");
   cmd->add_option("--compare", o->compare, "RTKLIB .pos baseline scored against --reference on the same epochs");

@@ -13,7 +13,7 @@ import products
 from checklist import CheckList
 
 # mode: (horizontal scatter bound, worst 3-D bound) about the mean offset, metres.
-BOUNDS_M = {"tight": (0.65, 2.3), "loose": (0.70, 2.8)}
+BOUNDS_M = {"tight": (0.62, 2.2), "loose": (0.68, 2.8)}
 
 
 def main():
@@ -31,8 +31,12 @@ def main():
         checks.check(f"{mode}: no worse than single point", ours["rms_horizontal_m"] <= spp["rms_horizontal_m"],
                      (ours["rms_horizontal_m"], spp["rms_horizontal_m"]))
         checks.check(f"{mode}: 536 epochs scored", s["reference_errors"]["epochs"] == 536, s["reference_errors"]["epochs"])
-        checks.check(f"{mode}: 6958 duplicate IMU rows", s["imu_log"]["duplicate_rows"] == 6958,
-                     s["imu_log"]["duplicate_rows"])
+        # The logger reads its 100 Hz IMU every 6 to 9 ms: 6958 rows repeat the row before at a
+        # new time, and are samples all the same (the rate held over their interval).
+        imu = s["imu_log"]
+        checks.check(f"{mode}: 6958 repeated IMU values kept, no row dropped",
+                     (imu["repeated_values"], imu["duplicate_rows"], imu["samples"]) == (6958, 0, imu["rows"]),
+                     (imu["repeated_values"], imu["duplicate_rows"], imu["samples"], imu["rows"]))
         skipped = s["observation_file"]["skipped_satellite_records"]
         checks.check(f"{mode}: Galileo records counted", skipped.get("E", 0) > 0, skipped)
         checks.check(f"{mode}: zero-velocity updates (the walker stops)", s["fusion"]["zero_velocity_updates"] > 0,
