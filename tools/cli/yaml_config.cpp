@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstdlib>
+#include <iterator>
 #include <sstream>
 
 #include "ins/yaml_checks.hpp"
@@ -134,12 +135,9 @@ std::vector<CLI::ConfigItem> YamlConfig::from_config(std::istream& input) const 
   CLI::App& command_ = parsed_command(root_, path);
   YAML::Node root;
   try {
-    root = YAML::Load(input);
+    root = load_checked_yaml(std::string(std::istreambuf_iterator<char>(input), {}), file);
   } catch (const YAML::Exception& e) {
     throw UserError(fmt::format("{}:{}: not valid YAML: {}", file, e.mark.line + 1, e.msg));
-  }
-  try {
-    check_unique_keys(root, file);
   } catch (const std::invalid_argument& e) {
     throw UserError(e.what());
   }
