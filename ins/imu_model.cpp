@@ -3,6 +3,8 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <set>
 #include <stdexcept>
 
@@ -157,16 +159,16 @@ std::vector<ImuGrade> load_imu_grades(const std::string& yaml_path) {
   YAML::Node root;
   check_input_file(yaml_path, "IMU grade file", kMaxTextInputBytes);
   try {
-    root = YAML::LoadFile(yaml_path);
-    check_unique_keys(root, yaml_path);
-  } catch (const YAML::BadFile&) {
-    throw std::runtime_error(yaml_path + ": cannot open IMU grade file");
+    std::ifstream in(yaml_path);
+    if (!in) throw std::runtime_error(yaml_path + ": cannot open IMU grade file");
+    root = load_checked_yaml(std::string(std::istreambuf_iterator<char>(in), {}), yaml_path);
   } catch (const YAML::Exception& e) {
     throw std::runtime_error(yaml_path + ": YAML syntax error: " + e.what());
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error(e.what());
   }
-  const YAML::Node grades = root["grades"];
+  // A document that is one scalar (or list) has no keys: yaml-cpp throws naming no file.
+  const YAML::Node grades = root.IsMap() ? root["grades"] : YAML::Node();
   if (!grades || !grades.IsMap()) {
     throw std::runtime_error(yaml_path + ": expected a top-level map 'grades' of named IMU grades");
   }

@@ -28,13 +28,13 @@ IfFileStream::IfFileStream(IfFileStreamOptions options) : options_(std::move(opt
   if (ec) throw std::runtime_error(fmt::format("cannot read the size of sample file '{}': {}", name, ec.message()));
   const std::size_t bpw = bytes_per_word(options_.format);
   if (size_bytes == 0) throw std::runtime_error(fmt::format("sample file '{}' is empty", name));
-  const std::uint64_t outside = options_.header_bytes + options_.footer_bytes;
-  if (outside >= size_bytes)
+  // Compared one at a time: the sum of two sizes from a metadata file may not fit 64 bits.
+  if (options_.header_bytes >= size_bytes || options_.footer_bytes >= size_bytes - options_.header_bytes)
     throw std::runtime_error(
         fmt::format("sample file '{}' ({} bytes) holds nothing beyond its {}-byte header and "
                     "{}-byte footer",
                     name, size_bytes, options_.header_bytes, options_.footer_bytes));
-  std::uint64_t data_bytes = size_bytes - outside;
+  std::uint64_t data_bytes = size_bytes - options_.header_bytes - options_.footer_bytes;
   if (options_.length_bytes) {
     if (*options_.length_bytes > data_bytes)
       warnings_.push_back(

@@ -6,18 +6,37 @@
 #include <boost/property_tree/ptree.hpp>
 #include <boost/property_tree/xml_parser.hpp>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <limits>
 #include <map>
+#include <sstream>
+#include <string_view>
 #include <vector>
 
+#include "ins/input_file.hpp"
 #include "signals/gps_constants.hpp"
 #include "signals/sample_packing.hpp"
+#include "signals/xml_nesting.hpp"
 
 namespace deepnav {
 namespace {
 
 namespace pt = boost::property_tree;
+using namespace std::string_view_literals;
+
+/// Bounds of what is read as a metadata file: the standard's descriptions are a few
+/// kilobytes nested about 8 deep; these bounds leave room for comments and extensions while
+/// keeping the tree parser's memory and recursion small.
+constexpr std::uintmax_t kMaxMetadataBytes = std::uintmax_t{1} << 20;
+constexpr int kMaxMetadataDepth = 64;
+
+/// The largest chunk the reader lays out (bytes, bits).
+constexpr std::uint64_t kMaxChunkBytes = 64;
+constexpr std::uint64_t kMaxChunkBits = 8 * kMaxChunkBytes;
 
 std::string lower(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
@@ -65,11 +84,46 @@ struct Element {
   }
 };
 
+/// The metadata file's text, once it is known to be one the tree parser can take: of a
+/// sensible size, UTF-8 (no UTF-16 or UTF-32, no NUL byte) and not nested absurdly deep.
+std::string metadata_text(const std::filesystem::path& path) {
+  const std::string name = path.string();
+  try {
+    check_input_file(name, "metadata file", kMaxMetadataBytes);
+  } catch (const std::runtime_error& e) {
+    throw MetadataError(e.what());
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw MetadataError(fmt::format("cannot open metadata file '{}'", name));
+  const std::string text(std::istreambuf_iterator<char>(in), {});
+  const std::string_view start(text.data(), std::min<std::size_t>(text.size(), 4));
+  const char* wide = start.starts_with("\xFF\xFE\0\0"sv) || start.starts_with("\0\0\xFE\xFF"sv) ? "UTF-32"
+                     : start.starts_with("\xFF\xFE"sv) || start.starts_with("\xFE\xFF"sv) ||
+                             start.starts_with("<\0"sv) || start.starts_with("\0<"sv)
+                         ? "UTF-16"
+                         : nullptr;
+  if (wide != nullptr)
+    throw MetadataError(fmt::format(
+        "metadata file '{}' is encoded in {}: metadata files are read as UTF-8 (convert it, e.g. iconv -f {} -t UTF-8)",
+        name, wide, wide));
+  if (const auto nul = text.find('\0'); nul != std::string::npos)
+    throw MetadataError(
+        fmt::format("metadata file '{}':{}: a NUL byte: not a text file", name,
+                    1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(nul), '\n')));
+  if (const auto line = line_nested_deeper_than(text, kMaxMetadataDepth))
+    throw MetadataError(fmt::format(
+        "metadata file '{}':{}: elements nested more than {} deep: not a metadata description (the standard's "
+        "descriptions nest about 8 deep)",
+        name, *line, kMaxMetadataDepth));
+  return text;
+}
+
 class Reader {
  public:
   explicit Reader(std::filesystem::path path) : path_(std::move(path)) {
     try {
-      pt::read_xml(path_.string(), doc_, pt::xml_parser::trim_whitespace | pt::xml_parser::no_comments);
+      std::istringstream text(metadata_text(path_));
+      pt::read_xml(text, doc_, pt::xml_parser::trim_whitespace | pt::xml_parser::no_comments);
     } catch (const pt::xml_parser_error& e) {
       if (e.line() == 0) throw MetadataError(fmt::format("metadata file '{}': {}", path_.string(), e.message()));
       throw MetadataError(
@@ -115,21 +169,25 @@ class Reader {
     return resolve(c.front());
   }
 
-  std::uint64_t unsigned_value(const Element& e) const {
+  /// A whole number, at most `max`: what the reader narrows or multiplies it into holds it.
+  std::uint64_t unsigned_value(const Element& e, std::uint64_t max, const std::string& why_max) const {
     const std::string t = e.text();
-    char* end = nullptr;
-    const unsigned long long v = std::strtoull(t.c_str(), &end, 10);
-    if (t.empty() || *end != '\0' || t.front() == '-') fail(e, fmt::format("'{}' is not a whole number", t));
+    std::uint64_t v = 0;
+    const auto [end, error] = std::from_chars(t.data(), t.data() + t.size(), v);
+    if (error == std::errc::result_out_of_range || (error == std::errc() && end == t.data() + t.size() && v > max))
+      fail(e, fmt::format("{} is too large: at most {} ({})", t, max, why_max));
+    if (t.empty() || error != std::errc() || end != t.data() + t.size())
+      fail(e, fmt::format("'{}' is not a whole number", t));
     return v;
   }
-  std::uint64_t unsigned_child(const Element& parent, const std::string& tag,
-                               std::optional<std::uint64_t> fallback) const {
+  std::uint64_t unsigned_child(const Element& parent, const std::string& tag, std::optional<std::uint64_t> fallback,
+                               std::uint64_t max, const std::string& why_max) const {
     const auto c = optional_one(parent, tag);
     if (!c) {
       if (fallback) return *fallback;
       fail(parent, fmt::format("has no <{}>", tag));
     }
-    return unsigned_value(*c);
+    return unsigned_value(*c, max, why_max);
   }
   std::string word_child(const Element& parent, const std::string& tag, const std::string& fallback,
                          const std::vector<std::string>& allowed) const {
@@ -150,11 +208,12 @@ class Reader {
     const double v = std::strtod(t.c_str(), &end);
     if (t.empty() || *end != '\0' || !std::isfinite(v)) fail(e, fmt::format("'{}' is not a number", t));
     const std::string unit = lower(e.attribute("format").value_or(e.attribute("units").value_or("Hz")));
-    if (unit == "hz") return v;
-    if (unit == "khz") return v * 1e3;
-    if (unit == "mhz") return v * 1e6;
-    if (unit == "ghz") return v * 1e9;
-    fail(e, fmt::format("frequency unit '{}' is not supported (Hz, kHz, MHz, GHz)", unit));
+    static const std::map<std::string, double> kHzPerUnit = {{"hz", 1.0}, {"khz", 1e3}, {"mhz", 1e6}, {"ghz", 1e9}};
+    const auto scale = kHzPerUnit.find(unit);
+    if (scale == kHzPerUnit.end())
+      fail(e, fmt::format("frequency unit '{}' is not supported (Hz, kHz, MHz, GHz)", unit));
+    if (!std::isfinite(v * scale->second)) fail(e, fmt::format("{} {} is not a finite frequency", t, unit));
+    return v * scale->second;
   }
 
   const std::filesystem::path& path() const { return path_; }
@@ -318,26 +377,33 @@ IfMetadata read_if_metadata(const std::filesystem::path& xml_path) {
     if (systems.size() != 1) r.fail(*lane, "names no <system> (with the <freqbase> the sample rate is built on)");
     system = systems.front();
   }
-  const double freqbase_hz = r.frequency_hz(r.one(*system, "freqbase"));
+  const Element freqbase = r.one(*system, "freqbase");
+  const double freqbase_hz = r.frequency_hz(freqbase);
 
   const Element block = r.one(*lane, "block", "one block per lane is supported");
-  const std::uint64_t cycles = r.unsigned_child(block, "cycles", 0);
-  m.header_bytes = r.unsigned_child(block, "sizeheader", 0);
-  m.footer_bytes = r.unsigned_child(block, "sizefooter", 0);
+  constexpr auto kMaxOffset = static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max());
+  // Checked against the chunk's size below, where a count of bytes can overflow.
+  const std::uint64_t cycles =
+      r.unsigned_child(block, "cycles", 0, std::numeric_limits<std::uint64_t>::max(), "a 64-bit count");
+  m.header_bytes = r.unsigned_child(block, "sizeheader", 0, kMaxOffset, "a position in a file");
+  m.footer_bytes = r.unsigned_child(block, "sizefooter", 0, kMaxOffset, "a position in a file");
   const Element chunk = r.one(block, "chunk", "a block of one chunk is supported");
   const Element lump = r.one(chunk, "lump", "a chunk of one lump (repeated to fill the chunk) is supported");
   const Element stream = r.one(lump, "stream", "a lump of one stream is supported (no interleaved bands)");
   m.stream_id = stream.id();
 
   // Chunk: words, their byte order and order in the chunk, padding.
-  const std::uint64_t size_word = r.unsigned_child(chunk, "sizeword", std::nullopt);
+  const std::uint64_t size_word =
+      r.unsigned_child(chunk, "sizeword", std::nullopt, kMaxChunkBytes, "words of 1, 2, 4 or 8 bytes are supported");
   if (size_word != 1 && size_word != 2 && size_word != 4 && size_word != 8)
     r.fail(*r.optional_one(chunk, "sizeword"),
            fmt::format("{} bytes: words of 1, 2, 4 or 8 bytes are supported", size_word));
-  const std::uint64_t count_words = r.unsigned_child(chunk, "countwords", std::nullopt);
-  if (count_words == 0 || count_words * size_word > 64)
+  const std::uint64_t count_words =
+      r.unsigned_child(chunk, "countwords", std::nullopt, kMaxChunkBytes, "chunks of 1 to 64 bytes are supported");
+  if (count_words == 0 || count_words * size_word > kMaxChunkBytes)
     r.fail(*r.optional_one(chunk, "countwords"),
-           fmt::format("{} words of {} bytes: chunks of 1 to 64 bytes are supported", count_words, size_word));
+           fmt::format("{} words of {} bytes: chunks of 1 to {} bytes are supported", count_words, size_word,
+                       kMaxChunkBytes));
   const std::string endian = r.word_child(chunk, "endian", "Undefined", {"Undefined", "Little", "Big"});
   const std::string padding = r.word_child(chunk, "padding", "None", {"None", "Head", "Tail"});
   std::string word_shift = r.word_child(chunk, "wordshift", "Left", {"Left", "Right"});
@@ -346,10 +412,11 @@ IfMetadata read_if_metadata(const std::filesystem::path& xml_path) {
   const std::string lump_shift = r.word_child(lump, "shift", "Left", {"Left", "Right", "Undefined"});
 
   // Stream: values and their code.
-  const std::uint64_t rate_factor = r.unsigned_child(stream, "ratefactor", 1);
+  const std::string in_a_chunk = fmt::format("a chunk holds at most {} bits", kMaxChunkBits);
+  const std::uint64_t rate_factor = r.unsigned_child(stream, "ratefactor", 1, kMaxChunkBits, in_a_chunk);
   if (rate_factor == 0) r.fail(*r.optional_one(stream, "ratefactor"), "must be at least 1");
-  const std::uint64_t quantization = r.unsigned_child(stream, "quantization", std::nullopt);
-  const std::uint64_t packed_bits = r.unsigned_child(stream, "packedbits", std::nullopt);
+  const std::uint64_t quantization = r.unsigned_child(stream, "quantization", std::nullopt, 64, "bits of one value");
+  const std::uint64_t packed_bits = r.unsigned_child(stream, "packedbits", std::nullopt, kMaxChunkBits, in_a_chunk);
   const std::string alignment = r.word_child(stream, "alignment", "Undefined", {"Undefined", "Left", "Right"});
   const std::string stream_shift = r.word_child(stream, "shift", "Left", {"Left", "Right", "Undefined"});
   const Element format_element = r.one(stream, "format");
@@ -443,9 +510,17 @@ IfMetadata read_if_metadata(const std::filesystem::path& xml_path) {
                                "program reads ({})",
                                sf->complex ? 2 : 1, q, encoding.text(), format_element.text(), count_words, size_word,
                                endian, word_shift, lump_shift, stream_shift, sample_format_choices()));
+  if (cycles > kMaxOffset / chunk_bytes)
+    r.fail(*r.optional_one(block, "cycles"),
+           fmt::format("{} cycles of {}-byte chunks are more bytes than a 64-bit file offset counts (the product "
+                       "overflows; at most {} cycles)",
+                       cycles, chunk_bytes, kMaxOffset / chunk_bytes));
   if (cycles > 0) m.length_bytes = cycles * chunk_bytes;
   m.sample_rate_hz = freqbase_hz * static_cast<double>(rate_factor);
-  if (!(m.sample_rate_hz > 0.0)) r.fail(*system, "<freqbase> gives no positive sample rate");
+  m.sample_rate_element = freqbase.path;
+  if (!(m.sample_rate_hz > 0.0) || !std::isfinite(m.sample_rate_hz))
+    r.fail(freqbase,
+           fmt::format("{} Hz x rate factor {} gives no finite positive sample rate", freqbase_hz, rate_factor));
 
   // Frequencies: the band's centre appears at <translatedfreq> in the samples (after the
   // format's negations); an inverted band runs the other way.

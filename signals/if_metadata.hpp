@@ -12,7 +12,9 @@
 // 16-bit TC (ishort), 32-bit FP (gr_complex) values or 1/2/4-bit TC/SM/OB (and their
 // "adjusted" A forms, SIGN for 1 bit) codes. Elements may be given in place or referenced
 // by id (<system id="x"/>, <band id="L1"/>). Anything else is refused with an error naming
-// the element.
+// the element: a number beyond what the reader computes with (a 64-bit byte count, a
+// 64-byte chunk), and a file that is no such description (over 1 MiB, nested over 64 deep,
+// UTF-16 or UTF-32 rather than UTF-8) before its XML is parsed.
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -46,6 +48,9 @@ struct IfMetadata {
   /// <cycles> x chunk bytes when the block gives its cycles (0: to the end of the file).
   std::optional<std::uint64_t> length_bytes;
   std::string stream_id;  ///< the stream's id, for messages
+  /// The <freqbase> the sample rate is built on (metadata/system[fe]/freqbase; times the
+  /// stream's <ratefactor>), for messages about the rate.
+  std::string sample_rate_element;
 };
 
 /// Reads and checks the file; throws MetadataError naming the file and element.

@@ -60,21 +60,29 @@ void FileSampleSource::choose_float_scale() {
 
 std::size_t FileSampleSource::read(std::span<Sample> out) {
   if (at_end_ || out.empty()) return 0;
-  if (pending_at_ == pending_.size() && out.size() < samples_per_word(options_.format)) fill_pending();
-  if (pending_at_ < pending_.size()) {
-    // Samples of a word read before (after a skip into it, or for a read shorter than a word).
-    const std::size_t n = std::min(out.size(), pending_.size() - pending_at_);
-    std::copy_n(pending_.begin() + static_cast<std::ptrdiff_t>(pending_at_), n, out.begin());
-    pending_at_ += n;
+  // Samples of a word read before (after a skip into it, or for a read shorter than a word)
+  // come first; the read goes on from the file after them, so that a skip into a packed
+  // word does not make the first read a few samples long.
+  const std::size_t held = std::min(out.size(), pending_.size() - pending_at_);
+  std::copy_n(pending_.begin() + static_cast<std::ptrdiff_t>(pending_at_), held, out.begin());
+  pending_at_ += held;
+  const std::size_t count = held + read_file(out.subspan(held));
+  if (count == 0) at_end_ = true;
+  return count;
+}
+
+std::size_t FileSampleSource::read_file(std::span<Sample> out) {
+  if (out.empty()) return 0;
+  if (out.size() < samples_per_word(options_.format)) {
+    fill_pending();
+    const std::size_t n = std::min(out.size(), pending_.size());
+    std::copy_n(pending_.begin(), n, out.begin());
+    pending_at_ = n;
     return n;
   }
   const std::int64_t first = file_.next_sample_index();
   const std::size_t count = file_.read(raw_, std::min(out.size(), kChunkSamples));
-  if (count == 0) {
-    at_end_ = true;
-    return 0;
-  }
-  convert(out, first);
+  if (count > 0) convert(out, first);
   return count;
 }
 

@@ -60,6 +60,9 @@ class FileSampleSource final : public SampleSource {
   void choose_float_scale();
   /// Reads the next word of a packed file into pending_.
   void fill_pending();
+  /// Samples from the file into `out` (whole words; a word into pending_ when `out` is
+  /// shorter than one); 0 at its end.
+  std::size_t read_file(std::span<Sample> out);
   void convert(std::span<Sample> out, std::int64_t first_index) const;
 
   FileSampleSourceOptions options_;

@@ -207,6 +207,11 @@ FileSampleSourceOptions file_source_options(const SourceRequest& r) {
     so.path = r.input.empty() ? meta->data_path : std::filesystem::path(r.input);
     if (so.path.empty())
       throw InputError(fmt::format("--metadata '{}' names no <file>: give the samples with --input", r.metadata));
+    if (!r.fs_given && !(meta->sample_rate_hz >= r.min_fs_hz && meta->sample_rate_hz <= r.max_fs_hz))
+      throw InputError(
+          fmt::format("metadata file '{}': <{}>: sample rate {} Hz is outside the {} to {} Hz this "
+                      "command takes",
+                      r.metadata, meta->sample_rate_element, meta->sample_rate_hz, r.min_fs_hz, r.max_fs_hz));
     so.format = meta->format;
     so.sample_rate_hz = meta->sample_rate_hz;
     so.intermediate_frequency_hz = meta->if_hz;

@@ -6,6 +6,7 @@
 // addresses' grammar is receiver/sources/source_url.hpp.
 #include <atomic>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -31,6 +32,9 @@ struct SourceRequest {
   std::string metadata;
   /// Which flags the command line gave: with --metadata they override its values (warned).
   bool format_given = false, fs_given = false, if_given = false, inverted_given = false;
+  /// The sample rates the command takes: --fs is checked against them as it is parsed, a
+  /// metadata file's rate here.
+  double min_fs_hz = 0.0, max_fs_hz = std::numeric_limits<double>::infinity();
   /// rtltcp:// only: tuner gain in dB or "auto" (the tuner's AGC), the RTL2832's digital
   /// AGC, crystal correction (ppm), bias tee (power for an active antenna).
   std::string rtl_gain = "auto";

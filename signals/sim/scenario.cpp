@@ -467,13 +467,12 @@ Scenario parse_scenario(const std::string& yaml_text, const std::string& origin,
                         const std::string& search_root) {
   YAML::Node root;
   try {
-    root = YAML::Load(yaml_text);
+    root = load_checked_yaml(yaml_text, origin);
   } catch (const YAML::Exception& e) {
     throw std::invalid_argument(fmt::format("{}:{}: not valid YAML/JSON: {}", origin, e.mark.line + 1, e.msg));
   }
   const Field f(root, "", &origin);
   if (!root.IsMap()) throw std::invalid_argument(origin + ": expected a scenario mapping at the top level");
-  check_unique_keys(root, origin);
   f.allow_only({"name",
                 "start_time",
                 "duration_s",

@@ -1,20 +1,26 @@
 #!/usr/bin/env python3
-"""Writes the seeds made rather than taken from data/ (tests/fuzz/seeds.txt lists those):
-- the binary seeds of the stream and sample-converter harnesses (corpus/stream_tcp,
-  corpus/stream_udp, corpus/sample_converter): valid streams in the layouts of
-  docs/streaming.md, "Protocol", tables, so that fuzzing starts from inputs that reach the
-  frame checks;
-- IMU logs that fall short (corpus/imu_csv, corpus/imu_log): gaps, a log cut mid-line,
-  time going back (a reset or rows out of order), rows and times repeated;
-- RINEX observation files with event records (corpus/rinex_obs): flag 4 with header
-  records (new type lists, scale factors), flags 2, 3 and 5 with theirs, cycle slip records,
-  an epoch written twice, time systems other than GPS.
+"""Writes the generated seeds of the harnesses into corpus/<harness>/ (tests/fuzz/seeds.txt
+lists those taken from data/):
+- the stream and sample-converter harnesses (stream_tcp, stream_udp, sample_converter): valid
+  streams in the layouts of docs/streaming.md, "Protocol", tables, so that fuzzing starts from
+  inputs that reach the frame checks;
+- IMU logs that fall short (imu_csv, imu_log): gaps, a log cut mid-line, time going back (a
+  reset or rows out of order), rows and times repeated;
+- RINEX observation files with event records (rinex_obs): flag 4 with header records (new type
+  lists, scale factors), flags 2, 3 and 5 with theirs, cycle slip records, an epoch written
+  twice, time systems other than GPS;
+- the text readers (run_config, scenario, imu_grades, if_metadata): the shapes that once
+  crashed, hung or fooled them, built on the project's own files: nesting far deeper than any
+  real file's, YAML aliases that multiply or contain themselves, integers past 32 and 64 bits,
+  UTF-16 text and NUL bytes.
 Run from anywhere: python3 tests/fuzz/make_seeds.py"""
 import os
 import random
+import re
 import struct
 
 here = os.path.join(os.path.dirname(os.path.abspath(__file__)), "corpus")
+root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 rng = random.Random(1)
 
 
@@ -159,3 +165,76 @@ v2 += rinex_record("D1 first from here", "COMMENT")
 v2 += " 25  8 28 17 30 41.0000000  0  1G01\n" + field(1001.0) + field(2.1e7 - 190.0) + field(44.0) + field(1.1e8) + "\n"
 v2 += " 25  8 28 17 30 41.0000000  0  1G01\n" + field(1001.0) + field(2.1e7 - 190.0) + field(44.0) + field(1.1e8) + "\n"
 write_text("rinex_obs", "events_v2.obs", v2)
+
+
+# Text readers. YAML: aliases ten times over, six levels (a million nodes, refused at the first
+# level past the limit); an alias inside its own node; lists nested deeper than yaml-cpp's
+# limit of 2000; a NUL byte.
+def alias_bomb(levels, first_key="a0"):
+    lines = [f"{first_key}: &a0 [x, x, x, x, x, x, x, x, x, x]"]
+    for level in range(1, levels + 1):
+        lines.append(f"a{level}: &a{level} [" + ", ".join([f"*a{level - 1}"] * 10) + "]")
+    return "\n".join(lines) + "\n"
+
+
+def deep_list(depth):
+    return "[" * depth + "]" * depth
+
+
+def text_seed(harness, name, text):
+    write(harness, name, text.encode("utf-8") if isinstance(text, str) else text)
+
+
+def utf16(text):
+    return b"\xff\xfe" + text.encode("utf-16-le")
+
+
+for harness in ("run_config", "scenario", "imu_grades"):
+    text_seed(harness, "alias_bomb.yaml", alias_bomb(6))
+    text_seed(harness, "alias_loop.yaml", "a: &a [1, {b: *a}]\n")
+    text_seed(harness, "deep_list.yaml", "a: " + deep_list(2100) + "\n")
+    text_seed(harness, "nul.yaml", "a: 1\nb: x\0y\nc: 3\n")
+text_seed("run_config", "huge_integers.yaml",
+          "channels: 4294967297\nthreads: 18446744073709551616\nfs: 1e400\nskip: -0\n")
+text_seed("run_config", "key_twice_normalised.yaml",
+          "imu_lever_arm: [1, 2, 3]\nimu-lever-arm: [1, 2, 3]\nfault-exclusion: true\nno-fault-exclusion: true\n")
+text_seed("run_config", "aliases.yaml", "input: &f a.bin\nmode: &m scalar\n*f : 1\nimu-lever-arm: &v [1, 2, 3]\n")
+with open(os.path.join(root, "data", "scenarios", "static_120s.yaml")) as f:
+    scenario = f.read()
+text_seed("scenario", "huge_integers.yaml",
+          re.sub(r"(?m)^seed:.*$", "seed: 18446744073709551617", scenario) + "max_satellites: 4294967297\n")
+text_seed("scenario", "anchored_blocks.yaml", "adc: &adc {bits: 4, agc: true}\n" + scenario.replace("adc:", "x_adc:"))
+with open(os.path.join(root, "data", "imu_grades.yaml")) as f:
+    grades = f.read()
+text_seed("imu_grades", "huge_numbers.yaml", grades.replace("sample_rate_hz: 100", "sample_rate_hz: 18446744073709551617", 1))
+text_seed("imu_grades", "anchored_grades.yaml",
+          grades.replace("  consumer-mems:", "  consumer-mems: &consumer", 1) + "  copy: *consumer\n")
+
+# Metadata XML, from the project's description of a real capture: nested 100 deep (the reader
+# takes 64), numbers past 32 and 64 bits, a cycle count whose bytes overflow, UTF-16, a NUL.
+with open(os.path.join(root, "data", "L1_20211202_084700_4MHz_IQ.xml")) as f:
+    metadata = f.read()
+
+
+def metadata_with(old, new):
+    assert old in metadata, old
+    return metadata.replace(old, new, 1)
+
+
+text_seed("if_metadata", "deep_100.xml", metadata_with("</metadata>", "<x>" * 100 + "</x>" * 100 + "</metadata>"))
+text_seed("if_metadata", "deep_60.xml", metadata_with("</metadata>", "<x>" * 60 + "</x>" * 60 + "</metadata>"))
+text_seed("if_metadata", "quantization_2e32.xml",
+          metadata_with("<quantization>8</quantization>", "<quantization>4294967304</quantization>"))
+text_seed("if_metadata", "countwords_2e61.xml",
+          metadata_with("<countwords>2</countwords>", "<countwords>2305843009213693952</countwords>"))
+text_seed("if_metadata", "cycles_2e63.xml", metadata_with("<cycles>0</cycles>", "<cycles>9223372036854775808</cycles>"))
+text_seed("if_metadata", "header_2e64.xml",
+          metadata_with("<sizeheader>0</sizeheader>", "<sizeheader>18446744073709551616</sizeheader>"))
+text_seed("if_metadata", "ratefactor_2e32.xml",
+          metadata_with("<ratefactor>1</ratefactor>", "<ratefactor>4294967297</ratefactor>"))
+text_seed("if_metadata", "freqbase_1hz.xml", metadata_with('<freqbase format="MHz">4.0</freqbase>', "<freqbase>1</freqbase>"))
+text_seed("if_metadata", "utf16.xml", utf16(metadata))
+text_seed("if_metadata", "nul.xml", metadata_with("<lane", "\0<lane"))
+text_seed("if_metadata", "doctype_cdata.xml",
+          metadata_with("<metadata ", '<!DOCTYPE metadata [<!ENTITY e "<x>">]>\n<metadata ')
+          .replace("<equipment>", "<equipment><![CDATA[<a><b>]]>"))

@@ -1,5 +1,6 @@
 #include "ins/imu_model.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -72,6 +73,27 @@ TEST(ImuGrades, UnknownGradeListsAvailableNames) {
 const std::string kGyroOk =
     "    gyro: {bias_sigma_deg_per_h: 1, bias_instability_deg_per_h: 0, correlation_time_s: 0,"
     " arw_deg_per_sqrt_h: 0.1, scale_factor_ppm: 1, misalignment_mrad: 0, quantization_rad: 0}\n";
+
+TEST(ImuGrades, ADocumentThatIsNoMapIsRejectedNamingTheFile) {
+  // A scalar at the top (what a UTF-16 reading of stray bytes gives) made yaml-cpp throw
+  // "operator[] call on a scalar", naming no file.
+  for (const char* text : {"just text\n", "[1, 2]\n", ""}) {
+    const auto path = write_temp_yaml("scalar", text);
+    EXPECT_EQ(error_of(path), path + ": expected a top-level map 'grades' of named IMU grades") << text;
+  }
+}
+
+TEST(ImuGrades, AliasesThatMultiplyAreRejected) {
+  std::string laughs = "a0: &a0 [x, x, x, x, x, x, x, x, x, x]\n";
+  for (int level = 1; level <= 11; ++level) {
+    laughs += fmt::format("a{}: &a{} [", level, level);
+    for (int k = 0; k < 10; ++k) laughs += fmt::format("{}*a{}", k ? ", " : "", level - 1);
+    laughs += "]\n";
+  }
+  const auto path = write_temp_yaml("laughs", laughs);
+  EXPECT_EQ(error_of(path), path + ":5: the aliases repeat more than 100000 nodes (alias '*a3' alone repeats 11111): "
+                                   "nested aliases that multiply are refused");
+}
 
 TEST(ImuGrades, MissingFieldIsNamed) {
   const auto path =

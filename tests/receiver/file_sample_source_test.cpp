@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -109,6 +110,28 @@ TEST(FileSampleSource, ReadsPackedWordsInPiecesAndSkipsIntoAWord) {
   ASSERT_EQ(z.size(), 2u);
   EXPECT_EQ(z[0], Sample(-3, -3));
   EXPECT_EQ(z[1], Sample(1, 1));
+}
+
+TEST(FileSampleSource, AReadAfterASkipIntoAWordGoesOnPastThatWord) {
+  // packed2_iq_w32le: 8 I/Q samples in each 32-bit word. A skip of one sample left the first
+  // read the 7 samples after it, too few to judge or acquire on (`run` looked at them alone).
+  std::vector<std::uint8_t> data(64);
+  for (std::size_t i = 0; i < data.size(); ++i) data[i] = static_cast<std::uint8_t>(37 * i + 11);
+  auto o = options(write_file("packed_w32.bin", data.data(), data.size()), parse_sample_format("packed2_iq_w32le"));
+  FileSampleSource whole(o);
+  std::vector<Sample> reference(128);
+  ASSERT_EQ(whole.read(reference), 128u);
+  o.skip_s = 0.001;  // sample 1 at 1 kHz
+  FileSampleSource skipped(o);
+  std::vector<Sample> first(20);
+  ASSERT_EQ(skipped.read(first), 15u) << "the 7 samples left in the word and the next whole word";
+  EXPECT_TRUE(std::equal(first.begin(), first.begin() + 15, reference.begin() + 1));
+  EXPECT_EQ(skipped.next_sample_index(), 16);
+  std::vector<Sample> rest(200);
+  ASSERT_EQ(skipped.read(rest), 112u);
+  EXPECT_TRUE(std::equal(rest.begin(), rest.begin() + 112, reference.begin() + 16));
+  EXPECT_EQ(skipped.read(rest), 0u);
+  EXPECT_TRUE(skipped.at_end());
 }
 
 TEST(FileSampleSource, SkipsAHeaderAndFooterAndStopsAtTheAnnouncedLength) {

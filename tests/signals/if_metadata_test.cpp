@@ -18,6 +18,8 @@
 namespace deepnav {
 namespace {
 
+using namespace std::string_literals;
+
 std::filesystem::path write_xml(const std::string& name, const std::string& text) {
   const auto dir = std::filesystem::temp_directory_path() / "deepnav_if_metadata";
   std::filesystem::create_directories(dir);
@@ -270,6 +272,88 @@ TEST(IfMetadata, UnsupportedAndBrokenDescriptionsNameTheElement) {
                            "<ratefactor>1</ratefactor><quantization>16</quantization><packedbits>32</packedbits>"
                            "<format>IQ</format><encoding>TC</encoding>")),
          "stream[S]>: the layout", "endian Big");
+}
+
+TEST(IfMetadata, NumbersBeyondWhatTheReaderComputesWithAreErrors) {
+  const std::string chunk = "<sizeword>1</sizeword><countwords>2</countwords>";
+  auto stream = [](const std::string& quantization, const std::string& rate_factor = "1",
+                   const std::string& packed_bits = "16") {
+    return "<ratefactor>" + rate_factor + "</ratefactor><quantization>" + quantization + "</quantization><packedbits>" +
+           packed_bits + "</packedbits><format>IQ</format><encoding>TC</encoding>";
+  };
+  auto expect = [](const std::string& msg, const std::string& part1, const std::string& part2) {
+    EXPECT_NE(msg.find(part1), std::string::npos) << msg;
+    EXPECT_NE(msg.find(part2), std::string::npos) << msg;
+  };
+  EXPECT_EQ(read("q8.xml", document(chunk, stream("8"))).format, SampleFormat::ibyte);
+  // 2^32 + 8 was narrowed to int as 8: an ibyte file.
+  expect(error_of(document(chunk, stream("4294967304"))), "stream[S]/quantization>: 4294967304 is too large",
+         "at most 64");
+  expect(error_of(document(chunk, stream("8", "4294967297"))), "stream[S]/ratefactor>: 4294967297 is too large",
+         "at most 512");
+  expect(error_of(document(chunk, stream("8", "1", "4294967312"))), "stream[S]/packedbits>: 4294967312", "at most 512");
+  expect(error_of(document(chunk, stream("99999999999999999999999"))), "quantization>: 99999999999999999999999",
+         "too large");
+  expect(error_of(document(chunk, stream("-8"))), "quantization>: '-8'", "not a whole number");
+  expect(error_of(document(chunk, stream(" 8x"))), "quantization>: '8x'", "not a whole number");
+  // 2^61 words of 8 bytes made 0 bytes.
+  expect(error_of(document("<sizeword>8</sizeword><countwords>2305843009213693952</countwords>", stream("8"))),
+         "chunk/countwords>: 2305843009213693952 is too large", "at most 64");
+  expect(error_of(document("<sizeword>4</sizeword><countwords>32</countwords>", stream("8"))),
+         "chunk/countwords>: 32 words of 4 bytes", "1 to 64 bytes");
+  // 2^63 cycles of 2 bytes made 0 bytes: "holds no whole sample".
+  expect(error_of(document(chunk, stream("8"), "", "<cycles>9223372036854775808</cycles>")),
+         "block/cycles>: 9223372036854775808 cycles of 2-byte chunks", "overflows; at most 4611686018427387903");
+  EXPECT_EQ(*read("c.xml", document(chunk, stream("8"), "", "<cycles>4611686018427387903</cycles>")).length_bytes,
+            9223372036854775806u);
+  // A header and a footer are file offsets (off_t): their sum no longer wraps either.
+  expect(error_of(document(chunk, stream("8"), "", "<sizeheader>18446744073709551615</sizeheader>")),
+         "block/sizeheader>: 18446744073709551615 is too large", "a position in a file");
+  expect(error_of(document(chunk, stream("8"), "", "<sizefooter>9223372036854775808</sizefooter>")),
+         "block/sizefooter>", "at most 9223372036854775807");
+  // A frequency that scales to infinity.
+  expect(error_of(document(chunk, stream("8"), "", "", R"(<freqbase format="GHz">1e305</freqbase>)")),
+         "system[fe]/freqbase>: 1e305 ghz", "not a finite frequency");
+  const IfMetadata m = read("rate.xml", document(chunk, stream("8")));
+  EXPECT_EQ(m.sample_rate_element, "metadata/system[fe]/freqbase");
+}
+
+TEST(IfMetadata, FilesThatAreNoDescriptionAreRefusedBeforeTheyAreParsed) {
+  auto expect = [](const std::string& msg, const std::string& part1, const std::string& part2) {
+    EXPECT_NE(msg.find(part1), std::string::npos) << msg;
+    EXPECT_NE(msg.find(part2), std::string::npos) << msg;
+  };
+  // 50,000 levels overflowed the stack of the recursive XML parser (SIGSEGV).
+  std::string deep = "<?xml version=\"1.0\"?>\n<metadata>\n";
+  for (int i = 0; i < 50000; ++i) deep += "<a>";
+  expect(error_of(deep), "bad.xml':3: elements nested more than 64 deep", "not a metadata description");
+  // 64 levels are read (and refused for what they hold, not for their depth).
+  std::string deep64 = "<metadata>";
+  for (int i = 1; i < 64; ++i) deep64 += "<a>";
+  for (int i = 1; i < 64; ++i) deep64 += "</a>";
+  deep64 += "</metadata>";
+  expect(error_of(deep64), "bad.xml': <metadata>: has no <lane>", "");
+  // UTF-16, with or without a byte-order mark: "expected <" said nothing of the encoding.
+  auto utf16le = [](const std::string& ascii, bool bom) {
+    std::string out = bom ? std::string("\xFF\xFE") : std::string();
+    for (const char c : ascii) out += std::string{c, '\0'};
+    return out;
+  };
+  const std::string good = document("<sizeword>1</sizeword><countwords>2</countwords>",
+                                    "<quantization>8</quantization><packedbits>16</packedbits><format>IQ</format>"
+                                    "<encoding>TC</encoding>");
+  for (const bool bom : {true, false})
+    expect(error_of(utf16le(good, bom)), "bad.xml' is encoded in UTF-16", "read as UTF-8");
+  expect(error_of("\xFF\xFE\0\0<\0\0\0"s), "bad.xml' is encoded in UTF-32", "read as UTF-8");
+  std::string with_nul = good;
+  with_nul.insert(with_nul.find("<lane"), 1, '\0');
+  expect(error_of(with_nul), "bad.xml':5: a NUL byte", "not a text file");
+  // A UTF-8 byte-order mark is fine.
+  EXPECT_EQ(read("bom.xml", "\xEF\xBB\xBF" + good).format, SampleFormat::ibyte);
+  // More than 1 MiB is no description (the tree parser would hold it all).
+  std::string big = good;
+  big.insert(big.find("<lane"), "<!--" + std::string(1 << 20, 'x') + "-->");
+  expect(error_of(big), "metadata file", "more than the 1048576 bytes");
 }
 
 }  // namespace

@@ -54,6 +54,8 @@ void add_rtl_options(CLI::App& cmd, SourceRequest& r) {
 void add_source_options(CLI::App& cmd, SourceRequest& r, SourceUse use) {
   const bool streams = use == SourceUse::receiver;
   const SampleRateRange rates = sample_rates_for(use);
+  r.min_fs_hz = rates.min_hz;
+  r.max_fs_hz = rates.max_hz;
   add_input_option(cmd, r, use);
   cmd.add_option("--metadata", r.metadata,
                  "ION GNSS SDR metadata file (XML) describing the IF file: its format, rate, IF and inversion, and "

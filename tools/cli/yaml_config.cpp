@@ -6,8 +6,11 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstdlib>
+#include <iterator>
+#include <map>
 #include <sstream>
 
+#include "ins/input_file.hpp"
 #include "ins/yaml_checks.hpp"
 #include "tools/cli/commands.hpp"
 
@@ -29,6 +32,9 @@ std::vector<const CLI::Option*> configurable_options(const CLI::App& app) {
     if (!is_meta_option(*op) && op->get_configurable() && !key_of(*op).empty()) out.push_back(op);
   return out;
 }
+
+/// A flag, or an option of one value (not a fixed-length or open list).
+bool takes_one_value(const CLI::Option& op) { return op.get_expected_min() == 0 || op.get_items_expected_max() == 1; }
 
 /// Edit distance, to name the option a misspelt key most likely meant.
 std::size_t edit_distance(const std::string& a, const std::string& b) {
@@ -134,12 +140,9 @@ std::vector<CLI::ConfigItem> YamlConfig::from_config(std::istream& input) const 
   CLI::App& command_ = parsed_command(root_, path);
   YAML::Node root;
   try {
-    root = YAML::Load(input);
+    root = load_checked_yaml(std::string(std::istreambuf_iterator<char>(input), {}), file);
   } catch (const YAML::Exception& e) {
     throw UserError(fmt::format("{}:{}: not valid YAML: {}", file, e.mark.line + 1, e.msg));
-  }
-  try {
-    check_unique_keys(root, file);
   } catch (const std::invalid_argument& e) {
     throw UserError(e.what());
   }
@@ -148,6 +151,7 @@ std::vector<CLI::ConfigItem> YamlConfig::from_config(std::istream& input) const 
     throw UserError(fmt::format("{}:{}: expected a map of `{}` options (key: value)", file, root.Mark().line + 1,
                                 command_.get_name()));
   std::vector<CLI::ConfigItem> items;
+  std::map<const CLI::Option*, std::pair<std::string, int>> set_by;  // option -> the key that set it, its line
   for (const auto& entry : root) {
     const int line = entry.first.Mark().line + 1;
     // YAML allows any node as a key ("? [a, b]: 1", "? : 1"); an option's name is text.
@@ -163,11 +167,18 @@ std::vector<CLI::ConfigItem> YamlConfig::from_config(std::istream& input) const 
       throw UserError(fmt::format("{}:{}: unknown key '{}': not a `{}` option{}", file, line, key, command_.get_name(),
                                   near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near)));
     }
+    // doppler_max and doppler-max (or fault-exclusion and no-fault-exclusion) are one
+    // option: CLI11 would take one of the two values without a word.
+    if (const auto [it, fresh] = set_by.emplace(op, std::pair{key, line}); !fresh)
+      throw UserError(fmt::format("{}:{}: key '{}' sets option --{} again (key '{}' on line {} set it): give it once",
+                                  file, line, key, key_of(*op), it->second.first, it->second.second));
     const YAML::Node& value = entry.second;
     std::vector<std::string> inputs;
     if (value.IsScalar()) {
       inputs.push_back(value.Scalar());
     } else if (value.IsSequence()) {
+      if (takes_one_value(*op))
+        throw UserError(fmt::format("{}:{}: key '{}': expected one value, got a list", file, line, key));
       for (const auto& v : value) {
         if (!v.IsScalar()) throw UserError(fmt::format("{}:{}: key '{}': expected a list of values", file, line, key));
         inputs.push_back(v.Scalar());
@@ -220,7 +231,18 @@ void add_yaml_config(CLI::App& root) {
   root.config_formatter(std::make_shared<YamlConfig>(root));
   root.set_config("--config", "",
                   "Read the command's options from a YAML file (keys: the long option names; "
-                  "flags on the command line win); also accepted after the command");
+                  "flags on the command line win); also accepted after the command")
+      ->check(CLI::Validator(
+          [](std::string& path) {
+            // CLI11 itself says only "was not readable (missing?)", for a directory too.
+            try {
+              check_input_file(path, "configuration file", kMaxTextInputBytes);
+            } catch (const std::runtime_error& e) {
+              return std::string(e.what());
+            }
+            return std::string();
+          },
+          "FILE"));
   root.fallthrough();  // subcommands made after this pass --config up to the root
 }
 
