@@ -29,8 +29,7 @@ void check_promises(const deepnav::ImuLogRead& r) {
 void read_as(const std::string& text, const deepnav::ImuLogOptions& options) {
   std::istringstream in(text);
   deepnav::ImuLogRead r;
-  if (deepnav::fuzz::guarded([&] { r = deepnav::read_imu_log(in, kName, options); },
-                             deepnav::fuzz::names_input(kName)))
+  if (deepnav::fuzz::guarded([&] { r = deepnav::read_imu_log(in, kName, options); }, deepnav::fuzz::names_input(kName)))
     check_promises(r);
 }
 

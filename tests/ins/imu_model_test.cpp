@@ -91,8 +91,9 @@ TEST(ImuGrades, AliasesThatMultiplyAreRejected) {
     laughs += "]\n";
   }
   const auto path = write_temp_yaml("laughs", laughs);
-  EXPECT_EQ(error_of(path), path + ":5: the aliases repeat more than 100000 nodes (alias '*a3' alone repeats 11111): "
-                                   "nested aliases that multiply are refused");
+  EXPECT_EQ(error_of(path), path +
+                                ":5: the aliases repeat more than 100000 nodes (alias '*a3' alone repeats 11111): "
+                                "nested aliases that multiply are refused");
 }
 
 TEST(ImuGrades, MissingFieldIsNamed) {
