@@ -3,6 +3,8 @@
 // as the synthesized TCXO its clock bias stays on the truth instead of wandering off.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cmath>
 #include <filesystem>
 #include <vector>
@@ -23,7 +25,9 @@ TEST(AidedReceiverClock, UltraTightClockFollowsTheReceiverClockStepsWithoutDrift
   Scenario sc =
       load_scenario(std::string(DEEPNAV_SOURCE_DIR) + "/data/scenarios/land_circle_aided_90s.yaml", DEEPNAV_SOURCE_DIR);
   sc.duration_s = 40.0;
-  const std::string dir = (std::filesystem::temp_directory_path() / "deepnav_aided_clock_test").string();
+  // A folder of this process's own: suites of several checkouts may run at once.
+  const std::string dir =
+      (std::filesystem::temp_directory_path() / ("deepnav_aided_clock_test_" + std::to_string(::getpid()))).string();
   const NavData nav = read_rinex_nav(sc.nav_file);
   const SynthesisSummary synth = IfSynthesizer(sc, nav).run(dir, SynthesisOptions{});
 
