@@ -414,6 +414,10 @@ IonoParameters GnssReceiver::iono() const { return impl_->navigation.iono(); }
 const AtmosphereModels& GnssReceiver::atmosphere() const { return impl_->cfg.atmosphere; }
 UtcParameters GnssReceiver::utc() const { return impl_->navigation.utc(); }
 std::vector<int> GnssReceiver::acquired_prns() const { return impl_->acquired; }
+AcquisitionEvidence GnssReceiver::acquisition_evidence() const {
+  const AcquisitionSchedule& a = impl_->acquisition;
+  return {a.config(), a.window().in_order(), a.strongest()};
+}
 std::optional<int> GnssReceiver::signal_week() const { return impl_->clock.signal_week(); }
 
 const std::vector<GuidedSearchRecord>& GnssReceiver::guided_searches() const { return impl_->guided.records(); }

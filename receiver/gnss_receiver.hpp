@@ -17,6 +17,7 @@
 
 #include "receiver/acquisition/acquisition.hpp"
 #include "receiver/acquisition/guided_reacquisition.hpp"
+#include "receiver/acquisition/signal_diagnostics.hpp"
 #include "receiver/pvt/pvt_solver.hpp"
 #include "receiver/receiver_channel.hpp"
 #include "receiver/sources/sample_source.hpp"
@@ -121,6 +122,10 @@ class GnssReceiver {
   const AtmosphereModels& atmosphere() const;
   UtcParameters utc() const;
   std::vector<int> acquired_prns() const;
+  /// What the acquisition saw, for telling why it found nothing: its configuration, the
+  /// latest samples it kept (a full window while a channel is free) and the strongest
+  /// correlation of all its searches.
+  AcquisitionEvidence acquisition_evidence() const;
   /// The full GPS week the signal broadcast (the first subframe 1 decoded, resolved against
   /// the reference), once known.
   std::optional<int> signal_week() const;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "receiver/acquisition/signal_diagnostics.hpp"
+
 namespace deepnav {
 namespace {
 
@@ -40,6 +42,9 @@ std::vector<AcquisitionResult> AcquisitionSchedule::search(const std::vector<Sam
   // Fewer than one coherent block per non-coherent sum: nothing to search with.
   if (static_cast<std::int64_t>(samples.size()) < engine_->samples_needed() / std::max(1, cfg_.noncoherent)) return {};
   std::vector<AcquisitionResult> results = engine_->search(samples, prns);
+  if (const auto best = strongest_correlation(results);
+      best && (!strongest_ || threshold_ratio(*best) > threshold_ratio(*strongest_)))
+    strongest_ = best;
   std::sort(results.begin(), results.end(), [](const auto& a, const auto& b) { return a.cn0_dbhz > b.cn0_dbhz; });
   std::erase_if(results, [](const AcquisitionResult& r) { return !r.detected; });
   return results;

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "receiver/acquisition/acquisition.hpp"
@@ -42,6 +43,11 @@ class AcquisitionSchedule {
   /// Searches `samples` for `prns`: the signals detected, strongest first; none when the
   /// samples are too few for a search.
   std::vector<AcquisitionResult> search(const std::vector<Sample>& samples, const std::vector<int>& prns);
+  /// Of every search so far, the result that came nearest its threshold (detected or not):
+  /// what a run that acquired nothing reports as the best it saw.
+  const std::optional<AcquisitionResult>& strongest() const { return strongest_; }
+  /// The searches' configuration (the source's rate and IF in it).
+  const AcquisitionConfig& config() const { return cfg_; }
 
  private:
   AcquisitionConfig cfg_;
@@ -52,6 +58,7 @@ class AcquisitionSchedule {
   /// One search engine for the run, made at the first search: its plans, code spectra and
   /// buffers are made once.
   std::unique_ptr<Acquisition> engine_;
+  std::optional<AcquisitionResult> strongest_;
 };
 
 }  // namespace deepnav

@@ -22,6 +22,22 @@ std::int16_t saturate_int16(float value) {
 
 }  // namespace
 
+SampleValueRange converted_value_range(const SampleFormat& format) {
+  switch (format.kind) {
+    case SampleKind::ibyte:
+    case SampleKind::byte:
+      return {-128, 127};
+    case SampleKind::ishort:
+    case SampleKind::gr_complex:
+      return {-32768, 32767};
+    case SampleKind::cu8:
+      return {-255, 255};
+    case SampleKind::packed:
+      return {-((1 << format.packed.bits) - 1), (1 << format.packed.bits) - 1};
+  }
+  return {-128, 127};
+}
+
 SampleConverter::SampleConverter(SampleFormat format, bool inverted_spectrum)
     : format_(format), inverted_(inverted_spectrum) {}
 

@@ -15,6 +15,14 @@
 
 namespace deepnav {
 
+/// The least and greatest value a component of `format` converts to (before spectrum
+/// inversion): int8 formats -128..127, int16 and gr_complex (saturated) -32768..32767, cu8
+/// -255..255, packed B bits -(2^B - 1)..2^B - 1.
+struct SampleValueRange {
+  int min = 0, max = 0;
+};
+SampleValueRange converted_value_range(const SampleFormat& format);
+
 class SampleConverter {
  public:
   /// gr_complex values are scaled so the RMS of the first kCalibrationSamples lands at

@@ -180,6 +180,15 @@ OpenedSource open_stream(const SourceRequest& r, const SourceUrl& url) {
   OpenedSource o;
   o.input = r.input;
   o.is_stream = true;
+  o.settings.format = source->header().format;
+  o.settings.sample_rate_hz = source->sample_rate_hz();
+  o.settings.if_hz = source->intermediate_frequency_hz();
+  o.settings.inverted_spectrum = r.inverted;
+  if (!r.raw && url.scheme != StreamScheme::rtltcp) {
+    for (const SourceSetting s :
+         {SourceSetting::format, SourceSetting::sample_rate, SourceSetting::intermediate_frequency})
+      o.settings.origins[s] = SettingOrigin::stream_header;
+  }
   StreamSampleSource* s = source.get();
   o.report = [s] { return stats_json(*s); };
   o.failure = [s]() -> std::optional<std::string> {
@@ -194,7 +203,10 @@ OpenedSource open_stream(const SourceRequest& r, const SourceUrl& url) {
 
 }  // namespace
 
-FileSampleSourceOptions file_source_options(const SourceRequest& r) {
+FileSampleSourceOptions file_source_options(const SourceRequest& r) { return file_source_options(r, nullptr); }
+
+FileSampleSourceOptions file_source_options(const SourceRequest& r, SourceSettings* settings) {
+  SourceSettings where;
   FileSampleSourceOptions so;
   so.skip_s = r.skip_s;
   std::optional<IfMetadata> meta;
@@ -219,25 +231,34 @@ FileSampleSourceOptions file_source_options(const SourceRequest& r) {
     so.header_bytes = meta->header_bytes;
     so.footer_bytes = meta->footer_bytes;
     so.length_bytes = meta->length_bytes;
+    where.metadata = r.metadata;
     spdlog::info("{}: {} at {} Hz, IF {} Hz{}, from '{}'", r.metadata, to_string(so.format), so.sample_rate_hz,
                  so.intermediate_frequency_hz, so.inverted_spectrum ? ", inverted spectrum" : "", so.path.string());
   } else {
     if (r.input.empty()) throw InputError("give the samples: --input FILE (or --metadata FILE.xml)");
     so.path = r.input;
   }
-  auto overrides = [&](bool given, const std::string& flag, const std::string& value, const std::string& from_meta) {
-    if (given && meta && value != from_meta)
-      spdlog::warn("{} {} overrides the metadata's {} ({})", flag, value, from_meta, r.metadata);
+  // Whether the flag sets the value (given, or no metadata to take it from); a flag given
+  // over a different metadata value is warned about and remembered for later messages.
+  auto overrides = [&](SourceSetting setting, bool given, const std::string& value, const std::string& from_meta) {
+    if (given && meta && value != from_meta) {
+      spdlog::warn("{} {} overrides the metadata's {} ({})", SourceSettings::flag(setting), value, from_meta,
+                   r.metadata);
+      where.overridden[setting] = from_meta;
+    }
+    if (meta && !given) where.origins[setting] = SettingOrigin::metadata;
     return given || !meta;
   };
-  if (overrides(r.format_given, "--format", r.format, meta ? to_string(meta->format) : "")) {
+  if (overrides(SourceSetting::format, r.format_given, r.format, meta ? to_string(meta->format) : "")) {
     so.format = format_flag(r.format);
   }
-  if (overrides(r.fs_given, "--fs", fmt::format("{}", r.fs_hz), meta ? fmt::format("{}", meta->sample_rate_hz) : ""))
+  if (overrides(SourceSetting::sample_rate, r.fs_given, fmt::format("{}", r.fs_hz),
+                meta ? fmt::format("{}", meta->sample_rate_hz) : ""))
     so.sample_rate_hz = r.fs_hz;
-  if (overrides(r.if_given, "--if", fmt::format("{}", r.if_hz), meta ? fmt::format("{}", meta->if_hz) : ""))
+  if (overrides(SourceSetting::intermediate_frequency, r.if_given, fmt::format("{}", r.if_hz),
+                meta ? fmt::format("{}", meta->if_hz) : ""))
     so.intermediate_frequency_hz = r.if_hz;
-  if (overrides(r.inverted_given, "--inverted-spectrum", r.inverted ? "true" : "false",
+  if (overrides(SourceSetting::spectrum_sense, r.inverted_given, r.inverted ? "true" : "false",
                 meta ? (meta->inverted_spectrum ? "true" : "false") : ""))
     so.inverted_spectrum = r.inverted;
   if (!std::filesystem::exists(so.path))
@@ -246,6 +267,13 @@ FileSampleSourceOptions file_source_options(const SourceRequest& r) {
                                              : fmt::format("--input: file '{}' does not exist", so.path.string()));
   if (!(so.sample_rate_hz > 0.0))
     throw InputError(fmt::format("--input '{}': a file needs its sample rate (--fs, or --metadata)", so.path.string()));
+  if (settings) {
+    where.format = so.format;
+    where.sample_rate_hz = so.sample_rate_hz;
+    where.if_hz = so.intermediate_frequency_hz;
+    where.inverted_spectrum = so.inverted_spectrum;
+    *settings = std::move(where);
+  }
   return so;
 }
 
@@ -255,7 +283,8 @@ OpenedSource open_sample_source(const SourceRequest& r) {
     return open_stream(r, *url);
   }
   if (r.raw) throw InputError("--raw applies to tcp:// and udp:// inputs only");
-  const FileSampleSourceOptions so = file_source_options(r);
+  OpenedSource o;
+  const FileSampleSourceOptions so = file_source_options(r, &o.settings);
   std::unique_ptr<FileSampleSource> file;
   try {
     file = std::make_unique<FileSampleSource>(so);
@@ -263,7 +292,6 @@ OpenedSource open_sample_source(const SourceRequest& r) {
     throw InputError(e.what());
   }
   for (const auto& w : file->warnings()) spdlog::warn("{}", w);
-  OpenedSource o;
   o.input = so.path.string();
   o.duration_s = static_cast<double>(file->total_samples()) / so.sample_rate_hz;
   auto stoppable = std::make_unique<StoppableFileSource>(std::move(file), r.stop);

@@ -14,6 +14,7 @@
 
 #include "receiver/sources/file_sample_source.hpp"
 #include "receiver/sources/sample_source.hpp"
+#include "receiver/sources/source_settings.hpp"
 
 namespace deepnav {
 
@@ -54,6 +55,8 @@ struct OpenedSource {
   std::function<std::optional<std::string>()> failure;
   /// True once the run was stopped by `stop`.
   std::function<bool()> interrupted;
+  /// How the samples are read and where each setting came from (messages name them).
+  SourceSettings settings;
 };
 
 /// Opens the source; throws InputError naming the input and the problem.
@@ -62,5 +65,7 @@ OpenedSource open_sample_source(const SourceRequest& request);
 /// A file source's options from --input, --metadata and the flags (what `run` and
 /// `acquire` read); throws InputError naming the file, flag or metadata element.
 FileSampleSourceOptions file_source_options(const SourceRequest& request);
+/// The same, and in `settings` (when not null) where each setting came from.
+FileSampleSourceOptions file_source_options(const SourceRequest& request, SourceSettings* settings);
 
 }  // namespace deepnav

@@ -14,7 +14,8 @@ for capture in L1_20211202_084700_4MHz_IQ L1_20211125_004000_12MHz_I; do
     abort "acquire --metadata $capture.xml"
   check_py "$capture acquired from its metadata alone" -m checks.acquisition "$work/$capture.json" "$capture"
 done
-run_receiver "$work/real" --metadata "$src/data/L1_20211202_084700_4MHz_IQ.xml"
+# 500 ms: --rate 4 makes two observation epochs (at --rate 1 it would hold none, exit 3).
+run_receiver "$work/real" --metadata "$src/data/L1_20211202_084700_4MHz_IQ.xml" --rate 4
 check_json "run --metadata on the 4 MHz capture acquires 5 or more" "$work/real/summary.json" 'len(acquired_prns)' '>=' 5
 
 # Whole-byte formats synthesized and fixed from the metadata the synthesizer wrote.

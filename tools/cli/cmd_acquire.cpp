@@ -2,12 +2,15 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "receiver/acquisition/acquisition.hpp"
+#include "receiver/acquisition/nothing_found.hpp"
 #include "receiver/sources/sample_source_factory.hpp"
 #include "signals/text_output_file.hpp"
 #include "tools/cli/cli_checks.hpp"
@@ -62,6 +65,50 @@ void refuse_replacing_inputs(const AcquireOptions& o, const OpenedSource& opened
   }
 }
 
+/// Reads one search's samples (fewer when the file ends first).
+std::vector<Sample> read_search_samples(SampleSource& source, std::size_t wanted) {
+  std::vector<Sample> samples(wanted);
+  std::size_t got = 0;
+  while (got < samples.size()) {
+    const std::size_t n = source.read(std::span<Sample>(samples.data() + got, samples.size() - got));
+    if (n == 0) break;
+    got += n;
+  }
+  samples.resize(got);
+  return samples;
+}
+
+void write_json(const AcquireOptions& o, const OpenedSource& opened, const std::vector<AcquisitionResult>& results,
+                const std::optional<NothingFound>& nothing) {
+  nlohmann::json all = nlohmann::json::array();
+  for (const auto& r : results) all.push_back(to_json(r));
+  nlohmann::json out{
+      {"input", opened.input}, {"sample_rate_hz", o.acq.sample_rate_hz}, {"if_hz", o.acq.if_hz}, {"results", all}};
+  if (nothing) out["nothing_found"] = nothing->json();
+  const std::string text = out.dump(2) + "\n";
+  if (o.json_path == "-") {
+    if (!(std::cout << text << std::flush)) throw UserError("cannot write the JSON to stdout");
+    return;
+  }
+  try {  // complete or absent (a full disk, /dev/full: an error naming the file)
+    TextOutputFile file(o.json_path);
+    file.write(text);
+    file.commit();
+  } catch (const std::runtime_error& e) {
+    throw UserError(e.what());
+  }
+}
+
+void print_table(const AcquireOptions& o, const std::vector<AcquisitionResult>& results) {
+  fmt::print("{:>4} {:>11} {:>13} {:>12} {:>9} {:>10} {:>10}\n", "PRN", "doppler_hz", "delay_samples", "delay_chips",
+             "cn0_dbhz", "statistic", "threshold");
+  for (const auto& r : results) {
+    if (!r.detected) continue;
+    fmt::print("{:>4} {:>11.1f} {:>13.2f} {:>12.3f} {:>9.1f} {:>10.1f} {:>10.1f}\n", r.prn, r.doppler_hz,
+               r.delay_samples, r.delay_samples * 1.023e6 / o.acq.sample_rate_hz, r.cn0_dbhz, r.statistic, r.threshold);
+  }
+}
+
 void run_acquire(AcquireOptions o) {
   const OpenedSource opened = open_sample_source(o.source);
   if (!o.json_path.empty() && o.json_path != "-" && !opened.is_stream) refuse_replacing_inputs(o, opened);
@@ -69,64 +116,40 @@ void run_acquire(AcquireOptions o) {
   o.acq.sample_rate_hz = source.sample_rate_hz();
   o.acq.if_hz = source.intermediate_frequency_hz();
   if (!o.prn_list.empty()) o.acq.prns = parse_prns(o.prn_list);
+  std::vector<Sample> samples;
   std::vector<AcquisitionResult> results;
   try {
     Acquisition acquisition(o.acq);
-    std::vector<Sample> samples(static_cast<std::size_t>(acquisition.samples_needed()));
-    std::size_t got = 0;
-    while (got < samples.size()) {
-      const std::size_t n = source.read(std::span<Sample>(samples.data() + got, samples.size() - got));
-      if (n == 0) break;
-      got += n;
-    }
-    samples.resize(got);
+    const std::int64_t wanted = acquisition.samples_needed();
+    samples = read_search_samples(source, static_cast<std::size_t>(wanted));
     if (const std::string problem = if_sample_problem(samples, source.is_real()); !problem.empty())
       throw UserError(fmt::format("{}: {}", opened.input, problem));
-    if (got < samples.capacity())
-      spdlog::warn("{}: only {} samples available, the non-coherent sum is shorter", opened.input, got);
+    const std::int64_t block = wanted / o.acq.noncoherent;
+    const double fs = o.acq.sample_rate_hz;
+    if (static_cast<std::int64_t>(samples.size()) < block)
+      throw UserError(fmt::format("{}: {}", opened.input,
+                                  too_short(static_cast<double>(samples.size()) / fs, static_cast<double>(block) / fs,
+                                            "one coherent block of --coherent-ms")
+                                      .message),
+                      kExitNothingFound);
+    if (static_cast<std::int64_t>(samples.size()) < wanted)
+      spdlog::warn("{}: only {} samples available, the non-coherent sum is shorter", opened.input, samples.size());
     results = acquisition.search(samples);
+  } catch (const UserError&) {
+    throw;
   } catch (const std::invalid_argument& e) {
     throw UserError(e.what());
   } catch (const std::runtime_error& e) {
     throw UserError(e.what());
   }
-  if (!o.json_path.empty()) {
-    nlohmann::json all = nlohmann::json::array();
-    for (const auto& r : results) all.push_back(to_json(r));
-    const std::string text =
-        nlohmann::json{
-            {"input", opened.input}, {"sample_rate_hz", o.acq.sample_rate_hz}, {"if_hz", o.acq.if_hz}, {"results", all}}
-            .dump(2) +
-        "\n";
-    if (o.json_path == "-") {
-      if (!(std::cout << text << std::flush)) throw UserError("cannot write the JSON to stdout");
-    } else {
-      try {  // complete or absent (a full disk, /dev/full: an error naming the file)
-        TextOutputFile out(o.json_path);
-        out.write(text);
-        out.commit();
-      } catch (const std::runtime_error& e) {
-        throw UserError(e.what());
-      }
-    }
-  }
-  int detected = 0;
-  for (const auto& r : results) detected += r.detected;
-  if (o.json_path != "-") {
-    fmt::print("{:>4} {:>11} {:>13} {:>12} {:>9} {:>10} {:>10}\n", "PRN", "doppler_hz", "delay_samples", "delay_chips",
-               "cn0_dbhz", "statistic", "threshold");
-    for (const auto& r : results) {
-      if (!r.detected) continue;
-      fmt::print("{:>4} {:>11.1f} {:>13.2f} {:>12.3f} {:>9.1f} {:>10.1f} {:>10.1f}\n", r.prn, r.doppler_hz,
-                 r.delay_samples, r.delay_samples * 1.023e6 / o.acq.sample_rate_hz, r.cn0_dbhz, r.statistic,
-                 r.threshold);
-    }
-  }
-  if (detected == 0)
-    throw UserError(o.source.metadata.empty()
-                        ? "no satellite acquired: check --fs, --if, --format, --inverted-spectrum"
-                        : "no satellite acquired: check the metadata file '" + o.source.metadata + "'",
-                    3);
+  const bool detected = std::any_of(results.begin(), results.end(), [](const auto& r) { return r.detected; });
+  std::optional<NothingFound> nothing;
+  if (!detected)
+    nothing = diagnose_no_satellite({o.acq, samples, strongest_correlation(results)}, opened.settings,
+                                    static_cast<double>(samples.size()) / o.acq.sample_rate_hz);
+  if (!o.json_path.empty()) write_json(o, opened, results, nothing);
+  if (o.json_path != "-") print_table(o, results);
+  if (nothing) throw UserError(fmt::format("{}: {}", opened.input, nothing->message), kExitNothingFound);
 }
 
 }  // namespace
@@ -154,6 +177,10 @@ void add_acquire_command(CommandParents& parents) {
   cmd->add_option("--prn", o->prn_list, "Only these PRNs, e.g. 1,5,31");
   cmd->add_option("--json", o->json_path,
                   "Write every searched PRN as JSON to FILE ('-': stdout instead of the table)");
+  cmd->footer(fmt::format(
+      "Exit status: 0 satellites found; {} nothing found: no satellite detected (the message names the likely "
+      "cause, and --json's nothing_found the evidence) or less than one coherent block of signal; 1 an error.",
+      kExitNothingFound));
   cmd->callback([o, cmd] {
     note_given_source_options(*cmd, o->source);
     run_acquire(*o);

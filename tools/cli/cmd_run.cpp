@@ -6,11 +6,13 @@
 #include <csignal>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "aiding/navigation_session.hpp"
 #include "ins/imu_file.hpp"
 #include "ins/imu_model.hpp"
 #include "ins/imu_range_check.hpp"
+#include "receiver/acquisition/nothing_found.hpp"
 #include "receiver/build_date.hpp"
 #include "receiver/mitigation/mitigation_config.hpp"
 #include "receiver/products/file_products.hpp"
@@ -136,8 +138,27 @@ aiding::NavigationSessionConfig session_config(const RunOptions& o, aiding::NavM
   return c;
 }
 
+/// Why a run that ran to its end found nothing: no satellite acquired (with the likely
+/// causes: a wrong setting hides them whatever the length), or too little signal for one
+/// observation epoch (or for any search); none when it found something, or was stopped or
+/// failed (those say so themselves).
+std::optional<NothingFound> nothing_found(const RunOptions& o, const OpenedSource& opened,
+                                          aiding::NavigationSession& session, const RunStatistics& stats) {
+  if (opened.interrupted() || opened.failure() || session.run_error()) return std::nullopt;
+  GnssReceiver& receiver = session.receiver();
+  const AcquisitionEvidence evidence = receiver.acquisition_evidence();
+  const bool searched = evidence.strongest.has_value();
+  if (searched && receiver.acquired_prns().empty())
+    return diagnose_no_satellite(evidence, opened.settings, receiver.processed_s());
+  if (stats.epochs() == 0)
+    return too_short(receiver.processed_s(), 1.0 / o.receiver.observation_rate_hz,
+                     fmt::format("one observation epoch at --rate {}", o.receiver.observation_rate_hz));
+  return std::nullopt;
+}
+
 nlohmann::json run_summary(const RunOptions& o, const OpenedSource& opened, aiding::NavigationSession& session,
-                           const RunStatistics& stats, bool scored, const ImuIntegrity& imu_integrity) {
+                           const RunStatistics& stats, bool scored, const ImuIntegrity& imu_integrity,
+                           const std::optional<NothingFound>& empty_run) {
   GnssReceiver& receiver = session.receiver();
   nlohmann::json summary = {
       {"input", opened.input},
@@ -226,6 +247,7 @@ nlohmann::json run_summary(const RunOptions& o, const OpenedSource& opened, aidi
     failed.push_back({{"product", f.product}, {"error", f.error}});
   summary["products_failed"] = failed;
   if (opened.is_stream) summary["stream"] = opened.report();
+  if (empty_run) summary["nothing_found"] = empty_run->json();
   // What the run cost: peak memory stays flat with run length (products are written as
   // the run goes), which a long stream can check from here.
   summary["resources"] = {{"peak_rss_mib", peak_rss_mib()}, {"cpu_s", process_cpu_s()}};
@@ -295,8 +317,11 @@ void run_receiver(CLI::App& root, RunOptions o) {
       o.out_dir, std::filesystem::path(opened.input).filename().string(), 1.0 / o.receiver.observation_rate_hz);
   aiding::NavigationSession session(config, *opened.source, std::move(imu), opened.duration_s);
   RunStatistics stats(truth ? &*truth : nullptr);
-  SummarySink summary(out.path("summary.json"),
-                      [&] { return run_summary(o, opened, session, stats, truth.has_value(), imu_integrity); });
+  std::optional<NothingFound> empty_run;  // decided when the run has ended, before the summary is written
+  SummarySink summary(out.path("summary.json"), [&] {
+    empty_run = nothing_found(o, opened, session, stats);
+    return run_summary(o, opened, session, stats, truth.has_value(), imu_integrity, empty_run);
+  });
   std::vector<ProductSink*> sinks{&stats};
   for (const auto& p : products) sinks.push_back(p.get());
   sinks.push_back(&summary);
@@ -330,6 +355,7 @@ void run_receiver(CLI::App& root, RunOptions o) {
                                 signal_name(signal), opened.source->next_sample_index()),
                     interrupted_exit_status(signal));
   }
+  if (empty_run) throw UserError(fmt::format("{}: {}", opened.input, empty_run->message), kExitNothingFound);
 }
 
 }  // namespace
@@ -413,6 +439,12 @@ void add_run_command(CommandParents& parents) {
                   "GPS week near the data: resolves the week number the satellites broadcast modulo 1024, and must "
                   "agree with it (default: the --ephemeris-from file's epoch, else the build date)");
   add_print_config(*cmd, o->print_config);
+  cmd->footer(fmt::format(
+      "Exit status: 0 done; {} nothing found: no satellite acquired (the message names the likely cause: --fs, "
+      "--if, --format, --inverted-spectrum) or too little signal for one observation epoch, the products written and "
+      "summary.json's nothing_found saying why; 1 an error; 130, 143, 129 interrupted by SIGINT, SIGTERM, "
+      "SIGHUP (the products valid up to there).",
+      kExitNothingFound));
   cmd->callback([o, cmd, root] {
     if (o->print_config) return fmt::print("{}", effective_config(*cmd));
     if (cmd->get_option("--week")->count() > 0) check_week_option(o->receiver.reference_week);

@@ -30,6 +30,12 @@ void add_run_command(CommandParents& parents);
 void add_serve_command(CommandParents& parents);
 void add_sim_command(CommandParents& parents);
 
+/// Exit status of `run` and `acquire` when the signal held nothing to find: no satellite
+/// acquired, or too little signal for one observation epoch (or one coherent block). The
+/// others: 0 success, 1 an error (bad input, a failed product), CLI11's 100-127 for a
+/// command line it cannot parse.
+inline constexpr int kExitNothingFound = 3;
+
 /// Thrown by a command for a user error: main prints "deepnav: <message>" and exits with `exit_code`
 /// (an InputError from a library exits with 1).
 struct UserError : InputError {
