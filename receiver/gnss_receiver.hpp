@@ -120,6 +120,7 @@ class GnssReceiver {
   /// and iono() so that they agree with the receiver's own PVT.
   const AtmosphereModels& atmosphere() const;
   UtcParameters utc() const;
+  /// The satellites acquisition found, each once, in the order first found.
   std::vector<int> acquired_prns() const;
   /// The full GPS week the signal broadcast (the first subframe 1 decoded, resolved against
   /// the reference), once known.
