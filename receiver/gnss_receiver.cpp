@@ -90,10 +90,10 @@ struct GnssReceiver::Impl {
   std::vector<ReceiverChannel> channels;
   std::vector<std::vector<ChannelEpochRecord>> records;  ///< per channel, for the block being tracked
   std::vector<int> tracked_prns;                         ///< channels of the block just tracked, lost ones included
-  std::vector<int> acquired;
-  std::map<int, NavigationStatus> finished_status;  ///< of channels already released
-  std::int64_t first_index = -1, end_index = -1;    ///< span of the samples read so far
-  bool gap_since_epoch = false;                     ///< samples lost since the last observation epoch
+  std::vector<int> acquired;                             ///< PRNs, each once, in the order first acquired
+  std::map<int, NavigationStatus> finished_status;       ///< of channels already released
+  std::int64_t first_index = -1, end_index = -1;         ///< span of the samples read so far
+  bool gap_since_epoch = false;                          ///< samples lost since the last observation epoch
 
   Impl(ReceiverConfig c, SampleSource& s)
       : cfg(checked(std::move(c), s)),
@@ -113,7 +113,9 @@ struct GnssReceiver::Impl {
   }
 
   ReceiverChannel& start_channel(const ChannelStart& start) {
-    acquired.push_back(start.prn);
+    // The satellites found, in the order first found: a satellite acquired again (after a
+    // gap, a loss of lock) is still one satellite.
+    if (std::find(acquired.begin(), acquired.end(), start.prn) == acquired.end()) acquired.push_back(start.prn);
     return channels.emplace_back(loops, start, aiding ? aiding->controller_for(start.prn) : nullptr,
                                  clock.resolution_week());
   }

@@ -121,6 +121,7 @@ class GnssReceiver {
   /// and iono() so that they agree with the receiver's own PVT.
   const AtmosphereModels& atmosphere() const;
   UtcParameters utc() const;
+  /// The satellites acquisition found, each once, in the order first found.
   std::vector<int> acquired_prns() const;
   /// What the acquisition saw, for telling why it found nothing: its configuration, the
   /// latest samples it kept (a full window while a channel is free) and the strongest

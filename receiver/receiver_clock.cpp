@@ -28,9 +28,18 @@ void ReceiverClock::use_assisted_ephemerides(const NavData& nav) {
   assisted_source_ = nav.source.empty() ? "assistance" : nav.source;
 }
 
-std::optional<GpsTime> ReceiverClock::reference_epoch() const {
-  if (reference_week_ > 0) return GpsTime{reference_week_, kSecondsPerWeek / 2};
-  return assisted_epoch_;
+std::optional<ReceiverClock::NearEpoch> ReceiverClock::near_epoch(double transmit_sow) const {
+  if (signal_week_) return NearEpoch{GpsTime{signal_week_->week, signal_week_->subframe_start_sow}, "the signal"};
+  if (assisted_epoch_)
+    return NearEpoch{*assisted_epoch_,
+                     fmt::format("the assisted ephemerides ({}, week {})", assisted_source_, assisted_epoch_->week)};
+  if (reference_week_ > 0) {
+    const double to_boundary_s = std::min(transmit_sow, kSecondsPerWeek - transmit_sow);
+    if (std::abs(to_boundary_s) < kWeekBoundaryMargin_s) return std::nullopt;  // either side: wait for the signal
+    return NearEpoch{GpsTime{reference_week_, kSecondsPerWeek / 2},
+                     fmt::format("{} {}", reference_week_origin_, reference_week_)};
+  }
+  return std::nullopt;
 }
 
 std::string ReceiverClock::reference_origin() const {
@@ -41,8 +50,17 @@ std::string ReceiverClock::reference_origin() const {
 }
 
 int ReceiverClock::resolution_week() const {
-  const auto r = reference_epoch();
-  return r ? r->week : build_time().week;
+  if (reference_week_ > 0) return reference_week_;
+  if (assisted_epoch_) return assisted_epoch_->week;
+  return build_time().week;
+}
+
+std::string ReceiverClock::contradiction_advice(double off_s) const {
+  if (!clock_from_reference_week_) return ": a navigation file of another day?";
+  // The week the clock should have had where it was set: the data's week there.
+  const int data_week = reference_->reference.week - static_cast<int>(std::lround(off_s / kSecondsPerWeek));
+  return fmt::format(": the data is in week {} where the clock was set; give {} {} or leave it out", data_week,
+                     reference_week_origin_, data_week);
 }
 
 void ReceiverClock::take_broadcast_week(int prn, int wn10, double subframe_start_sow, std::int64_t now) {
@@ -51,21 +69,21 @@ void ReceiverClock::take_broadcast_week(int prn, int wn10, double subframe_start
   signal_week_ = SignalWeek{week, subframe_start_sow};
   spdlog::info("GPS week {} (PRN {:2d} broadcasts week number {} modulo 1024; resolved against {})", week, prn, wn10,
                reference_origin());
-  const auto contradiction = [&](double off_s) {
-    return fmt::format(
-        "the GPS week of {} contradicts the signal: PRN {} broadcasts week number {} (modulo 1024), "
-        "i.e. week {} ({:.1f} days off){}",
-        reference_origin(), prn, wn10, week, off_s / 86400.0,
-        reference_week_ > 0 ? fmt::format(": give {} {} or leave it out", reference_week_origin_, week)
-                            : std::string(": a navigation file of another day?"));
-  };
   // A week either side is the data crossing a week boundary, not a contradiction.
   if (reference_week_ > 0 && std::abs(week - reference_week_) > 1)
-    throw std::runtime_error(contradiction((week - reference_week_) * kSecondsPerWeek));
+    throw std::runtime_error(fmt::format(
+        "the GPS week of {} contradicts the signal: PRN {} broadcasts week number {} (modulo 1024), i.e. week {} "
+        "({:.1f} days off): give {} {} or leave it out",
+        reference_origin(), prn, wn10, week, (week - reference_week_) * kSecondsPerWeek / 86400.0,
+        reference_week_origin_, week));
   if (reference_) {
-    // The clock set from the reference, now: some seconds after the subframe was sent.
+    // The clock, dated before this subframe came, now: some seconds after the subframe was sent.
     const double off_s = reference_->at(now).seconds_since(GpsTime{week, subframe_start_sow});
-    if (std::abs(off_s) > kSecondsPerWeek / 2) throw std::runtime_error(contradiction(off_s));
+    if (std::abs(off_s) > kSecondsPerWeek / 2)
+      throw std::runtime_error(fmt::format(
+          "the GPS week of {} contradicts the signal: PRN {} broadcasts week number {} (modulo 1024) in a subframe "
+          "sent at second {:.0f} of its week, i.e. week {}, {:.1f} days from the receiver clock it dated{}",
+          clock_origin_, prn, wn10, subframe_start_sow, week, off_s / 86400.0, contradiction_advice(off_s)));
   }
 }
 
@@ -76,19 +94,19 @@ std::optional<int> ReceiverClock::signal_week() const {
 
 void ReceiverClock::set_from_transmit_times(const std::vector<double>& transmit_sow, std::int64_t sample) {
   if (reference_ || transmit_sow.size() < kTransmitTimesToSetClock) return;
-  // The clock needs the week: the signal's own, else a reference near the data (never a
-  // guess that would put a product years off).
-  const std::optional<GpsTime> near =
-      signal_week_ ? std::optional<GpsTime>(GpsTime{signal_week_->week, signal_week_->subframe_start_sow})
-                   : reference_epoch();
-  if (!near) return;
   const double latest = *std::max_element(transmit_sow.begin(), transmit_sow.end());
+  // The clock needs the week: the signal's own, else a time near the data (never a guess
+  // that would put a product years, or a week, off).
+  const std::optional<NearEpoch> near = near_epoch(latest);
+  if (!near) return;
   // The week of `near` or a neighbour, whichever puts the time closest to it.
-  GpsTime t = GpsTime::normalized(near->week, latest + kInitialTravelTime_s);
-  const double off_s = t.seconds_since(*near);
+  GpsTime t = GpsTime::normalized(near->t.week, latest + kInitialTravelTime_s);
+  const double off_s = t.seconds_since(near->t);
   if (off_s > kSecondsPerWeek / 2) t.week -= 1;
   if (off_s < -kSecondsPerWeek / 2) t.week += 1;
   reference_ = ReceiverClockReference{t, sample, fs_};
+  clock_origin_ = near->origin;
+  clock_from_reference_week_ = !signal_week_ && !assisted_epoch_;
 }
 
 void ReceiverClock::steer(double clock_bias_m) {

@@ -7,12 +7,15 @@
 // t_rx(s) = reference + (s - reference_sample) / fs. After a fix it is steered by the
 // estimated bias, so that pseudoranges keep near the geometric ranges.
 //
-// The week: the signal broadcasts it modulo 1024 (LNAV's 10-bit WN, in subframe 1), so a
-// week near the data resolves it: the reference week given (ReceiverConfig::reference_week),
-// else the epoch of the assisted ephemerides, else the build date (data within about ten
-// years of it). With a reference given or assisted, the clock is set as soon as four
-// transmit times exist and checked against the first subframe 1 decoded; from the build
-// date alone it waits for that subframe, so that no product carries a guessed week.
+// The week: the signal broadcasts it modulo 1024 (LNAV's 10-bit WN, in subframe 1: the
+// week that subframe is sent in), so a week near the data resolves it: the reference week
+// given (ReceiverConfig::reference_week), else the epoch of the assisted ephemerides, else
+// the build date (data within about ten years of it). Before the first subframe 1 the clock
+// takes its week from a time near the data: the assisted ephemerides' epoch (toe, hours
+// from the data), else the reference week (the week the data starts in) — but not within
+// kWeekBoundaryMargin_s of a week boundary, where the data may lie on either side of it —
+// and is checked against that subframe when it comes; from the build date alone, or near a
+// boundary, it waits for that subframe, so that no product carries a guessed week.
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -32,6 +35,11 @@ inline constexpr double kInitialTravelTime_s = 0.068;
 inline constexpr double kClockSteerAbove_m = 1e3;
 /// Transmit times (channels) the clock is set with.
 inline constexpr std::size_t kTransmitTimesToSetClock = 4;
+/// Within this of a week boundary a reference week alone does not date the transmit times
+/// (the data may have begun before the boundary and reached the clock after it, or a week
+/// named after the data's end): the clock waits for the signal's week (subframe 1 comes
+/// every 30 s).
+inline constexpr double kWeekBoundaryMargin_s = 3600.0;
 
 class ReceiverClock {
  public:
@@ -48,15 +56,16 @@ class ReceiverClock {
   /// The first subframe 1 decoded: `prn` broadcast week number `wn10` in the subframe that
   /// began at `subframe_start_sow`, decoded by sample `now`. Resolves the full week and
   /// checks it against the reference week and against the clock when that was set before;
-  /// a contradiction is std::runtime_error naming the reference's origin. Later calls are
-  /// ignored: the first subframe 1 decides.
+  /// a contradiction is std::runtime_error naming what set the clock and the week the data
+  /// is in. Later calls are ignored: the first subframe 1 decides.
   void take_broadcast_week(int prn, int wn10, double subframe_start_sow, std::int64_t now);
   /// The full week the signal broadcast, once take_broadcast_week() has run.
   std::optional<int> signal_week() const;
 
   /// Sets the clock at `sample` from the channels' transmit times (seconds of week) there,
-  /// once there are four and a week near the data is known (the signal's, else the
-  /// reference); does nothing when the clock is already set.
+  /// once there are four and a time near the data is known (the signal's week, else the
+  /// assisted ephemerides' epoch, else the reference week away from a week boundary); does
+  /// nothing when the clock is already set.
   void set_from_transmit_times(const std::vector<double>& transmit_sow, std::int64_t sample);
   /// After a fix: steps the clock by the bias it estimated (m), when that exceeds
   /// kClockSteerAbove_m.
@@ -71,10 +80,17 @@ class ReceiverClock {
   double steps_s() const { return steps_s_; }
 
  private:
-  /// A GPS time near the data that may set the clock before the signal's week is decoded.
-  std::optional<GpsTime> reference_epoch() const;
-  /// What the reference week came from, for messages.
+  /// A GPS time near the data (and what it came from) that may date `transmit_sow` before
+  /// the signal's week is decoded; nullopt when none may.
+  struct NearEpoch {
+    GpsTime t;
+    std::string origin;
+  };
+  std::optional<NearEpoch> near_epoch(double transmit_sow) const;
+  /// What the week 10-bit week numbers are resolved against came from, for messages.
   std::string reference_origin() const;
+  /// The advice for a clock that the signal's week contradicts by `off_s`.
+  std::string contradiction_advice(double off_s) const;
 
   struct SignalWeek {
     int week = 0;                     ///< resolved full week
@@ -88,6 +104,8 @@ class ReceiverClock {
   std::string assisted_source_;
   std::optional<SignalWeek> signal_week_;
   std::optional<ReceiverClockReference> reference_;
+  std::string clock_origin_;  ///< what dated the clock when it was set
+  bool clock_from_reference_week_ = false;
   double steps_s_ = 0.0;
 };
 

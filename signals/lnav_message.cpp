@@ -235,8 +235,8 @@ void fill_tlm_how(DataWords& d, int subframe_id, const LnavContent& c, int tow_c
   d[1] = words[1];
 }
 
-void fill_subframe1(DataWords& d, const Ephemeris& e) {
-  encode_value(d, kWn, ((e.week % 1024) + 1024) % 1024, 1);
+void fill_subframe1(DataWords& d, const Ephemeris& e, int transmission_week) {
+  encode_value(d, kWn, ((transmission_week % 1024) + 1024) % 1024, 1);
   encode_value(d, kCodeOnL2, e.code_on_l2, 1);
   encode_value(d, kUra, e.ura_index, 1);
   encode_value(d, kHealth, e.health, 1);
@@ -531,7 +531,7 @@ Subframe encode_subframe(int subframe_id, const LnavContent& content, int tow_co
   fill_tlm_how(d, subframe_id, content, tow_count_next);
   switch (subframe_id) {
     case 1:
-      fill_subframe1(d, content.eph);
+      fill_subframe1(d, content.eph, content.transmission_week.value_or(content.eph.week));
       break;
     case 2:
       fill_subframe2(d, content.eph);
@@ -713,6 +713,12 @@ bool EphemerisAssembler::try_complete() {
   e.idot_radps = s3.idot_radps;
   // Subframe 1 starts one TOW count (6 s) before the count its HOW carries.
   e.transmission_time_s = 6.0 * ((sf1_->tlm_how.tow_count + kTowCountsPerWeek - 1) % kTowCountsPerWeek);
+  // WN is the week subframe 1 was sent in; toe may lie in the week after it (a data set cut
+  // over at the week's end) or before it (one sent on after the boundary). Ephemeris::week
+  // is toe's: the one that puts toe within half a week of the transmission.
+  const double toe_after_transmission_s = e.toe_s - e.transmission_time_s;
+  if (toe_after_transmission_s > kSecondsPerWeek / 2) e.week -= 1;
+  if (toe_after_transmission_s < -kSecondsPerWeek / 2) e.week += 1;
   const bool is_new = !ephemeris_ || ephemeris_->iodc != e.iodc || ephemeris_->iode != e.iode ||
                       ephemeris_->toe_s != e.toe_s || ephemeris_->week != e.week;
   ephemeris_ = e;

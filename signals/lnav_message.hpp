@@ -58,9 +58,13 @@ struct TlmHow {
   int subframe_id = 0;  ///< 1..5
 };
 
-/// Everything one satellite broadcasts. Subframe 1's week number is eph.week mod 1024.
+/// Everything one satellite broadcasts. Subframe 1's week number (WN) is the week the
+/// subframe is sent in, modulo 1024 (IS-GPS-200 20.3.3.3.1.1): transmission_week when set,
+/// else eph.week (toe's week, which is the week of transmission but for an ephemeris sent
+/// across a week boundary).
 struct LnavContent {
   Ephemeris eph;
+  std::optional<int> transmission_week;  ///< full GPS week the message is sent in
   IonoParameters iono;
   UtcParameters utc;
   std::array<std::optional<Almanac>, 32> almanac;  ///< by PRN - 1; empty: dummy SV page
@@ -172,7 +176,9 @@ FieldLimits field_limits(std::string_view name);
 int resolve_week(int wn10, int reference_week);
 
 /// Collects decoded subframes of one satellite into an ephemeris once subframes 1, 2 and 3
-/// with matching issue of data are in, and subframe 4 page 18 into ionosphere/UTC.
+/// with matching issue of data are in, and subframe 4 page 18 into ionosphere/UTC. The
+/// ephemeris's week is toe's: subframe 1's week of transmission (resolved against
+/// reference_week), one more or less where toe lies across a week boundary from it.
 class EphemerisAssembler {
  public:
   EphemerisAssembler(int prn, int reference_week) : prn_(prn), reference_week_(reference_week) {}

@@ -25,6 +25,17 @@ int segment_of_subframe(std::int64_t k) {
   return NavBitPredictor::body_segment(lnav::subframe_id_at(k), lnav::page_at(k));
 }
 
+std::int64_t week_of_subframe(std::int64_t subframe) {
+  return (subframe - subframe_in_week(subframe)) / lnav::kTowCountsPerWeek;
+}
+
+/// Word 3 of subframe 1 (24 data bits) with its 10-bit WN set to `week` modulo 1024.
+std::uint32_t with_week_number(std::uint32_t word3_data, std::int64_t week) {
+  constexpr int kWnShift = 14;
+  const auto wn = static_cast<std::uint32_t>(((week % 1024) + 1024) % 1024);
+  return (wn << kWnShift) | (word3_data & ((1u << kWnShift) - 1u));
+}
+
 std::uint8_t chain_bits(bool d29, bool d30) { return static_cast<std::uint8_t>((d29 ? 2u : 0u) | (d30 ? 1u : 0u)); }
 
 int preamble_sign(int bit_in_subframe) {
@@ -74,11 +85,16 @@ void NavBitPredictor::learn(const lnav::DecodedSubframe& sf) {
   fresh.source = Source::broadcast;
   Body& body = bodies_[static_cast<std::size_t>(segment)];
   if (is_ephemeris_segment(segment)) {
+    // A new data set, not the week number rolling over: subframe 1's WN is no part of it,
+    // nor are word 10's last two bits (set for its parity, which a new WN changes).
+    const auto comparable = [&](const Body& b, int i) {
+      const std::uint32_t data = b.data[static_cast<std::size_t>(i)];
+      if (segment == 1 && i == 0) return with_week_number(data, 0);
+      return i == 7 ? data & ~3u : data;
+    };
     bool differs = false;
-    for (int i = 0; i < 8; ++i) {
-      differs = differs || ((body.known >> i & 1u) &&
-                            body.data[static_cast<std::size_t>(i)] != fresh.data[static_cast<std::size_t>(i)]);
-    }
+    for (int i = 0; i < 8; ++i)
+      differs = differs || ((body.known >> i & 1u) && comparable(body, i) != comparable(fresh, i));
     if (differs) {
       if (body.source == Source::broadcast) ++uploads_;
       for (int other = 1; other <= 3; ++other) {
@@ -180,8 +196,9 @@ void NavBitPredictor::forget_after_failure(int segment) {
   }
 }
 
-const NavBitPredictor::Predicted& NavBitPredictor::predicted(std::int64_t k) const {
-  if (cache_.subframe == k && cache_.version == version_) return cache_;
+const NavBitPredictor::Predicted& NavBitPredictor::predicted(std::int64_t subframe) const {
+  if (cache_.subframe == subframe && cache_.version == version_) return cache_;
+  const std::int64_t k = subframe_in_week(subframe);
   const int id = lnav::subframe_id_at(k);
   const Body& body = bodies_[static_cast<std::size_t>(segment_of_subframe(k))];
   lnav::TlmHow th = header_;
@@ -202,6 +219,9 @@ const NavBitPredictor::Predicted& NavBitPredictor::predicted(std::int64_t k) con
       const auto i = static_cast<std::size_t>(w - kHeaderWords);
       data_known = (body.known >> i) & 1u;
       data = body.data[i];
+      // Subframe 1's WN (the 10 MSBs of word 3) is the week the subframe is sent in: it
+      // rolls over at the week boundary, whenever the rest of the body was learned.
+      if (id == 1 && w == kHeaderWords) data = with_week_number(data, week_of_subframe(subframe));
       if (w == kHeaderWords) {
         d29 = d30 = false;
         chain_known = true;
@@ -223,14 +243,14 @@ const NavBitPredictor::Predicted& NavBitPredictor::predicted(std::int64_t k) con
     d30 = lnav::word_d30(word);
   }
   cache_.known = known;
-  cache_.subframe = k;
+  cache_.subframe = subframe;
   cache_.version = version_;
   return cache_;
 }
 
 int NavBitPredictor::sign(std::int64_t bit) const {
   const std::int64_t b = bit_of_week(bit);
-  const auto& p = predicted(b / lnav::kBitsPerSubframe);
+  const auto& p = predicted((bit - b) / lnav::kBitsPerSubframe + b / lnav::kBitsPerSubframe);
   const int i = static_cast<int>(b % lnav::kBitsPerSubframe);
   if ((p.known >> (i / lnav::kBitsPerWord)) & 1u) return lnav::subframe_bit(p.words, i) ? -1 : 1;
   return i < kPreambleBits ? preamble_sign(i) : 0;

@@ -7,6 +7,7 @@
 //  - TLM and HOW (words 1-2 of every subframe): the preamble, the TLM message and flags, and
 //    the HOW's alert and A-S flags repeat; the TOW count is the next subframe's count, the
 //    subframe ID follows the 5-subframe frame, both advancing from the bit's time of week.
+//    Subframe 1's WN is the week it is sent in: taken from the absolute bit, not learned.
 //  - Subframes 1-3 (words 3-10): the ephemeris and clock data set, repeated every 30 s frame
 //    until the next upload (a new IODC/IODE, at a frame boundary).
 //  - Subframes 4-5 (words 3-10): the 25-page cycle, 12.5 min, keyed to the TOW count and reset
@@ -131,13 +132,14 @@ class NavBitPredictor {
     Source source = Source::none;
   };
   struct Predicted {
-    std::int64_t subframe = -1;  ///< subframe of the week, -1: none
+    std::int64_t subframe = -1;  ///< absolute subframe (from the GPS time origin), -1: none
     std::uint64_t version = 0;
     lnav::Subframe words{};
     std::uint16_t known = 0;  ///< bit w: word w (0-based) predictable
   };
 
-  const Predicted& predicted(std::int64_t subframe_of_week) const;
+  /// The words of absolute subframe `subframe` (its week gives subframe 1's WN).
+  const Predicted& predicted(std::int64_t subframe) const;
   static void set_chain(Body& body, const lnav::Subframe& words);
   void changed() { ++version_; }
 

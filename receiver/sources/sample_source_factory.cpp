@@ -77,7 +77,11 @@ nlohmann::json stats_json(const StreamSampleSource& s) {
                         {"gaps", gaps},
                         {"end", st.end_reason},
                         {"failed", st.failed}};
+  if (dynamic_cast<const UdpSampleSource*>(&s) != nullptr && s.raw())
+    out["datagrams_split_samples"] = st.datagrams_split_samples;
   if (const auto* rtl = dynamic_cast<const RtlTcpSampleSource*>(&s)) {
+    out["pace_of_real_time"] = st.pace_of_real_time ? nlohmann::json(*st.pace_of_real_time) : nlohmann::json(nullptr);
+    out["slower_than_real_time"] = st.slower_than_real_time;
     const rtltcp::Tuning& t = rtl->rtl_settings().tuning;
     out["dongle"] = {{"tuner", rtltcp::tuner_name(rtl->dongle().tuner_type)},
                      {"tuner_type", rtl->dongle().tuner_type},

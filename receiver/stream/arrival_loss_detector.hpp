@@ -19,11 +19,27 @@
 // link). While the consumer falls behind (backlogged()), arrival times say when it read, not
 // when the dongle sampled: pieces that arrived up to a horizon after that are not judged,
 // and a new baseline is built from the pieces after them (a loss meanwhile goes uncounted).
+//
+// All of that holds for a sender that keeps real time. One that sends slower (a file
+// replayed slowly, a link narrower than the rate) makes every piece later than the one
+// before: its lag grows steadily, which is no loss, and arrival times then cannot tell a
+// loss at all (rtl_tcp has no sample indices). So the pace of the arrivals is measured
+// (arrival_pace.hpp); while it is below kSlowPace the stream is slow: no piece gets a
+// verdict and the baseline is dropped, to be rebuilt once the pace is back. Until the pace
+// is known (2 s of arrivals, at the start and after a backlog) pieces are held; a stream
+// that ends before leaves its pieces unjudged.
 #include <cstdint>
 #include <deque>
+#include <optional>
 #include <vector>
 
+#include "receiver/stream/arrival_pace.hpp"
+
 namespace deepnav {
+
+/// A stream arriving at less than this fraction of its sample rate is a slow sender, not
+/// a lossy one (far below what a dongle's clock, a few ppm off, or jitter can do).
+inline constexpr double kSlowPace = 0.95;
 
 class ArrivalLossDetector {
  public:
@@ -37,8 +53,9 @@ class ArrivalLossDetector {
     std::int64_t count = 0;           ///< the piece's samples
     std::int64_t missing_before = 0;  ///< samples lost just before it (0: none)
   };
-  /// The pieces, oldest first, that arrived at least horizon_s before `now_s` (all of them
-  /// when `flush`: the stream ended), with the samples missing before each.
+  /// The pieces, oldest first, that arrived at least horizon_s before `now_s`, once the pace
+  /// is known (all of them when `flush`: the stream ended), with the samples missing before
+  /// each.
   std::vector<Verdict> release(double now_s, bool flush = false);
 
   /// The consumer fell behind at `now_s` (it held the producer up): forget the baseline and
@@ -47,6 +64,9 @@ class ArrivalLossDetector {
 
   std::int64_t declared_lost() const { return declared_; }
   std::size_t held_pieces() const { return held_.size(); }
+  /// Whether the last release() found the stream slower than kSlowPace.
+  bool slow() const { return slow_; }
+  const ArrivalPace& pace() const { return pace_; }
 
  private:
   struct Piece {
@@ -64,6 +84,8 @@ class ArrivalLossDetector {
   std::int64_t received_ = 0;
   std::int64_t declared_ = 0;
   double quiet_until_s_ = -1e300;
+  ArrivalPace pace_;
+  bool slow_ = false;
   std::deque<Piece> held_;
   std::deque<Baseline> baseline_;  ///< increasing lag from front to back: the front is the minimum
 };

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <boost/asio/connect.hpp>
 #include <boost/asio/read.hpp>
 #include <boost/asio/write.hpp>
@@ -41,7 +42,9 @@ RtlTcpSampleSource::RtlTcpSampleSource(StreamSourceSettings settings, RtlTcpSett
     : StreamSampleSource(as_raw_cu8(settings, rtl), fmt::format("rtltcp://{}:{}", settings.host, settings.port)),
       rtl_(rtl),
       socket_(io_),
-      detector_(rtl.tuning.sample_rate_hz, rtl.loss_threshold_s, rtl.loss_horizon_s) {
+      detector_(rtl.tuning.sample_rate_hz, rtl.loss_threshold_s, rtl.loss_horizon_s),
+      settle_bytes_(2 * std::llround(rtl.settle_s * rtl.tuning.sample_rate_hz)),
+      settle_bytes_left_(settle_bytes_) {
   const auto deadline = after(settings_.connect_timeout_s);
   const std::atomic<bool> never{false};
   const std::atomic<bool>& cancel = settings_.stop != nullptr ? *settings_.stop : never;
@@ -104,13 +107,23 @@ bool RtlTcpSampleSource::release(bool flush) {
     StreamPiece piece;
     piece.raw = std::move(held_bytes_.front());
     held_bytes_.pop_front();
-    if (v.missing_before > 0)
+    // The tuner settles in the first samples: they go (a loss among them matters to no one).
+    const bool settling = settle_bytes_left_ > 0;
+    if (settling) {
+      const auto drop = static_cast<std::size_t>(
+          std::min<std::int64_t>(settle_bytes_left_, static_cast<std::int64_t>(piece.raw.size())));
+      piece.raw.erase(piece.raw.begin(), piece.raw.begin() + static_cast<std::ptrdiff_t>(drop));
+      settle_bytes_left_ -= static_cast<std::int64_t>(drop);
+      if (piece.raw.empty()) continue;
+    }
+    if (v.missing_before > 0 && !settling) {
       spdlog::warn("{}: {} samples ({:.3f} s) went missing before sample {}: the server dropped data", url_,
                    v.missing_before, static_cast<double>(v.missing_before) / rtl_.tuning.sample_rate_hz,
                    next_index_ + v.missing_before);
-    next_index_ += v.missing_before;
+      next_index_ += v.missing_before;
+    }
     piece.first_sample_index = next_index_;
-    next_index_ += v.count;
+    next_index_ += static_cast<std::int64_t>(piece.raw.size() / 2);
     if (!queue_.try_push(std::move(piece))) {
       // The receiver falls behind: arrival times now say when we read, not when the dongle
       // sampled, so they cannot tell losses until a new baseline stands.
@@ -120,13 +133,40 @@ bool RtlTcpSampleSource::release(bool flush) {
       if (!queue_.push(std::move(piece), cancel_)) return false;
     }
   }
+  report_pace();
   return true;
+}
+
+void RtlTcpSampleSource::report_pace() {
+  const bool slow = detector_.slow();
+  const double fs = rtl_.tuning.sample_rate_hz;
+  if (slow && !reported_slow_) {
+    const double pace = detector_.pace().mean().value_or(0.0);
+    spdlog::warn(
+        "{}: the stream runs at {:.3g} of real time ({:.0f} of {:.0f} samples/s): the sender is slower than the "
+        "sample rate, which a dongle is not; its samples are taken as they come, and lost ones cannot be told "
+        "from arrival times while it is",
+        url_, pace, pace * fs, fs);
+  } else if (!slow && reported_slow_) {
+    spdlog::info("{}: the stream keeps real time again", url_);
+  }
+  reported_slow_ = slow;
+  update_stats([&](StreamStats& s) {
+    s.pace_of_real_time = detector_.pace().overall();
+    s.slower_than_real_time = s.slower_than_real_time || slow;
+  });
+}
+
+std::string RtlTcpSampleSource::end_reason(const std::string& why) const {
+  if (next_index_ > 0 || settle_bytes_left_ == settle_bytes_) return why;
+  // Everything that came went while the tuner settled: say so, for the run that got nothing.
+  return fmt::format("{}; every sample received came within the first {} s, discarded while the tuner settles", why,
+                     rtl_.settle_s);
 }
 
 void RtlTcpSampleSource::io_loop() {
   std::vector<std::byte> buffer(kReadBytes);
   std::vector<std::byte> data;
-  auto settle_bytes = static_cast<std::int64_t>(2 * std::llround(rtl_.settle_s * rtl_.tuning.sample_rate_hz));
   std::string why;
   while (!cancel_) {
     const std::size_t got = asio_wait::read_some(io_, socket_, buffer, kIdleTimeout_s, cancel_, why);
@@ -134,12 +174,6 @@ void RtlTcpSampleSource::io_loop() {
     update_stats([&](StreamStats& s) { s.bytes_received += static_cast<std::int64_t>(got); });
     // cu8 samples are byte pairs: a read may end inside one (data keeps that byte).
     data.insert(data.end(), buffer.begin(), buffer.begin() + static_cast<std::ptrdiff_t>(got));
-    if (settle_bytes > 0) {
-      const auto drop =
-          static_cast<std::size_t>(std::min<std::int64_t>(settle_bytes, static_cast<std::int64_t>(data.size())));
-      data.erase(data.begin(), data.begin() + static_cast<std::ptrdiff_t>(drop));
-      settle_bytes -= static_cast<std::int64_t>(drop);
-    }
     const std::size_t whole = data.size() / 2 * 2;
     if (whole > 0) {
       detector_.arrived(seconds_now(), static_cast<std::int64_t>(whole / 2));
@@ -148,7 +182,7 @@ void RtlTcpSampleSource::io_loop() {
     }
     if (!release(false)) break;
   }
-  if (!cancel_ && release(true)) queue_.finish({why, false});
+  if (!cancel_ && release(true)) queue_.finish({end_reason(why), false});
   if (cancel_) queue_.finish({"interrupted", false});
 }
 

@@ -7,11 +7,14 @@
 // carries no sample indices: samples the server drops (it does when the link cannot carry
 // the rate) are found from arrival times (receiver/stream/arrival_loss_detector.hpp), which
 // holds the samples back for its horizon (1 s) before the receiver sees them, and reported as
-// gaps the channels coast across. The first samples after tuning are discarded while the
-// tuner settles. A closed connection ends the stream (a dongle's stream cannot be resumed).
+// gaps the channels coast across. A sender slower than real time is slow, not lossy: it is
+// warned of, with its pace, and its samples are taken as they come (no losses are counted
+// while it is). The first samples after tuning are discarded while the tuner settles. A
+// closed connection ends the stream (a dongle's stream cannot be resumed).
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
 #include <optional>
+#include <string>
 
 #include "receiver/stream/arrival_loss_detector.hpp"
 #include "receiver/stream/rtltcp_protocol.hpp"
@@ -43,8 +46,14 @@ class RtlTcpSampleSource final : public StreamSampleSource {
 
  private:
   void io_loop();
-  /// Releases the pieces whose verdict is in into the queue; false once cancelled.
+  /// Releases the pieces whose verdict is in into the queue (those of the settling time
+  /// dropped); false once cancelled.
   bool release(bool flush);
+  /// Warns when the stream turns slower than real time (and says when it keeps it again);
+  /// keeps the stats' pace up to date.
+  void report_pace();
+  /// Why the stream ended, with what became of its samples when none got past settling.
+  std::string end_reason(const std::string& why) const;
 
   RtlTcpSettings rtl_;
   boost::asio::io_context io_;
@@ -53,6 +62,9 @@ class RtlTcpSampleSource final : public StreamSampleSource {
   ArrivalLossDetector detector_;
   std::deque<std::vector<std::byte>> held_bytes_;  ///< the bytes of the pieces the detector holds
   std::int64_t next_index_ = 0;
+  const std::int64_t settle_bytes_;  ///< discarded after tuning
+  std::int64_t settle_bytes_left_;
+  bool reported_slow_ = false;
 };
 
 }  // namespace deepnav

@@ -100,9 +100,16 @@ bool StreamSampleSource::next_piece() {
         ended_ = true;
         const StreamEnd end = queue_.end();
         end_index_ = end.end_sample_index;
+        // A stream that ends before its first sample gave the run nothing to process: a
+        // failure, not an empty run that looks like a finished one.
+        const bool empty = delivered_ == 0;
         update_stats([&](StreamStats& s) {
-          s.end_reason = end.reason;
-          s.failed = end.failed;
+          s.end_reason = empty && !end.failed ? fmt::format(
+                                                    "the stream ended ({}) without a sample to process "
+                                                    "({} bytes received)",
+                                                    end.reason, s.bytes_received)
+                                              : end.reason;
+          s.failed = end.failed || empty;
         });
         return false;
       }
@@ -165,6 +172,7 @@ std::size_t StreamSampleSource::read(std::span<Sample> out) {
       held_offset_ += n * bps;
       filled += n;
       next_index_ += static_cast<std::int64_t>(n);
+      delivered_ += static_cast<std::int64_t>(n);
     }
     if (held_offset_ >= p.raw.size()) {
       held_.pop_front();

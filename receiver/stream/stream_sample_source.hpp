@@ -60,6 +60,12 @@ struct StreamStats {
   std::string end_reason;
   bool failed = false;
   bool interrupted = false;
+  /// rtl_tcp: the samples received per second of the stream's arrival time, as a fraction
+  /// of the sample rate (1: real time); and whether it fell below kSlowPace at some point.
+  std::optional<double> pace_of_real_time;
+  bool slower_than_real_time = false;
+  /// Raw UDP: datagrams that ended inside a sample (the rest carried into the next one).
+  std::int64_t datagrams_split_samples = 0;
 };
 
 class StreamSampleSource : public SampleSource {
@@ -70,13 +76,16 @@ class StreamSampleSource : public SampleSource {
   double intermediate_frequency_hz() const override { return header_.if_hz; }
   bool is_real() const override { return !is_complex(header_.format); }
   /// Returns 0 at the end of the stream, also when it failed (protocol violation,
-  /// connection lost for good; stats().failed and end_reason say so) or was stopped.
+  /// connection lost for good, or it ended before delivering a single sample;
+  /// stats().failed and end_reason say so) or was stopped.
   std::size_t read(std::span<Sample> out) override;
   std::int64_t next_sample_index() const override { return next_index_; }
   bool at_end() const override { return at_end_; }
 
   const stream::StreamHeader& header() const { return header_; }
   const std::string& url() const { return url_; }
+  /// Bare samples without header or frames (StreamSourceSettings::raw).
+  bool raw() const { return settings_.raw; }
   StreamStats stats() const;
   bool interrupted() const { return interrupted_; }
 
@@ -121,6 +130,7 @@ class StreamSampleSource : public SampleSource {
   std::deque<StreamPiece> held_;  ///< pieces taken from the queue, the front partly consumed
   std::size_t held_offset_ = 0;   ///< bytes of held_.front() already delivered
   std::int64_t next_index_ = 0;
+  std::int64_t delivered_ = 0;             ///< samples read() returned
   std::optional<std::int64_t> end_index_;  ///< one past the last sample, once the end says so
   bool at_end_ = false, ended_ = false, interrupted_ = false;
   mutable std::mutex stats_mutex_;

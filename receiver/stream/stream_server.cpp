@@ -54,6 +54,24 @@ std::string ranges_text(const std::vector<std::uint64_t>& v) {
 
 }  // namespace
 
+void check_frame_payload(const std::string& option, std::uint32_t payload_bytes, SampleFormat format, bool framed) {
+  const std::size_t bps = bytes_per_sample(format);
+  if (payload_bytes % bps == 0 && payload_bytes >= kMinFramePayloadBytes) return;
+  const std::size_t whole = payload_bytes / bps * bps;
+  const std::string cost =
+      framed ? fmt::format("{} sample{} in a {}-byte frame, {:.0f} % of it the {}-byte header", whole / bps,
+                           whole / bps == 1 ? "" : "s", whole + stream::kFrameHeaderBytes,
+                           100.0 * static_cast<double>(stream::kFrameHeaderBytes) /
+                               static_cast<double>(whole + stream::kFrameHeaderBytes),
+                           stream::kFrameHeaderBytes)
+             : fmt::format("{} sample{} a send", whole / bps, whole / bps == 1 ? "" : "s");
+  throw std::invalid_argument(fmt::format(
+      "{} {}: a frame carries whole {} samples ({} bytes each) and at least {} bytes ({} would send {}); give a "
+      "multiple of {} from {}",
+      option, payload_bytes, to_string(format), bps, kMinFramePayloadBytes, payload_bytes, cost, bps,
+      (kMinFramePayloadBytes + bps - 1) / bps * bps));
+}
+
 struct StreamServer::Impl {
   StreamServerOptions opt;
   asio::io_context io;  // acceptor and UDP requests, on the run() thread

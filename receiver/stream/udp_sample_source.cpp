@@ -75,15 +75,35 @@ void UdpSampleSource::deliver(stream::Frame&& frame) {
   });
 }
 
+void UdpSampleSource::handle_raw_datagram(std::span<const std::byte> bytes) {
+  const std::size_t bps = bytes_per_sample(settings_.raw_format);
+  // A sender may cut its byte stream anywhere: the sample a datagram ends inside is
+  // completed by the next one, so that every later sample keeps its I and Q in place.
+  raw_carry_.insert(raw_carry_.end(), bytes.begin(), bytes.end());
+  const std::size_t whole = raw_carry_.size() / bps * bps;
+  const bool split = raw_carry_.size() != whole;
+  if (split && !warned_split_sample_) {
+    warned_split_sample_ = true;
+    spdlog::warn(
+        "{}: a datagram of {} bytes ends inside a {} sample ({} bytes each): the rest of the sample is taken from "
+        "the next datagram (a datagram lost after such a one would shift every later sample)",
+        url_, bytes.size(), to_string(settings_.raw_format), bps);
+  }
+  update_stats([&](StreamStats& s) {
+    s.bytes_received += static_cast<std::int64_t>(bytes.size());
+    if (split) ++s.datagrams_split_samples;
+  });
+  if (whole == 0) return;
+  StreamPiece piece{
+      raw_index_, std::vector<std::byte>(raw_carry_.begin(), raw_carry_.begin() + static_cast<std::ptrdiff_t>(whole))};
+  raw_carry_.erase(raw_carry_.begin(), raw_carry_.begin() + static_cast<std::ptrdiff_t>(whole));
+  raw_index_ += static_cast<std::int64_t>(whole / bps);
+  if (!queue_.try_push(std::move(piece))) update_stats([](StreamStats& s) { ++s.frames_overrun; });
+}
+
 void UdpSampleSource::handle_datagram(std::span<const std::byte> bytes) {
   if (settings_.raw) {
-    const std::size_t bps = bytes_per_sample(settings_.raw_format);
-    const std::size_t whole = bytes.size() / bps * bps;
-    if (whole == 0) return;
-    StreamPiece piece{raw_index_,
-                      std::vector<std::byte>(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(whole))};
-    raw_index_ += static_cast<std::int64_t>(whole / bps);
-    if (!queue_.try_push(std::move(piece))) update_stats([](StreamStats& s) { ++s.frames_overrun; });
+    handle_raw_datagram(bytes);
     return;
   }
   if (!header_seen_ && bytes.size() >= 4 && std::memcmp(bytes.data(), stream::kFrameMagic.data(), 4) == 0) {

@@ -4,7 +4,8 @@
 // is a header or one frame, and the FrameSequencer restores order, drops duplicates and
 // names each lost frame; the samples of lost frames become reported gaps. With
 // `listen`, binds host:port and takes what arrives (a server pushing to it). Raw
-// datagrams (bare samples) carry no index, so their losses cannot be detected.
+// datagrams (bare samples) carry no index, so their losses cannot be detected; they are
+// taken as one byte stream, a sample split across two datagrams put back together.
 #include <atomic>
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/udp.hpp>
@@ -32,6 +33,7 @@ class UdpSampleSource final : public StreamSampleSource {
   void io_loop();
   void send_request(bool stop);
   void handle_datagram(std::span<const std::byte> bytes);
+  void handle_raw_datagram(std::span<const std::byte> bytes);
   void deliver(stream::Frame&& frame);
 
   boost::asio::io_context io_;
@@ -42,6 +44,8 @@ class UdpSampleSource final : public StreamSampleSource {
   FrameSequencer sequencer_;
   std::int64_t resume_from_ = 0;
   std::int64_t raw_index_ = 0;
+  std::vector<std::byte> raw_carry_;  ///< raw: the start of a sample a datagram ended inside
+  bool warned_split_sample_ = false;
   bool finished_ = false;
 };
 

@@ -21,8 +21,12 @@ LnavSignTable::LnavSignTable(const lnav::LnavContent& content, std::int64_t firs
   first_subframe_ = first_ms / 6000;
   const std::int64_t last_subframe = last_ms / 6000;
   signs_.reserve(static_cast<std::size_t>((last_subframe - first_subframe_ + 1) * lnav::kBitsPerSubframe));
+  // Subframe 1 carries the week it is sent in (not toe's): its week number rolls over with
+  // the time of week, in the first subframe 1 after a week boundary.
+  lnav::LnavContent sent = content;
   for (std::int64_t g = first_subframe_; g <= last_subframe; ++g) {
-    const lnav::Subframe sf = lnav::subframe_of_week(content, g % lnav::kTowCountsPerWeek);
+    sent.transmission_week = static_cast<int>(g / lnav::kTowCountsPerWeek);
+    const lnav::Subframe sf = lnav::subframe_of_week(sent, g % lnav::kTowCountsPerWeek);
     for (int i = 0; i < lnav::kBitsPerSubframe; ++i) signs_.push_back(lnav::subframe_bit(sf, i) ? -1 : 1);
   }
 }

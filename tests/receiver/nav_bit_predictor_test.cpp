@@ -119,6 +119,19 @@ TEST(NavBitPredictor, PredictsAPageCycleAfterOneFrameAndExactlyAfterAllPages) {
   }
 }
 
+TEST(NavBitPredictor, TheWeekNumberRollingOverIsNoUpload) {
+  // Subframe 1 in the last frame of week 2190 and the first of 2191: the same data set with
+  // WN 2190 then 2191. No upload, and subframes 2 and 3 stay known.
+  const Ephemeris& eph = ephemeris(10, 597600.0);
+  const std::int64_t week_end = subframe_at(2191, 0.0);
+  const LnavSignTable table = stream(eph, week_end - 5, week_end + 5);
+  NavBitPredictor predictor;
+  for (std::int64_t s = week_end - 5; s < week_end + 1; ++s) predictor.learn(decoded(table, s));
+  EXPECT_EQ(predictor.uploads_seen(), 0);
+  EXPECT_EQ(predictor.body_words_known(2), 8);
+  EXPECT_EQ(predictor.body_words_known(3), 8);
+}
+
 TEST(NavBitPredictor, HowCountsAcrossTheFrameAndWeekBoundary) {
   const Ephemeris& eph = ephemeris(10, 597600.0);
   const std::int64_t week_end = subframe_at(2191, 0.0);  // first subframe of week 2191

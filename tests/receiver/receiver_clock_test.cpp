@@ -1,7 +1,9 @@
 // The receiver clock: set once four transmit times and a week near the data exist, 68 ms
 // after the latest transmit time, then running with the samples; steered by biases beyond
 // a kilometre; the broadcast 10-bit week resolved against the reference week, the assisted
-// ephemerides or the build date, and a week that contradicts the reference an error.
+// ephemerides or the build date, and a week that contradicts the reference an error whose
+// advice names the week the data is in. Near a week boundary a reference week alone does
+// not date the clock: the data may lie on either side.
 #include "receiver/receiver_clock.hpp"
 
 #include <gtest/gtest.h>
@@ -19,13 +21,14 @@ namespace deepnav {
 namespace {
 
 constexpr double kFs = 4.0e6;
-const std::vector<double> kFourTransmitTimes{100.010, 100.020, 100.004, 100.015};
+// Mid-week (Wednesday noon): far from either week boundary.
+const std::vector<double> kFourTransmitTimes{302400.010, 302400.020, 302400.004, 302400.015};
 
 using testing::error_of;
 
 TEST(ReceiverClock, IsSetOnceFourTransmitTimesExist) {
   ReceiverClock clock(kFs, 2190, "--week");
-  clock.set_from_transmit_times({100.010, 100.020, 100.004}, 8000);
+  clock.set_from_transmit_times({302400.010, 302400.020, 302400.004}, 8000);
   EXPECT_FALSE(clock.is_set());
   EXPECT_FALSE(clock.at(8000).has_value());
   clock.set_from_transmit_times(kFourTransmitTimes, 8000);
@@ -33,7 +36,7 @@ TEST(ReceiverClock, IsSetOnceFourTransmitTimesExist) {
   // The latest transmit time plus the 68 ms a signal travels, at the sample it was set at.
   const GpsTime t = *clock.at(8000);
   EXPECT_EQ(t.week, 2190);
-  EXPECT_NEAR(t.sow, 100.020 + kInitialTravelTime_s, 1e-9);
+  EXPECT_NEAR(t.sow, 302400.020 + kInitialTravelTime_s, 1e-9);
   // Then it runs with the sample count.
   EXPECT_NEAR(clock.at(8000 + 2 * static_cast<std::int64_t>(kFs))->seconds_since(t), 2.0, 1e-9);
   EXPECT_EQ(clock.reference()->reference_sample, 8000);
@@ -50,7 +53,7 @@ TEST(ReceiverClock, WithoutAReferenceWaitsForTheBroadcastWeek) {
   EXPECT_FALSE(clock.is_set());
   const int build_week = build_time().week;
   EXPECT_EQ(clock.resolution_week(), build_week);
-  clock.take_broadcast_week(5, build_week % 1024, 96.0, 4000);
+  clock.take_broadcast_week(5, build_week % 1024, 302396.0, 4000);
   EXPECT_EQ(clock.signal_week(), build_week);
   clock.set_from_transmit_times(kFourTransmitTimes, 8000);
   ASSERT_TRUE(clock.is_set());
@@ -108,7 +111,7 @@ TEST(ReceiverClock, AssistedEphemeridesGiveTheWeekNearTheData) {
   EXPECT_EQ(clock.at(0)->week, 2190);
   // The clock set from assistance must agree with the first subframe 1: five weeks off is
   // a navigation file of another day.
-  const std::string error = error_of([&] { clock.take_broadcast_week(5, 2195 % 1024, 96.0, 0); });
+  const std::string error = error_of([&] { clock.take_broadcast_week(5, 2195 % 1024, 302396.0, 0); });
   EXPECT_NE(error.find("the assisted ephemerides (brdc0010.22n, week 2190)"), std::string::npos) << error;
   EXPECT_NE(error.find("a navigation file of another day?"), std::string::npos) << error;
 }
@@ -130,6 +133,66 @@ TEST(ReceiverClock, AWeekEitherSideOfTheReferenceIsNoContradiction) {
   // The first subframe 1 decides; later ones change nothing.
   clock.take_broadcast_week(9, 2189 % 1024, 96.0, 0);
   EXPECT_EQ(clock.signal_week(), 2191);
+}
+
+TEST(ReceiverClock, NearAWeekBoundaryAReferenceWeekWaitsForTheSignal) {
+  // Transmit times 10 s into a week: with --week 2190 they could be of week 2190 (data that
+  // began just after its start) or 2191 (data that began in 2190, before the boundary).
+  const std::vector<double> after_boundary{10.010, 10.020, 10.004, 10.015};
+  ReceiverClock clock(kFs, 2190, "--week");
+  clock.set_from_transmit_times(after_boundary, 8000);
+  EXPECT_FALSE(clock.is_set());
+  // Subframe 1 sent at second 6 of week 2191 settles it.
+  clock.take_broadcast_week(5, 2191 % 1024, 6.0, 4000);
+  clock.set_from_transmit_times(after_boundary, 8000);
+  ASSERT_TRUE(clock.is_set());
+  EXPECT_EQ(clock.at(8000)->week, 2191);
+  // Just before a boundary too; an hour away the reference week dates the clock.
+  ReceiverClock before(kFs, 2191, "--week");
+  before.set_from_transmit_times({604790.0, 604790.0, 604790.0, 604790.0}, 8000);
+  EXPECT_FALSE(before.is_set());
+  before.set_from_transmit_times({604800.0 - kWeekBoundaryMargin_s - 1.0, 0.0, 0.0, 0.0}, 8000);
+  ASSERT_TRUE(before.is_set());
+  EXPECT_EQ(before.at(8000)->week, 2191);
+}
+
+TEST(ReceiverClock, AssistedEphemeridesDateTheClockNearABoundary) {
+  // The assisted ephemerides' epoch is a time, hours from the data: it tells the week of
+  // transmit times 10 s into a week (2191), where --week 2190 alone could not.
+  ReceiverClock clock(kFs, 2190, "--week");
+  NavData nav;
+  nav.source = "brdc0010.22n";
+  Ephemeris e;
+  e.week = 2190;
+  e.toe_s = 597600.0;  // 2022-01-01 22:00
+  nav.ephemerides.push_back(e);
+  clock.use_assisted_ephemerides(nav);
+  EXPECT_EQ(clock.resolution_week(), 2190);  // --week still resolves the week numbers
+  clock.set_from_transmit_times({10.010, 10.020, 10.004, 10.015}, 8000);
+  ASSERT_TRUE(clock.is_set());
+  EXPECT_EQ(clock.at(8000)->week, 2191);
+  EXPECT_NEAR(clock.at(8000)->sow, 10.020 + kInitialTravelTime_s, 1e-9);
+  // The signal agrees: week 2191 sent at second 6 (the clock 4 s later by then).
+  EXPECT_NO_THROW(clock.take_broadcast_week(5, 2191 % 1024, 6.0, 8000));
+}
+
+TEST(ReceiverClock, AClockAWeekOffNamesTheWeekOfTheData) {
+  // --week 2191 for data of Wednesday of week 2190: the clock is dated a week late; the
+  // first subframe 1 (week 2190, a week either side of 2191, so no contradiction of the
+  // reference itself) shows it. The advice names the data's week, not the one given.
+  ReceiverClock clock(kFs, 2191, "--week");
+  clock.set_from_transmit_times(kFourTransmitTimes, 0);
+  ASSERT_TRUE(clock.is_set());
+  EXPECT_EQ(clock.at(0)->week, 2191);
+  const std::string error = error_of([&] { clock.take_broadcast_week(9, 2190 % 1024, 302400.0, 0); });
+  EXPECT_NE(error.find("the GPS week of --week 2191 contradicts the signal: PRN 9 broadcasts week number 142"),
+            std::string::npos)
+      << error;
+  EXPECT_NE(error.find("i.e. week 2190, 7.0 days from the receiver clock it dated"), std::string::npos) << error;
+  EXPECT_NE(error.find("the data is in week 2190 where the clock was set; give --week 2190 or leave it out"),
+            std::string::npos)
+      << error;
+  EXPECT_EQ(error.find("give --week 2191"), std::string::npos) << error;
 }
 
 TEST(ReceiverClock, ANegativeReferenceWeekIsAnError) {

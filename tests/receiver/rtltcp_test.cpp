@@ -89,7 +89,8 @@ struct Feed {
   std::vector<ArrivalLossDetector::Verdict> verdicts;
   std::int64_t made = 0;  ///< samples the dongle has made
   void run(double seconds, const std::function<double(double)>& extra_latency, double jitter_s = 0.003,
-           double rate_factor = 1.0, std::int64_t drop_at = -1, std::int64_t drop = 0) {
+           double rate_factor = 1.0, std::int64_t drop_at = -1, std::int64_t drop = 0,
+           const std::function<void(double, std::size_t)>& on_release = {}) {
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> jitter(0.0, jitter_s);
     const auto end = static_cast<std::int64_t>(seconds * fs);
@@ -99,7 +100,9 @@ struct Feed {
       if (drop_at >= 0 && made > drop_at && made <= drop_at + drop) continue;  // never sent
       const double t = t_made + 0.002 + jitter(rng) + extra_latency(t_made);
       detector.arrived(t, piece);
-      for (const auto& v : detector.release(t)) verdicts.push_back(v);
+      const auto released = detector.release(t);
+      if (on_release) on_release(t, released.size());
+      verdicts.insert(verdicts.end(), released.begin(), released.end());
     }
     for (const auto& v : detector.release(1e9, true)) verdicts.push_back(v);
   }
@@ -147,20 +150,66 @@ TEST(ArrivalLossDetector, ADroppedStretchIsLostBeforeTheRightPiece) {
 }
 
 TEST(ArrivalLossDetector, NoVerdictAgainstABaselineThatWasReset) {
-  // Real time, then everything 0.3 s later from then on: a loss of 300 samples; but not when
-  // the consumer fell behind in between (a shift then may be its own backlog, not the
-  // server's doing).
+  // Real time for 3 s, then everything 0.3 s later from then on: a loss of 300 samples; but
+  // not when the consumer fell behind in between (a shift then may be its own backlog, not
+  // the server's doing).
   for (const bool reset : {false, true}) {
     ArrivalLossDetector d(1000.0, 0.025, 0.1, 10.0);
     std::int64_t lost = 0;
     double t = 0.0;
-    for (int i = 0; i < 50; ++i) d.arrived(t += 0.01, 10);
+    for (int i = 0; i < 300; ++i) d.arrived(t += 0.01, 10);
     for (const auto& v : d.release(t)) lost += v.missing_before;
     if (reset) d.backlogged(t);
-    for (int i = 0; i < 50; ++i) d.arrived((t += 0.01) + 0.3, 10);
+    for (int i = 0; i < 300; ++i) d.arrived((t += 0.01) + 0.3, 10);
     for (const auto& v : d.release(t + 1.0, true)) lost += v.missing_before;
     EXPECT_EQ(lost, reset ? 0 : 300) << (reset ? "after a reset" : "without one");
+    EXPECT_FALSE(d.slow());
   }
+}
+
+TEST(ArrivalLossDetector, PiecesWaitUntilThePaceIsKnown) {
+  // A loss in the first second is judged where it happened, once 2 s of arrivals tell the
+  // pace: no piece is released before.
+  Feed f;
+  const std::int64_t drop_at = 16384 * 40, drop = 16384 * 12;  // ~96 ms after ~0.3 s
+  std::size_t released_early = 0;
+  f.run(
+      20.0, [](double) { return 0.0; }, 0.003, 1.0, drop_at, drop,
+      [&](double t, std::size_t released) {
+        if (t < 2.0) released_early += released;
+      });
+  EXPECT_EQ(released_early, 0u);
+  EXPECT_NEAR(static_cast<double>(f.lost()), static_cast<double>(drop), 0.004 * f.fs);
+  std::int64_t delivered = 0;
+  for (const auto& v : f.verdicts) {
+    if (v.missing_before > 0) {
+      EXPECT_EQ(delivered, drop_at);
+    }
+    delivered += v.count;
+  }
+}
+
+TEST(ArrivalLossDetector, ASlowSenderIsSlowNotLossy) {
+  // Half real time (a file replayed slowly): every piece later than the one before, which
+  // once made 19.9 M samples "lost" in 304 gaps. No loss, and the stream is slow.
+  Feed half;
+  half.run(
+      20.0, [](double) { return 0.0; }, 0.003, 0.5);
+  EXPECT_EQ(half.lost(), 0);
+  EXPECT_TRUE(half.detector.slow());
+  EXPECT_NEAR(*half.detector.pace().overall(), 0.5, 0.01);
+  // 0.9 of real time (a link a little narrower than the rate): slow too.
+  Feed narrow;
+  narrow.run(
+      20.0, [](double) { return 0.0; }, 0.003, 0.9);
+  EXPECT_EQ(narrow.lost(), 0);
+  EXPECT_TRUE(narrow.detector.slow());
+  // A loss while the sender keeps real time is still one.
+  Feed lossy;
+  lossy.run(
+      20.0, [](double) { return 0.0; }, 0.003, 1.0, 16384 * 1250, 16384 * 12);
+  EXPECT_FALSE(lossy.detector.slow());
+  EXPECT_GT(lossy.lost(), 0);
 }
 
 TEST(RtlTcpSource, TunesTheDongleAndStreamsItsSamples) {

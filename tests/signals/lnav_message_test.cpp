@@ -182,15 +182,21 @@ void expect_ephemeris_fields_near(const Ephemeris& got, const Ephemeris& want) {
   near(got.idot_radps, want.idot_radps, 0x1p-43 * kSc, "IDOT");
 }
 
-// Decodes subframes 1-3 of a content and merges them the way a receiver does.
+// The HOW TOW count of subframe 1 sent at toe (a data set is broadcast around its toe:
+// WN, the week of transmission, is then toe's week).
+int tow_count_at_toe(const Ephemeris& e) { return static_cast<int>(e.toe_s / 6.0) % kTowCountsPerWeek + 1; }
+
+// Decodes subframes 1-3 of a content, sent from its toe on, and merges them the way a
+// receiver does.
 Ephemeris decode_ephemeris(const LnavContent& c, int reference_week) {
   EphemerisAssembler assembler(c.eph.prn, reference_week);
   for (int id = 1; id <= 3; ++id) {
-    const auto sf = decode_subframe(encode_subframe(id, c, 1000 + id, 1));
+    const int tow_count = (tow_count_at_toe(c.eph) + id - 1) % kTowCountsPerWeek;
+    const auto sf = decode_subframe(encode_subframe(id, c, tow_count, 1));
     EXPECT_TRUE(sf.has_value()) << "subframe " << id;
     if (!sf) return {};
     EXPECT_EQ(sf->tlm_how.subframe_id, id);
-    EXPECT_EQ(sf->tlm_how.tow_count, 1000 + id);
+    EXPECT_EQ(sf->tlm_how.tow_count, tow_count);
     EXPECT_EQ(assembler.add(*sf), id == 3);
   }
   EXPECT_TRUE(assembler.ephemeris().has_value());
@@ -203,7 +209,7 @@ TEST(LnavMessage, RealEphemerisRoundTrip) {
   expect_ephemeris_fields_near(got, want);
   EXPECT_EQ(got.prn, 1);
   EXPECT_EQ(got.week, 2190);
-  EXPECT_DOUBLE_EQ(got.transmission_time_s, 6.0 * 1000);
+  EXPECT_DOUBLE_EQ(got.transmission_time_s, 6.0 * (tow_count_at_toe(want) - 1));
 }
 
 TEST(LnavMessage, ExtremeFieldValuesRoundTrip) {
@@ -634,6 +640,40 @@ TEST(LnavMessage, AssemblerNeedsMatchingIssueOfData) {
   EXPECT_EQ(assembler.ephemeris()->iodc, 0x127);
   // The same data again is not a new ephemeris.
   EXPECT_FALSE(assembler.add(*decode_subframe(encode_subframe(2, c, 7, 1))));
+}
+
+TEST(LnavMessage, SubframeOneCarriesTheWeekOfTransmission) {
+  // An ephemeris of toe 2191/0 sent in the last minutes of week 2190: WN is 2190's, and
+  // the assembled ephemeris's week is toe's (2191), from WN and the time of transmission.
+  auto c = content_with(real_ephemeris_prn1());
+  c.eph.week = 2191;
+  c.eph.toe_s = 0.0;
+  c.eph.toc_s = 0.0;
+  c.transmission_week = 2190;
+  const auto sf1 = decode_subframe(encode_subframe(1, c, 100797, 1));
+  ASSERT_TRUE(sf1.has_value());
+  EXPECT_EQ(sf1->eph.week, 2190 % 1024);
+  EphemerisAssembler late(1, 2190);
+  late.add(*sf1);
+  late.add(*decode_subframe(encode_subframe(2, c, 100798, 1)));
+  late.add(*decode_subframe(encode_subframe(3, c, 100799, 1)));
+  ASSERT_TRUE(late.ephemeris().has_value());
+  EXPECT_EQ(late.ephemeris()->week, 2191);
+  EXPECT_EQ(late.ephemeris()->transmission_time_s, 604776.0);
+  // Toe 2190/597600 (22:00 on the last day) still sent after the boundary, in week 2191.
+  c.eph.week = 2190;
+  c.eph.toe_s = 597600.0;
+  c.eph.toc_s = 597600.0;
+  c.transmission_week = 2191;
+  EphemerisAssembler after(1, 2190);
+  after.add(*decode_subframe(encode_subframe(1, c, 1, 1)));
+  after.add(*decode_subframe(encode_subframe(2, c, 2, 1)));
+  after.add(*decode_subframe(encode_subframe(3, c, 3, 1)));
+  ASSERT_TRUE(after.ephemeris().has_value());
+  EXPECT_EQ(after.ephemeris()->week, 2190);
+  // Without a week of transmission the message carries toe's week (data of one week).
+  c.transmission_week.reset();
+  EXPECT_EQ(decode_subframe(encode_subframe(1, c, 1, 1))->eph.week, 2190 % 1024);
 }
 
 TEST(LnavMessage, WeekResolution) {

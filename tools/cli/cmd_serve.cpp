@@ -3,10 +3,12 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "receiver/gnss_receiver.hpp"
 #include "receiver/sources/sample_source_factory.hpp"
 #include "receiver/stream/stream_protocol.hpp"
 #include "receiver/stream/stream_server.hpp"
@@ -15,6 +17,7 @@
 #include "signals/rinex_nav.hpp"
 #include "signals/sim/scenario.hpp"
 #include "signals/sim/synthesized_if_stream.hpp"
+#include "tools/cli/cli_checks.hpp"
 #include "tools/cli/commands.hpp"
 #include "tools/cli/stop_signals.hpp"
 
@@ -46,7 +49,29 @@ std::optional<GpsTime> start_time_beside(const std::filesystem::path& file) {
   }
 }
 
-std::function<std::unique_ptr<IfByteStream>()> stream_opener(const ServeOptions& o) {
+/// --if for a file: a receiver takes an IF strictly inside +-fs/2 (GnssReceiver), so a
+/// stream beyond it is refused here, before any client is served.
+void check_file_if(const ServeOptions& o) {
+  if (!(std::abs(o.if_hz) < o.fs_hz / 2))
+    throw UserError(
+        fmt::format("--if {} Hz: not below half the sample rate (--fs {} Hz: |IF| < {} Hz), so no "
+                    "receiver could take the stream",
+                    o.if_hz, o.fs_hz, o.fs_hz / 2));
+}
+
+/// The payload options of the ports served, for samples of `format` (check_frame_payload).
+void check_payloads(const ServeOptions& o, SampleFormat format) {
+  try {
+    if (o.tcp_port) check_frame_payload("--frame-bytes", o.server.tcp_payload_bytes, format, !o.server.raw);
+    if (o.udp_port) check_frame_payload("--udp-frame-bytes", o.server.udp_payload_bytes, format, !o.server.raw);
+  } catch (const std::invalid_argument& e) {
+    throw UserError(e.what());
+  }
+}
+
+/// Opens the scenario or file once to check it, and returns how each session opens its
+/// own stream; `format` becomes the stream's sample format.
+std::function<std::unique_ptr<IfByteStream>()> stream_opener(const ServeOptions& o, SampleFormat& format) {
   if (o.scenario_path.empty() == o.file_path.empty()) throw UserError("give either --scenario or --file");
   if (!o.scenario_path.empty()) {
     Scenario sc;
@@ -70,6 +95,7 @@ std::function<std::unique_ptr<IfByteStream>()> stream_opener(const ServeOptions&
           fmt::format("{}: format {} cannot be streamed (the stream protocol carries ibyte, ishort, "
                       "gr_complex, byte and cu8; packed formats are for files)",
                       o.scenario_path, to_string(sc.format)));
+    format = sc.format;
     spdlog::info("scenario '{}': {} s, {} satellites, {} jammer(s), {} at {} Hz", sc.name, sc.duration_s,
                  synth->satellites().size(), sc.jammers.size(), to_string(sc.format), sc.sample_rate_hz);
     return [synth, threads = o.threads] { return std::make_unique<SynthesizedIfStream>(synth, threads); };
@@ -87,6 +113,8 @@ std::function<std::unique_ptr<IfByteStream>()> stream_opener(const ServeOptions&
                     "gr_complex, byte and cu8; packed formats are for files)",
                     to_string(fo.format)));
   if (!(o.fs_hz > 0.0)) throw UserError("--file needs its sample rate (--fs)");
+  check_file_if(o);
+  format = fo.format;
   fo.sample_rate_hz = o.fs_hz;
   fo.if_hz = o.if_hz;
   fo.start_time = start_time_beside(fo.path);
@@ -101,7 +129,9 @@ std::function<std::unique_ptr<IfByteStream>()> stream_opener(const ServeOptions&
 void serve(ServeOptions o) {
   use_thread_safe_logger();
   if (!o.tcp_port && !o.udp_port) throw UserError("give --tcp PORT and/or --udp PORT (0: any free port)");
-  o.server.open_stream = stream_opener(o);
+  SampleFormat format{};
+  o.server.open_stream = stream_opener(o, format);
+  check_payloads(o, format);
   o.server.bind_address = o.bind;
   o.server.tcp_port = o.tcp_port;
   o.server.udp_port = o.udp_port;
@@ -140,8 +170,11 @@ void add_serve_command(CommandParents& parents) {
   auto* file = cmd->add_option("--file", o->file_path, "IF file to serve instead")->check(CLI::ExistingFile);
   scenario->excludes(file);
   cmd->add_option("--format", o->format, "--file's format: " + sample_format_choices())->capture_default_str();
-  cmd->add_option("--fs", o->fs_hz, "--file's sample rate (Hz)");
-  cmd->add_option("--if", o->if_hz, "--file's intermediate frequency (Hz)")->capture_default_str();
+  cmd->add_option("--fs", o->fs_hz, "--file's sample rate (Hz)")
+      ->check(finite_above(0.0, kMaxSampleRate_hz, "a sample rate in Hz"));
+  cmd->add_option("--if", o->if_hz, "--file's intermediate frequency (Hz), below half the sample rate")
+      ->check(finite_in(-kMaxSampleRate_hz / 2, kMaxSampleRate_hz / 2, "a frequency in Hz"))
+      ->capture_default_str();
   cmd->add_option("--duration", o->duration_s, "Override the scenario's duration (s)");
   cmd->add_option("--threads", o->threads, "Synthesis threads per session (0: all cores)")->capture_default_str();
   cmd->add_option("--tcp", o->tcp_port, "TCP port to listen on (0: any free port)");
@@ -152,8 +185,11 @@ void add_serve_command(CommandParents& parents) {
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--raw", o->server.raw, "Bare samples, no header or frames (a plain IQ socket)");
-  cmd->add_option("--frame-bytes", o->server.tcp_payload_bytes, "TCP frame payload (bytes)")->capture_default_str();
-  cmd->add_option("--udp-frame-bytes", o->server.udp_payload_bytes, "UDP frame payload (bytes, one datagram each)")
+  cmd->add_option("--frame-bytes", o->server.tcp_payload_bytes,
+                  "TCP frame payload (bytes: whole samples, at least 1024)")
+      ->capture_default_str();
+  cmd->add_option("--udp-frame-bytes", o->server.udp_payload_bytes,
+                  "UDP frame payload (bytes: whole samples, at least 1024; one datagram each)")
       ->capture_default_str();
   cmd->add_option("--drop-frames", o->drop_frames, "UDP loss injection: sequence numbers never sent")->delimiter(',');
   cmd->add_option("--drop-rate", o->server.drop_probability, "UDP loss injection: probability of dropping each frame")

@@ -9,7 +9,14 @@ delivers them. --drop-at S --drop-seconds D leaves out D seconds of samples at S
 (the server keeps its real-time schedule, as rtl_tcp does when it drops buffers), and logs
 the samples it left out. One session, then it exits.
 
+The roles of a server that is not a dongle: --pace F sends at F times real time (0.5: a
+file replayed at half speed; 0.001 with --buffer-bytes 2000: a trickle of 2000 bytes every
+half second), --seconds S serves only the file's first S seconds, --stop-after S closes the
+connection after S seconds however much was sent, and --close-after-header sends the dongle
+header, takes the tuning commands and closes without a sample.
+
 usage: rtltcp_server.py FILE --rate HZ --port-file F [--commands F] [--drop-at S --drop-seconds D]
+                        [--pace F] [--seconds S] [--stop-after S] [--close-after-header]
 """
 import argparse
 import os
@@ -58,9 +65,15 @@ def main():
     ap.add_argument("--buffer-bytes", type=int, default=32768, help="bytes a dongle buffer (sent at once)")
     ap.add_argument("--tuner", type=int, default=5, help="tuner type (5: R820T)")
     ap.add_argument("--gains", type=int, default=29, help="gain steps")
+    ap.add_argument("--pace", type=float, default=1.0, help="multiple of real time the samples are sent at")
+    ap.add_argument("--seconds", type=float, default=-1.0, help="serve only the file's first S seconds")
+    ap.add_argument("--stop-after", type=float, default=-1.0, help="close after S seconds of sending")
+    ap.add_argument("--close-after-header", action="store_true", help="send the dongle header, then close")
     a = ap.parse_args()
 
     data = open(a.file, "rb").read()
+    if a.seconds >= 0:
+        data = data[:int(a.seconds * a.rate) * 2]
     srv = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
     srv.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
     srv.bind(("127.0.0.1", 0))
@@ -72,11 +85,20 @@ def main():
     conn, _ = srv.accept()
     conn.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
     conn.sendall(b"RTL0" + struct.pack(">II", a.tuner, a.gains))
+    if a.close_after_header:
+        conn.settimeout(0.5)
+        try:
+            conn.recv(4096)  # the tuning commands: the client sends them before reading samples
+        except socket.timeout:
+            pass
+        conn.close()
+        print("rtltcp_server: sent the dongle header and closed", file=sys.stderr)
+        return
     stop = threading.Event()
     reader = threading.Thread(target=read_commands, args=(conn, a.commands, stop), daemon=True)
     reader.start()
 
-    bytes_per_s = 2.0 * a.rate
+    bytes_per_s = 2.0 * a.rate  # of signal: --drop-at and --drop-seconds are in seconds of signal
     drop_from = int(a.drop_at * bytes_per_s) // a.buffer_bytes * a.buffer_bytes if a.drop_at >= 0 else -1
     drop_to = drop_from + int(round(a.drop_seconds * bytes_per_s / a.buffer_bytes)) * a.buffer_bytes
     t0 = time.monotonic()
@@ -85,7 +107,9 @@ def main():
     try:
         while at < len(data):
             end = min(at + a.buffer_bytes, len(data))
-            due = t0 + end / bytes_per_s  # a buffer leaves once the dongle has filled it
+            due = t0 + end / (bytes_per_s * a.pace)  # a buffer leaves once the dongle has filled it
+            if 0 <= a.stop_after < due - t0:
+                break
             wait = due - time.monotonic()
             if wait > 0:
                 time.sleep(wait)

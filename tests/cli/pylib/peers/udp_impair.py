@@ -11,13 +11,18 @@
   compare: reads a relay report and the client's summary.json and checks that the
            receiver reported exactly what was injected (see expected_stream_report()).
 
+With --rechunk N the stream is raw (`deepnav serve --raw --udp`: bare samples, no header or
+frames): the server's datagrams are taken as one byte stream and sent on in datagrams of N
+bytes, which end inside a sample when N is not a multiple of the sample size (the tail goes
+once the server falls silent). The report then says how many bytes and datagrams went out.
+
 Impairments act on frame sequence numbers: explicit lists (--drop 5,6,7 --duplicate 40
 --reorder 90:3) and seeded fractions of the other frames (--drop-fraction 0.01 ...). Each
 frame gets at most one impairment. A reordered frame is held back and sent after the next
 K frames (its displacement); the frames it is held across pass untouched, so a reorder never
 overlaps another impairment and the counts stay exact.
 
-usage: udp_impair.py relay --server HOST:PORT --port-file F --report F [--seed N] [impairments]
+usage: udp_impair.py relay --server HOST:PORT --port-file F --report F [--seed N] [impairments | --rechunk N]
        udp_impair.py compare --report F --summary F [--json F]
 Python standard library only.
 """
@@ -192,6 +197,9 @@ class Relay:
         self.frames_from_server = 0
         self.log = {"dropped": [], "duplicated": [], "reordered": []}
         self.ended_by = None
+        self.raw_pending = b""  # --rechunk: bytes not yet sent on
+        self.last_from_server = time.monotonic()
+        self.raw_sent = {"bytes": 0, "datagrams": 0}
         self.rcvbuf_errors_at_start = kernel_udp_receive_buffer_errors()
         self.terminated = False
 
@@ -243,6 +251,10 @@ class Relay:
             self.client = sender  # the client's requests (subscribe, keep-alive, stop) go through untouched
             self.sock.sendto(datagram, self.server)
             return
+        self.last_from_server = time.monotonic()
+        if self.args.rechunk:
+            self.rechunk(datagram)
+            return
         kind = kind_of(datagram)
         if kind == "header":
             self.stream = parse_stream_header(datagram)
@@ -250,6 +262,16 @@ class Relay:
             self.handle_frame(datagram)
         else:
             self.to_client(datagram)
+
+    def rechunk(self, datagram, flush=False):
+        """Raw samples on in datagrams of --rechunk bytes (the tail too when `flush`)."""
+        self.raw_pending += datagram
+        size = self.args.rechunk
+        while len(self.raw_pending) >= size or (flush and self.raw_pending):
+            piece, self.raw_pending = self.raw_pending[:size], self.raw_pending[size:]
+            self.to_client(piece)
+            self.raw_sent["bytes"] += len(piece)
+            self.raw_sent["datagrams"] += 1
 
     def run(self):
         signal.signal(signal.SIGTERM, lambda *_: setattr(self, "terminated", True))
@@ -266,6 +288,9 @@ class Relay:
             try:
                 datagram, sender = self.sock.recvfrom(65536)
             except socket.timeout:
+                # The server paused or ended (the client's keep-alives go on): the tail goes on.
+                if self.raw_pending and time.monotonic() - self.last_from_server > 0.2:
+                    self.rechunk(b"", flush=True)
                 continue
             except ConnectionRefusedError:  # ICMP port unreachable from an earlier send: the peer is gone
                 continue
@@ -287,6 +312,7 @@ class Relay:
             "reordered": self.log["reordered"],
             # Stopped (SIGTERM) while a frame was held back: the client never got it.
             "held_unsent": self.held.record if self.held else None,
+            "rechunked": {"datagram_bytes": self.args.rechunk, **self.raw_sent} if self.args.rechunk else None,
             "kernel_udp_rcvbuf_errors": None if errors_now is None or self.rcvbuf_errors_at_start is None
             else errors_now - self.rcvbuf_errors_at_start,
         }
@@ -413,6 +439,8 @@ def main():
     r.add_argument("--reorder-depth", type=int, default=8, help="random reorders hold a frame across 1..K frames")
     r.add_argument("--idle-timeout", type=float, default=30.0, help="stop after this long without any datagram (s)")
     r.add_argument("--linger", type=float, default=0.5, help="keep relaying this long after the end of stream (s)")
+    r.add_argument("--rechunk", type=int, default=0,
+                   help="raw stream: send the bytes on in datagrams of N bytes (no impairments)")
     c = sub.add_parser("compare", help="check a receiver's summary.json against a relay report")
     c.add_argument("--report", required=True)
     c.add_argument("--summary", required=True)
