@@ -1,5 +1,7 @@
 #include "receiver/navdata/ephemeris_words.hpp"
 
+#include <algorithm>
+
 namespace deepnav {
 namespace {
 
@@ -28,14 +30,17 @@ bool EphemerisWords::add(std::int64_t subframe_of_week, int word_index, std::uin
   const auto e = assemble(*frame.issue_of_data);
   if (!e) return false;
   const bool changed = !ephemeris_ || ephemeris_->iode != e->iode || ephemeris_->iodc != e->iodc ||
-                       ephemeris_->toe_s != e->toe_s || ephemeris_->week != e->week ||
-                       ephemeris_->health != e->health;
+                       ephemeris_->toe_s != e->toe_s || ephemeris_->week != e->week || ephemeris_->health != e->health;
   ephemeris_ = e;
   return changed;
 }
 
 std::optional<Ephemeris> EphemerisWords::assemble(int iod) const {
   lnav::EphemerisAssembler assembler(prn_, reference_week_);
+  // Single words serve the first ephemeris, when every second counts. After it, a word that
+  // noise let through parity (one in 64) would replace a good one; so updates take whole
+  // copies, all ten words of a subframe, as broadcast data sets change at most every hour.
+  const bool whole_copies_only = ephemeris_.has_value();
   for (int id = 1; id <= 3; ++id) {
     // Each word from the newest frame of this issue of data that has it.
     lnav::PartialSubframeData merged;
@@ -44,6 +49,8 @@ std::optional<Ephemeris> EphemerisWords::assemble(int iod) const {
       const Frame& f = it->second;
       if (f.conflicting || f.issue_of_data != iod) continue;
       const auto& words = f.words[static_cast<std::size_t>(id - 1)];
+      if (whole_copies_only && !std::all_of(words.begin(), words.end(), [](const auto& w) { return w.has_value(); }))
+        continue;
       for (std::size_t w = 0; w < merged.size(); ++w)
         if (!merged[w] && words[w]) merged[w] = words[w];
       if (!last_word_frame && words[9]) last_word_frame = it->first;

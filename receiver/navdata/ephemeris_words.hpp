@@ -11,6 +11,9 @@
 // used either. The ephemeris is complete once one issue of data has, from such frames,
 // subframe 1's clock words 7-10 and words 3-10 of subframes 2 and 3; subframe 1's word 3
 // (week number, health, URA) is added where received (lnav::decode_partial_subframe).
+// Later ephemerides (a new data set, subframe 1's word 3 arriving) take only whole copies of
+// a subframe, all ten words passing parity, so that a word noise let through parity (one in
+// 64) cannot replace a good one in the ephemeris in use.
 #include <array>
 #include <cstdint>
 #include <map>

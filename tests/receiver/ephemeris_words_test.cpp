@@ -104,5 +104,26 @@ TEST(EphemerisWords, AFrameWhoseIssueOfDataWordsDisagreeIsLeftOut) {
   EXPECT_FALSE(words.ephemeris().has_value());
 }
 
+TEST(EphemerisWords, AfterTheFirstEphemerisOnlyWholeSubframesUpdateIt) {
+  const lnav::LnavContent c = content_for(10);
+  lnav::LnavContent other = c;  // the same issue of data with another M0: a word noise let through
+  other.eph.m0_rad += 0.01;
+  EphemerisWords words(10, kWeek);
+  add_words(words, c, kFrameStart, 6, 9);
+  add_words(words, c, kFrameStart + 1, 2, 9);
+  ASSERT_TRUE(add_words(words, c, kFrameStart + 2, 2, 9));
+  // Single words of the next frame do not replace those in use...
+  add_words(words, c, kFrameStart + 5, 6, 9);
+  add_words(words, c, kFrameStart + 6, 2, 2);
+  add_words(words, other, kFrameStart + 6, 3, 4);
+  EXPECT_NEAR(words.ephemeris()->m0_rad, c.eph.m0_rad, 1e-8);
+  // ...whole copies of subframes 1-3 do (and then bring subframe 1's word 3: the full IODC).
+  add_words(words, other, kFrameStart + 10, 0, 9);
+  add_words(words, other, kFrameStart + 11, 0, 9);
+  add_words(words, other, kFrameStart + 12, 0, 9);
+  EXPECT_NEAR(words.ephemeris()->m0_rad, other.eph.m0_rad, 1e-8);
+  EXPECT_EQ(words.ephemeris()->iodc, c.eph.iodc);
+}
+
 }  // namespace
 }  // namespace deepnav

@@ -189,9 +189,10 @@ TEST(NavDecoder, TheFirstCompleteWordIsCheckedWithTheTwoBitsBeforeIt) {
   NavData nav;
   const auto c = content_for(10, GpsTime{2190, 525600.0}, nav);
   // Starting exactly at subframe 1 word 7 leaves its parity unknown (word 6's D29*, D30*
-  // missing): the word is left out and the clock words come a frame later.
+  // missing): the word is left out and taken from the next frame, once that frame's word 8
+  // (IODC) says it belongs to the same data set.
   NavDecoder at_word(10, 2190);
-  EXPECT_EQ(frame_bit_completing_ephemeris(at_word, c, 180, 1800, 1.0), 1500 + 299);
+  EXPECT_EQ(frame_bit_completing_ephemeris(at_word, c, 180, 1800, 1.0), 1500 + 239);
   // Two bits earlier, the word is checked and used.
   NavDecoder two_before(10, 2190);
   EXPECT_EQ(frame_bit_completing_ephemeris(two_before, c, 178, 1800, 1.0), kSubframe3LastBit);

@@ -12,8 +12,7 @@ namespace {
 
 /// 1 ms prompts of data bits (edge at period 7) whose carrier phase drifts at `residual_hz`
 /// and ends at phase 0 (where a locked loop holds it), with noise.
-PromptHistory prompts(const std::vector<int>& bits, double residual_hz, std::int64_t first_period,
-                      std::uint64_t seed) {
+PromptHistory prompts(const std::vector<int>& bits, double residual_hz, std::int64_t first_period, std::uint64_t seed) {
   PromptHistory h(100000);
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> noise(0.0, 1.0);
