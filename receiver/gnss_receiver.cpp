@@ -94,6 +94,8 @@ struct GnssReceiver::Impl {
   std::map<int, NavigationStatus> finished_status;       ///< of channels already released
   std::int64_t first_index = -1, end_index = -1;         ///< span of the samples read so far
   bool gap_since_epoch = false;                          ///< samples lost since the last observation epoch
+  std::optional<double> ephemerides_complete_s;     ///< four satellites first had ephemerides
+  std::optional<FirstFixOrigin> first_fix;
 
   Impl(ReceiverConfig c, SampleSource& s)
       : cfg(checked(std::move(c), s)),
@@ -186,12 +188,30 @@ struct GnssReceiver::Impl {
     });
     for (std::size_t i = 0; i < channels.size(); ++i) {
       for (const ChannelEpochRecord& r : records[i]) {
-        if (r.new_ephemeris) navigation.take_decoded(channels[i].prn(), channels[i].decoder());
+        if (r.new_ephemeris) {
+          navigation.take_decoded(channels[i].prn(), channels[i].decoder());
+          note_ephemerides(r.epoch.first_sample + r.epoch.samples);
+        }
         if (on_correlation) on_correlation(r.epoch, r.snapshot);
       }
     }
     settle_guided_channels(static_cast<double>(block_end(block)) / fs);
     release_lost_channels();
+  }
+
+  /// Records when four satellites first have ephemerides in use (`sample`: now).
+  void note_ephemerides(std::int64_t sample) {
+    if (!ephemerides_complete_s && navigation.in_use().size() >= kTransmitTimesToSetClock)
+      ephemerides_complete_s = static_cast<double>(sample) / fs;
+  }
+
+  /// The first fix: decoded ephemerides only (cold) or some given.
+  void note_first_fix(const PvtSolution& fix) {
+    if (first_fix || !fix.valid) return;
+    const std::map<int, Ephemeris> decoded = navigation.decoded();
+    const bool cold =
+        std::all_of(fix.used_prns.begin(), fix.used_prns.end(), [&](int prn) { return decoded.count(prn) > 0; });
+    first_fix = FirstFixOrigin{cold ? "cold" : "ephemerides given", ephemerides_complete_s};
   }
 
   static std::int64_t block_end(const SampleBlock& block) {
@@ -315,6 +335,7 @@ struct GnssReceiver::Impl {
     ep.t_rx = clock.at(s);
     if (!ep.t_rx) return ep;
     for (const ReceiverChannel* ch : sent) navigation.adopt_assisted(ch->prn(), *ep.t_rx);
+    note_ephemerides(s);
     std::vector<PseudorangeObservation> ranging;
     for (std::size_t k = 0; k < sent.size(); ++k) {
       const ChannelObservation o = sent[k]->observe(*ep.t_rx, transmit_sow[k], s, fs, gap_since_epoch);
@@ -322,6 +343,7 @@ struct GnssReceiver::Impl {
       if (navigation.ephemeris(o.prn)) ranging.push_back({o.prn, o.pseudorange_m, o.doppler_hz, o.cn0_dbhz});
     }
     ep.pvt = pvt.solve(*ep.t_rx, ranging, navigation.in_use(), navigation.iono());
+    note_first_fix(ep.pvt);
     // Steer the receiver clock so that pseudoranges stay near the geometric ranges.
     if (ep.pvt.valid) clock.steer(ep.pvt.clock_bias_m);
     return ep;
@@ -421,6 +443,7 @@ AcquisitionEvidence GnssReceiver::acquisition_evidence() const {
   return {a.config(), a.window().in_order(), a.strongest()};
 }
 std::optional<int> GnssReceiver::signal_week() const { return impl_->clock.signal_week(); }
+std::optional<FirstFixOrigin> GnssReceiver::first_fix_origin() const { return impl_->first_fix; }
 
 const std::vector<GuidedSearchRecord>& GnssReceiver::guided_searches() const { return impl_->guided.records(); }
 

@@ -79,6 +79,15 @@ inline std::map<int, double> cn0_by_prn(const ReceiverEpoch& epoch) {
   return cn0;
 }
 
+/// How the receiver came to its first fix (summary.json, the run's closing line).
+struct FirstFixOrigin {
+  /// "cold": every satellite of the fix had its ephemeris decoded from the signal;
+  /// "ephemerides given": one or more came from assistance (--ephemeris-from).
+  std::string method;
+  /// When four satellites first had ephemerides (s since the first sample), decoded or given.
+  std::optional<double> ephemerides_complete_s;
+};
+
 class GnssReceiver {
  public:
   GnssReceiver(ReceiverConfig config, SampleSource& source);
@@ -130,6 +139,8 @@ class GnssReceiver {
   /// The full GPS week the signal broadcast (the first subframe 1 decoded, resolved against
   /// the reference), once known.
   std::optional<int> signal_week() const;
+  /// How the first PVT fix was obtained, once there was one.
+  std::optional<FirstFixOrigin> first_fix_origin() const;
   /// Per PRN, over every channel that tracked it (dropped ones included).
   std::vector<NavigationStatus> navigation_status() const;
   /// Every filter-guided search finished so far, in the order they finished.

@@ -613,6 +613,53 @@ std::optional<DecodedSubframe> decode_subframe(const Subframe& words) {
   return out;
 }
 
+std::optional<DecodedSubframe> decode_partial_subframe(int subframe_id, int tow_count,
+                                                       const PartialSubframeData& words) {
+  if (subframe_id < 1 || subframe_id > 3 || tow_count < 0 || tow_count >= kTowCountsPerWeek) return std::nullopt;
+  // Word indices (0-based) each subframe's ephemeris fields lie in; word 3 of subframe 1 is
+  // optional (its week comes from any satellite, or the receiver's reference).
+  const int first_needed = subframe_id == 1 ? 6 : 2;
+  for (int w = first_needed; w < 10; ++w)
+    if (!words[static_cast<std::size_t>(w)]) return std::nullopt;
+  DecodedSubframe out;
+  DataWords d{};
+  for (int w = 0; w < 10; ++w) d[static_cast<std::size_t>(w)] = words[static_cast<std::size_t>(w)].value_or(0u);
+  out.data = d;
+  out.tlm_how.tow_count = tow_count;
+  out.tlm_how.subframe_id = subframe_id;
+  out.sv_health.fill(-1);
+  out.sv_config.fill(-1);
+  switch (subframe_id) {
+    case 1:
+      decode_subframe1(d, out.eph);
+      out.week_received = words[2].has_value();
+      break;
+    case 2:
+      decode_subframe2(d, out.eph);
+      break;
+    default:
+      decode_subframe3(d, out.eph);
+      break;
+  }
+  return out;
+}
+
+std::optional<int> issue_of_data_in_word(int subframe_id, int word_index, std::uint32_t data24) {
+  if (word_index < 0 || word_index > 9) return std::nullopt;
+  DataWords d{};
+  d[static_cast<std::size_t>(word_index)] = data24;
+  if (subframe_id == 1 && word_index == 7) return decode_int(d, kIodc) & 0xFF;  // the 2 MSBs are in word 3
+  if (subframe_id == 2 && word_index == 2) return decode_int(d, kIode2);
+  if (subframe_id == 3 && word_index == 9) return decode_int(d, kIode3);
+  return std::nullopt;
+}
+
+int week_number_in_word3(std::uint32_t data24) {
+  DataWords d{};
+  d[2] = data24;
+  return decode_int(d, kWn);
+}
+
 Almanac almanac_from_ephemeris(const Ephemeris& eph) {
   constexpr int kToaLsb = 4096, kMaxToaCount = 147;  // toa: 8 bits of 4096 s within 602112 s
   Almanac a;
@@ -691,7 +738,10 @@ bool EphemerisAssembler::try_complete() {
   const Ephemeris& s3 = sf3_->eph;
   Ephemeris e = s1;  // clock and subframe 1 fields
   e.prn = prn_;
-  e.week = resolve_week(s1.week, reference_week_);
+  // Without subframe 1's word 3 the reference week stands in: the receiver dates nothing by
+  // it (its clock waits for a broadcast or given week), and ephemeris ages fold across the
+  // week boundary when it is off (seconds_from_reference).
+  e.week = sf1_->week_received ? resolve_week(s1.week, reference_week_) : reference_week_;
   e.iode = iode2;
   e.crs_m = s2.crs_m;
   e.delta_n_radps = s2.delta_n_radps;

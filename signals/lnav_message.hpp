@@ -148,12 +148,35 @@ struct DecodedSubframe {
   std::optional<int> almanac_toa_s, almanac_wna;  ///< subframe 5 page 25
   std::array<int, 32> sv_health{};                ///< 6-bit health by PRN - 1 from page 25; -1 absent
   std::array<int, 32> sv_config{};                ///< 4-bit A-S/config by PRN - 1 (subframe 4 page 25); -1 absent
+  /// Subframe 1: word 3 (week number, URA, health, IODC's 2 MSBs) was received. A subframe
+  /// decoded from its clock words alone (decode_partial_subframe) leaves those fields 0.
+  bool week_received = true;
 };
 
 /// Checks every word's parity (D29*, D30* of word 1 taken as 0, the value word 10's t bits
 /// give), resolves the polarity from the preamble and extracts all fields. nullopt when the
 /// preamble is missing, a parity check fails or the subframe ID is not 1..5.
 std::optional<DecodedSubframe> decode_subframe(const Subframe& words);
+
+/// Source data d1..d24 of the words of a subframe received in part (each word checked on its
+/// own parity); empty where a word was not received or failed parity.
+using PartialSubframeData = std::array<std::optional<std::uint32_t>, 10>;
+
+/// Subframe 1, 2 or 3 from the words received of a copy whose start (TLM, HOW) was missed:
+/// the subframe ID and HOW TOW count come from the channel's time instead. Subframes 2 and 3
+/// need words 3-10 (every orbit field and the IODE); subframe 1 its clock words 7-10 (TGD,
+/// IODC's 8 LSBs, toc, af2, af1, af0), word 3 being taken where received (week_received).
+/// nullopt for another subframe ID or when a needed word is missing.
+std::optional<DecodedSubframe> decode_partial_subframe(int subframe_id, int tow_count,
+                                                       const PartialSubframeData& words);
+
+/// The issue of data a word of subframe 1, 2 or 3 carries: IODC's 8 LSBs in subframe 1 word
+/// 8, IODE in subframe 2 word 3 and subframe 3 word 10 (d1..d8 of each); nullopt for any
+/// other word. `word_index` counts from 0.
+std::optional<int> issue_of_data_in_word(int subframe_id, int word_index, std::uint32_t data24);
+
+/// The 10-bit week number subframe 1 word 3 carries (d1..d10).
+int week_number_in_word3(std::uint32_t data24);
 
 /// Almanac from an ephemeris: elements carried to toa (the multiple of 4096 s nearest toe in
 /// the same week) and quantized to the almanac's scale factors.

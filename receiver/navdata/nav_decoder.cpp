@@ -1,6 +1,9 @@
 #include "receiver/navdata/nav_decoder.hpp"
 
+#include <algorithm>
 #include <cmath>
+
+#include "signals/lnav_parity.hpp"
 
 #include "signals/gps_constants.hpp"
 
@@ -11,10 +14,17 @@ constexpr int kSubframeBits = lnav::kBitsPerSubframe;
 constexpr std::uint8_t kPreamble[8] = {1, 0, 0, 0, 1, 0, 1, 1};
 constexpr std::int64_t kPeriodsPerSubframe = 6000;  // 6 s of 1 ms code periods
 constexpr std::int64_t kTowCountsPerWeek = 100800;
+/// Bits kept for reading words: a frame and a subframe.
+constexpr std::size_t kKeptBits = 6 * kSubframeBits;
+constexpr std::int64_t kPeriodsPerBit = 20;
+constexpr int kWordBits = lnav::kBitsPerWord;
+
+std::int64_t floor_div(std::int64_t a, std::int64_t b) { return a / b - ((a % b != 0) && ((a < 0) != (b < 0))); }
 
 }  // namespace
 
-NavDecoder::NavDecoder(int prn, int reference_week) : prn_(prn), assembler_(prn, reference_week) {}
+NavDecoder::NavDecoder(int prn, int reference_week)
+    : prn_(prn), assembler_(prn, reference_week), words_(prn, reference_week) {}
 
 bool NavDecoder::add(const CorrelatorEpoch& e, std::int64_t bit_edge_period) {
   const int ms = static_cast<int>(std::lround(e.integration_s * 1000.0));
@@ -43,12 +53,59 @@ bool NavDecoder::add(const CorrelatorEpoch& e, std::int64_t bit_edge_period) {
 
 bool NavDecoder::add_bit(const PromptBit& bit) {
   // Bit 1 is sent as -1 (IS-GPS-200 3.2.2); an inverted stream is caught at the preamble.
-  bits_.push_back(bit.soft < 0.0 ? 1 : 0);
+  const std::uint8_t value = bit.soft < 0.0 ? 1 : 0;
+  bits_.push_back(value);
   bit_start_period_.push_back(bit.code_period);
-  const int before = assembler_.ephemeris() ? assembler_.ephemeris()->iode : -1;
-  const bool had = assembler_.ephemeris().has_value();
+  kept_.push_back(KeptBit{value, bit.code_period});
+  if (kept_.size() > kKeptBits) kept_.pop_front();
   try_decode();
-  return assembler_.ephemeris().has_value() && (!had || assembler_.ephemeris()->iode != before);
+  return decode_words();
+}
+
+bool NavDecoder::decode_words() {
+  if (!anchor_ || seeded_) return false;  // word boundaries known only from a decoded subframe
+  bool changed = false;
+  std::size_t unread = kept_.size();
+  while (unread > 0 && !(words_read_through_ && kept_[unread - 1].code_period <= *words_read_through_)) --unread;
+  for (std::size_t i = unread; i < kept_.size(); ++i) {
+    const std::int64_t period = kept_[i].code_period;
+    const std::int64_t from_anchor = period - anchor_->period;
+    if (from_anchor % kPeriodsPerBit != 0) continue;  // not on the anchor's bit grid
+    const std::int64_t bit = from_anchor / kPeriodsPerBit;
+    const std::int64_t subframes = floor_div(bit, kSubframeBits);
+    const auto in_subframe = static_cast<int>(bit - subframes * kSubframeBits);
+    if (in_subframe % kWordBits != kWordBits - 1) continue;  // not a word's last bit
+    const int word_index = in_subframe / kWordBits;
+    const auto data = checked_word(i, word_index);
+    if (!data) continue;
+    const std::int64_t subframe_of_week =
+        ((anchor_->tow_count - 1 + subframes) % kTowCountsPerWeek + kTowCountsPerWeek) % kTowCountsPerWeek;
+    if (word_index == 2 && lnav::subframe_id_at(subframe_of_week) == 1 && !week_number_)
+      week_number_ = WeekNumber{lnav::week_number_in_word3(*data), static_cast<double>(subframe_of_week) * 6.0};
+    changed = words_.add(subframe_of_week, word_index, *data) || changed;
+  }
+  if (!kept_.empty()) words_read_through_ = kept_.back().code_period;
+  return changed;
+}
+
+std::optional<std::uint32_t> NavDecoder::checked_word(std::size_t last, int word_index) const {
+  if (last + 1 < static_cast<std::size_t>(kWordBits)) return std::nullopt;
+  const std::size_t first = last + 1 - kWordBits;
+  // The 30 bits, and the two before them where the parity needs them, without a gap.
+  const bool structural = word_index == 0 || word_index == 2;
+  const std::size_t from = structural ? first : first - std::min<std::size_t>(first, 2);
+  if (!structural && first < 2) return std::nullopt;
+  for (std::size_t k = from; k < last; ++k)
+    if (kept_[k + 1].code_period != kept_[k].code_period + kPeriodsPerBit) return std::nullopt;
+  const std::uint8_t flip = polarity_ < 0 ? 1 : 0;
+  std::uint32_t word = 0;
+  for (std::size_t k = first; k <= last; ++k) word = (word << 1) | static_cast<std::uint32_t>(kept_[k].bit ^ flip);
+  bool d29 = false, d30 = false;
+  if (!structural) {
+    d29 = (kept_[first - 2].bit ^ flip) != 0;
+    d30 = (kept_[first - 1].bit ^ flip) != 0;
+  }
+  return lnav::check_word(word, d29, d30);
 }
 
 void NavDecoder::try_decode() {

@@ -5,11 +5,22 @@
 // a code period count into the satellite's transmit time:
 //   t_sv = (HOW TOW count - 1) * 6 s + (period - first period of that subframe) * 1 ms
 //          + code phase / 1.023 MHz.
+//
+// The ephemeris is assembled from single words (EphemerisWords): once the first subframe is
+// decoded, the word boundaries and the time of every bit are known, so the bits kept since
+// the channel's first one are read backwards (the subframe under way at the start, and the
+// complete words of a partly received one), and from then on each word as soon as its 30
+// bits are in. Each word is checked with its own parity, using the last two bits (D29*,
+// D30*) of the word before it; words 1 and 3 always follow a word whose t bits make it end in
+// D29 = D30 = 0 (IS-GPS-200 20.3.5.2), so theirs are checked without the word before (in the
+// polarity the preamble found), and any other word whose predecessor's last bits were not
+// received is left out (its parity could not be checked).
 #include <cstdint>
 #include <deque>
 #include <optional>
 #include <vector>
 
+#include "receiver/navdata/ephemeris_words.hpp"
 #include "receiver/tracking/tracking_channel.hpp"
 #include "receiver/tracking/tracking_types.hpp"
 #include "signals/lnav_message.hpp"
@@ -38,7 +49,7 @@ class NavDecoder {
   bool synchronised() const { return anchor_.has_value(); }
   /// The time was seeded and no subframe has confirmed it yet.
   bool seeded() const { return seeded_; }
-  const std::optional<Ephemeris>& ephemeris() const { return assembler_.ephemeris(); }
+  const std::optional<Ephemeris>& ephemeris() const { return words_.ephemeris(); }
   const IonoParameters& iono() const { return assembler_.iono(); }
   const UtcParameters& utc() const { return assembler_.utc(); }
   /// Satellite transmit time (seconds of week) of the code period `period` plus
@@ -69,6 +80,12 @@ class NavDecoder {
 
  private:
   void try_decode();
+  /// Every word that ends among the kept bits after the last one read (all of them, back to
+  /// the channel's first bit, the first time): checked and given to the ephemeris words.
+  /// Returns true when that completed or changed the ephemeris.
+  bool decode_words();
+  /// The word ending at kept bit `last` (its index in kept_), d1..d24 when its parity holds.
+  std::optional<std::uint32_t> checked_word(std::size_t last, int word_index) const;
   struct Anchor;
   /// Whether a subframe starting at `a` agrees with the anchor (or, failing that, with the
   /// inconsistent one before it, which two agreeing subframes then replace the anchor by).
@@ -85,6 +102,15 @@ class NavDecoder {
   int bit_ms_ = 0;
   std::deque<std::uint8_t> bits_;
   std::deque<std::int64_t> bit_start_period_;
+  /// The last bits received, 0/1 as received, with the code period each starts at: a frame
+  /// and a subframe, so that the first subframe decoded can be read back to the start.
+  struct KeptBit {
+    std::uint8_t bit;
+    std::int64_t code_period;
+  };
+  std::deque<KeptBit> kept_;
+  std::optional<std::int64_t> words_read_through_;  ///< code period of the last kept bit read into words
+  EphemerisWords words_;
   std::optional<Anchor> anchor_;
   std::optional<Anchor> pending_anchor_;  ///< the last inconsistent subframe's
   std::optional<lnav::DecodedSubframe> last_decoded_;

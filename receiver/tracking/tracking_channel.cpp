@@ -12,6 +12,9 @@ namespace deepnav {
 namespace {
 
 constexpr double kPeriod = gps::kCodeLength_chips;
+/// Prompts kept before bit synchronisation: a frame and a subframe (36 s), more than any
+/// cold start needs before its first complete subframe.
+constexpr std::size_t kHistoryPeriods = 36000;
 
 }  // namespace
 
@@ -22,7 +25,8 @@ TrackingChannel::TrackingChannel(const TrackingConfig& config, const ChannelStar
       noise_code_(&ca_code_chips(noise_reference_prn(start.prn))),
       next_sample_(start.sample_index),
       code_phase_chips_(start.code_phase_chips),
-      lock_(config.lock) {
+      lock_(config.lock),
+      history_(kHistoryPeriods) {
   if (!(cfg_.sample_rate_hz > 0.0)) throw std::invalid_argument("tracking: sample rate must be positive");
   if (cfg_.coherent_ms_after_bit_sync < 1 || 20 % cfg_.coherent_ms_after_bit_sync != 0)
     throw std::invalid_argument("tracking: coherent_ms_after_bit_sync must divide 20 (1, 2, 4, 5, 10 or 20), got " +
@@ -229,7 +233,20 @@ void TrackingChannel::bit_sync_step(const CorrelatorEpoch& e) {
     bit_edge_ = *edge;
     coherent_ms_ = cfg_.coherent_ms_after_bit_sync;
     state_ = ChannelState::tracking;
+    release_history();
   }
+}
+
+void TrackingChannel::release_history() {
+  PromptHistory::Bits kept = history_.bits(*bit_edge_);
+  history_.clear();
+  bits_.insert(bits_.end(), kept.whole.begin(), kept.whole.end());
+  // The bit under way: its first periods were kept, collect_bit() adds the rest.
+  bit_sum_ = kept.tail.soft;
+  bit_ms_ = kept.tail.periods;
+  bit_first_sample_ = kept.tail.first_sample;
+  bit_first_period_ = kept.tail.code_period;
+  bit_whole_ = true;
 }
 
 void TrackingChannel::monitor(const CorrelatorEpoch& e) {
@@ -240,6 +257,11 @@ void TrackingChannel::monitor(const CorrelatorEpoch& e) {
   // frequency error of a few hundred hertz into the PLL's range, short enough that the FLL's
   // own noise (tens of hertz at 30 dB-Hz with 1 ms) does not keep the PLL from locking.
   if (state_ == ChannelState::pull_in && tracked_s_ >= cfg_.pull_in_s) state_ = ChannelState::bit_sync;
+  // Every whole 1 ms period before synchronisation is kept (period 0 is partial when the
+  // channel started mid-period); the synchroniser itself starts after pull-in.
+  const bool whole_period = e.code_period > 1 || start_.code_phase_chips == 0.0;
+  if (!synced_before && e.integration_s < 1.5e-3 && whole_period)
+    history_.add(e.code_period - 1, e.prompt, e.first_sample);
   if (state_ == ChannelState::bit_sync && e.integration_s < 1.5e-3) bit_sync_step(e);
   if (synced_before) collect_bit(e);
   if (lock_.ready()) {

@@ -14,6 +14,7 @@
 #include "receiver/sources/sample_source.hpp"
 #include "receiver/tracking/bit_synchronizer.hpp"
 #include "receiver/tracking/lock_detectors.hpp"
+#include "receiver/tracking/prompt_history.hpp"
 #include "receiver/tracking/tracking_types.hpp"
 #include "signals/ca_code.hpp"
 
@@ -49,14 +50,6 @@ struct ChannelStart {
   std::optional<std::int64_t> bit_edge_period;
 };
 
-/// One data bit from the prompt, once the bits are synchronised: the sum of the prompt
-/// integrations over the bit's 20 code periods.
-struct PromptBit {
-  double soft = 0.0;              ///< in-phase sum (sign = bit, up to the Costas ambiguity)
-  std::int64_t first_sample = 0;  ///< absolute sample index at which the bit starts
-  std::int64_t code_period = 0;   ///< channel code-period count at the bit start (see CorrelatorEpoch::code_period)
-};
-
 enum class ChannelState { pull_in, bit_sync, tracking, lost };
 
 class TrackingChannel {
@@ -82,7 +75,9 @@ class TrackingChannel {
     if (enabled && !loss_detection_) low_cn0_since_s_ = -1.0;
     loss_detection_ = enabled;
   }
-  /// Data bits completed since the last call (empty before bit synchronisation).
+  /// Data bits completed since the last call (empty before bit synchronisation). At bit
+  /// synchronisation the bits of the prompts kept since the channel's first whole code
+  /// period come first (PromptHistory), so the stream has no gap from the start.
   std::vector<PromptBit> take_bits();
 
   int prn() const { return start_.prn; }
@@ -115,6 +110,8 @@ class TrackingChannel {
   void monitor(const CorrelatorEpoch& epoch);
   void bit_sync_step(const CorrelatorEpoch& epoch);
   void collect_bit(const CorrelatorEpoch& epoch);
+  /// The kept prompts become bits once the edge is known; the bit in progress continues live.
+  void release_history();
   void reset_integration();
 
   TrackingConfig cfg_;
@@ -138,6 +135,7 @@ class TrackingChannel {
   // Monitoring.
   LockDetector lock_;
   BitSynchronizer bit_sync_;
+  PromptHistory history_;  ///< 1 ms prompts before bit synchronisation
   std::optional<std::int64_t> bit_edge_;
   double low_cn0_since_s_ = -1.0;
   bool loss_detection_ = true;

@@ -64,4 +64,12 @@ struct CorrelatorEpoch {
   bool bit_synced = false;            ///< data-bit edges known; integrations now end on them
 };
 
+/// One data bit from the prompt, once the bits are synchronised: the sum of the prompt
+/// integrations over the bit's 20 code periods.
+struct PromptBit {
+  double soft = 0.0;              ///< in-phase sum (sign = bit, up to the Costas ambiguity)
+  std::int64_t first_sample = 0;  ///< absolute sample index at which the bit starts
+  std::int64_t code_period = 0;   ///< channel code-period count at the bit start (see CorrelatorEpoch::code_period)
+};
+
 }  // namespace deepnav

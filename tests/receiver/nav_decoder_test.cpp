@@ -149,5 +149,80 @@ TEST(NavDecoder, ASubframeAtOddsWithTheChannelTimeIsNotTaken) {
   EXPECT_NEAR(*tx2, (first_bit + 1400 + 53 * 300) * 0.02, 1e-9);
 }
 
+/// Week bit index of 02:00:00 on 2022-01-01 (week 2190): a frame (subframe 1) starts there.
+constexpr std::int64_t kFrameBit = 525600 * 50;
+/// The bit that ends subframe 3 of that frame, counted from the frame's start.
+constexpr int kSubframe3LastBit = 899;
+
+/// Feeds noiseless bits from frame bit `from` (counted from the frame start) through frame
+/// bit `to` as a channel delivers them; `flip` (frame bit) is received wrong. Returns the
+/// frame bit whose arrival completed the ephemeris, -1 if none did.
+int frame_bit_completing_ephemeris(NavDecoder& dec, const lnav::LnavContent& c, int from, int to, double polarity,
+                                   int flip = -1) {
+  const auto bits = lnav::lnav_bits(c, kFrameBit + from, to - from + 1);
+  for (int b = from; b <= to; ++b) {
+    const bool one = bits[static_cast<std::size_t>(b - from)] != 0;
+    const double soft = (one ? -1.0 : 1.0) * polarity * (b == flip ? -1.0 : 1.0);
+    if (dec.add_bit(PromptBit{soft, 0, 100 + 20 * std::int64_t{b - from}})) return b;
+  }
+  return -1;
+}
+
+TEST(NavDecoder, ColdStartReadsTheSubframeUnderWayAtTheStart) {
+  NavData nav;
+  const auto c = content_for(10, GpsTime{2190, 525600.0}, nav);
+  for (double polarity : {1.0, -1.0}) {
+    // From 2.9 s into subframe 1 (its word 5): words 6-10 are complete, and word 6's parity
+    // has word 5's last two bits. With subframes 2 and 3, the ephemeris is complete when
+    // subframe 3 ends, not a frame later.
+    NavDecoder dec(10, 2190);
+    EXPECT_EQ(frame_bit_completing_ephemeris(dec, c, 145, 1500, polarity), kSubframe3LastBit);
+    ASSERT_TRUE(dec.ephemeris().has_value());
+    EXPECT_EQ(dec.ephemeris()->iode, c.eph.iode);
+    EXPECT_NEAR(dec.ephemeris()->af0_s, c.eph.af0_s, 5e-10);
+    EXPECT_NEAR(dec.ephemeris()->m0_rad, c.eph.m0_rad, 1e-8);
+    EXPECT_FALSE(dec.week_number().has_value()) << "subframe 1 word 3 was not received";
+  }
+}
+
+TEST(NavDecoder, TheFirstCompleteWordIsCheckedWithTheTwoBitsBeforeIt) {
+  NavData nav;
+  const auto c = content_for(10, GpsTime{2190, 525600.0}, nav);
+  // Starting exactly at subframe 1 word 7 leaves its parity unknown (word 6's D29*, D30*
+  // missing): the word is left out and taken from the next frame, once that frame's word 8
+  // (IODC) says it belongs to the same data set.
+  NavDecoder at_word(10, 2190);
+  EXPECT_EQ(frame_bit_completing_ephemeris(at_word, c, 180, 1800, 1.0), 1500 + 239);
+  // Two bits earlier, the word is checked and used.
+  NavDecoder two_before(10, 2190);
+  EXPECT_EQ(frame_bit_completing_ephemeris(two_before, c, 178, 1800, 1.0), kSubframe3LastBit);
+}
+
+TEST(NavDecoder, Word3IsCheckedWithoutTheWordBeforeIt) {
+  NavData nav;
+  const auto c = content_for(10, GpsTime{2190, 525600.0}, nav);
+  // From subframe 1 word 3 on, nothing before it: the HOW ends in 00, so word 3's parity is
+  // known in the polarity the first decoded subframe gives, and it brings the week number.
+  for (double polarity : {1.0, -1.0}) {
+    NavDecoder dec(10, 2100);  // a reference week 90 weeks off still resolves it
+    EXPECT_EQ(frame_bit_completing_ephemeris(dec, c, 60, 1000, polarity), kSubframe3LastBit);
+    ASSERT_TRUE(dec.week_number().has_value());
+    EXPECT_EQ(dec.week_number()->wn10, 2190 % 1024);
+    EXPECT_DOUBLE_EQ(dec.week_number()->subframe_start_sow, 525600.0);
+    EXPECT_EQ(dec.ephemeris()->week, 2190);
+    EXPECT_EQ(dec.ephemeris()->iodc, c.eph.iodc);
+  }
+}
+
+TEST(NavDecoder, AWordFailingParityIsLeftOut) {
+  NavData nav;
+  const auto c = content_for(10, GpsTime{2190, 525600.0}, nav);
+  // A bit of subframe 1 word 9 (af1) received wrong: the clock words come a frame later.
+  NavDecoder dec(10, 2190);
+  const int completed = frame_bit_completing_ephemeris(dec, c, 145, 2000, 1.0, 250);
+  EXPECT_EQ(completed, 1500 + 269) << "the next frame's subframe 1 word 9";
+  EXPECT_NEAR(dec.ephemeris()->af1_sps, c.eph.af1_sps, 1e-15);
+}
+
 }  // namespace
 }  // namespace deepnav

@@ -156,6 +156,26 @@ std::optional<NothingFound> nothing_found(const RunOptions& o, const OpenedSourc
   return std::nullopt;
 }
 
+/// How the receiver's first fix was obtained: {"method", "ephemerides_complete_s"}, null
+/// before any fix.
+nlohmann::json first_fix_json(const std::optional<FirstFixOrigin>& origin) {
+  if (!origin) return nullptr;
+  return {{"method", origin->method},
+          {"ephemerides_complete_s",
+           origin->ephemerides_complete_s ? nlohmann::json(*origin->ephemerides_complete_s) : nlohmann::json(nullptr)}};
+}
+
+/// "16.0 s (cold; ephemerides of four satellites at 15.1 s)", or "-" without a fix.
+std::string first_fix_text(const RunStatistics& stats, const std::optional<FirstFixOrigin>& origin) {
+  if (!stats.first_fix_s()) return "-";
+  std::string text = fmt::format("{:.1f} s", *stats.first_fix_s());
+  if (origin && origin->ephemerides_complete_s)
+    text += fmt::format(" ({}; ephemerides of four satellites at {:.1f} s)", origin->method,
+                        *origin->ephemerides_complete_s);
+  else if (origin) text += fmt::format(" ({})", origin->method);
+  return text;
+}
+
 nlohmann::json run_summary(const RunOptions& o, const OpenedSource& opened, aiding::NavigationSession& session,
                            const RunStatistics& stats, bool scored, const ImuIntegrity& imu_integrity,
                            const std::optional<NothingFound>& empty_run) {
@@ -168,6 +188,7 @@ nlohmann::json run_summary(const RunOptions& o, const OpenedSource& opened, aidi
       {"epochs", stats.epochs()},
       {"fixes", stats.fixes()},
       {"time_to_first_fix_s", stats.first_fix_s() ? nlohmann::json(*stats.first_fix_s()) : nlohmann::json(nullptr)},
+      {"first_fix", first_fix_json(receiver.first_fix_origin())},
       {"acquired_prns", receiver.acquired_prns()},
       {"ephemerides", receiver.ephemerides().size()},
       {"ephemerides_decoded", receiver.decoded_ephemerides().size()},
@@ -340,8 +361,8 @@ void run_receiver(CLI::App& root, RunOptions o) {
   progress.finish();
   // After a hangup the terminal is gone: the results stay in the products.
   if (stop_signals.signal() != SIGHUP) {
-    fmt::print("{} fixes in {} epochs; first fix at {} s; satellites acquired: {}\n", stats.fixes(), stats.epochs(),
-               stats.first_fix_s() ? fmt::format("{:.1f}", *stats.first_fix_s()) : std::string("-"),
+    fmt::print("{} fixes in {} epochs; first fix at {}; satellites acquired: {}\n", stats.fixes(), stats.epochs(),
+               first_fix_text(stats, session.receiver().first_fix_origin()),
                session.receiver().acquired_prns().size());
     if (truth && !stats.horizontal_error_m().values.empty())
       fmt::print("error vs truth: horizontal RMS {:.2f} m, vertical RMS {:.2f} m, velocity RMS {:.3f} m/s\n",

@@ -2,7 +2,7 @@
 
   python3 -m checks.aided_outage SIM_DIR WORK
 
-WORK holds the runs ultra, tight and tight_withheld (tight with --max-solution-sigma 2).
+WORK holds the runs ultra, tight and tight_withheld (tight with --max-solution-sigma 1.2).
 For ultra and tight: the INS coasts through the gap within 5 m horizontally, sub-2 m after
 it, every channel tracking again within 1 s, the solutions labelled coast (GGA quality 6)
 in the outage and the mode's own after it. With the sigma limit: the end of the coast
@@ -65,9 +65,9 @@ def main():
         check_mode(checks, sim, work / mode, mode)
     # The covariance limit: the late coast withheld, everything after the return published.
     withheld = products.summary(work / "tight_withheld")["withheld_solutions"]
-    checks.check("--max-solution-sigma 2: the end of the 30 s coast withheld", 0 < withheld < 30,
+    checks.check("--max-solution-sigma 1.2: the end of the 30 s coast withheld", 0 < withheld < 30,
                  f"{withheld} solutions withheld")
-    checks.check("--max-solution-sigma 2: every epoch after the return published",
+    checks.check("--max-solution-sigma 1.2: every epoch after the return published",
                  times_after_return(work / "tight_withheld") == times_after_return(work / "tight"))
     checks.exit()
 
