@@ -90,7 +90,8 @@ CoarseTimeFit fit_coarse_time(const std::vector<CoarseTimeSatellite>& satellites
     fit.iterations = iter;
     const Matrix5d normal = fit.H.transpose() * fit.w.asDiagonal() * fit.H;
     const Vector5d step = normal.ldlt().solve(fit.H.transpose() * fit.w.asDiagonal() * fit.residuals_m);
-    const bool settled = step.head<3>().norm() < 1e-3 && std::abs(step(4)) < 1e-6;
+    // All five unknowns: a clock bias still moving means the residuals are not yet final.
+    const bool settled = step.head<3>().norm() < 1e-3 && std::abs(step(3)) < 1e-3 && std::abs(step(4)) < 1e-6;
     if (settled) {
       fit.converged = true;  // the residuals above belong to this state to well below a millimetre
       return fit;
