@@ -29,6 +29,7 @@ void add_fuse_command(CommandParents& parents);
 void add_run_command(CommandParents& parents);
 void add_serve_command(CommandParents& parents);
 void add_sim_command(CommandParents& parents);
+void add_snap_command(CommandParents& parents);
 
 /// Thrown by a command for a user error: main prints "deepnav: <message>" and exits with `exit_code`
 /// (an InputError from a library exits with 1).

@@ -39,6 +39,7 @@ int main(int argc, char** argv) {
   add_run_command(parents);
   add_serve_command(parents);
   add_sim_command(parents);
+  add_snap_command(parents);
 
   try {
     app.parse(argc, argv);
