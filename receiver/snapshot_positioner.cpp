@@ -78,8 +78,7 @@ struct SnapshotPositioner::Impl {
       ephemerides[prn] = *eph;
       Candidate c{prn, std::nullopt, 0.0};
       if (hint) {
-        const RangePrediction p =
-            predict_range(*eph, t, 0.0, *hint, Eigen::Vector3d::Zero(), nav.iono, cfg.atmosphere);
+        const RangePrediction p = predict_range(*eph, t, 0.0, *hint, Eigen::Vector3d::Zero(), nav.iono, cfg.atmosphere);
         if (p.elevation_rad < cfg.elevation_mask_rad) continue;
         c.predicted_doppler_hz = -p.pseudorange_rate_mps(Eigen::Vector3d::Zero(), 0.0) / gps::kL1Wavelength_m;
         c.elevation_rad = p.elevation_rad;
@@ -99,7 +98,8 @@ struct SnapshotPositioner::Impl {
   /// is found (its Doppler less the prediction is the clock's), the rest narrowed.
   std::vector<AcquisitionResult> narrowed_search(std::span<const Sample> x, std::vector<Candidate> cs,
                                                  SnapshotResult& result) {
-    std::sort(cs.begin(), cs.end(), [](const Candidate& a, const Candidate& b) { return a.elevation_rad > b.elevation_rad; });
+    std::sort(cs.begin(), cs.end(),
+              [](const Candidate& a, const Candidate& b) { return a.elevation_rad > b.elevation_rad; });
     std::vector<AcquisitionResult> found;
     std::size_t probed = 0;
     std::optional<double> clock_hz;

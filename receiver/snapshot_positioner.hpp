@@ -38,8 +38,8 @@ struct SnapshotPositionerConfig {
   /// measured clock drift) +- this: the hint's errors (100 km, a minute: ~100-300 Hz) and
   /// the acquisition's bin.
   double doppler_margin_hz = 700.0;
-  double pfa = 1e-5;                    ///< of the acquisition, per PRN
-  double elevation_mask_rad = 0.0;      ///< "above the horizon" for the choice of PRNs
+  double pfa = 1e-5;                ///< of the acquisition, per PRN
+  double elevation_mask_rad = 0.0;  ///< "above the horizon" for the choice of PRNs
   /// The refined code phase's noise (1 sigma, as a range) for a 10 ms snapshot at the
   /// coarse-time fix's reference C/N0 (45 dB-Hz); it goes as 1 / sqrt(length): the
   /// early-late balance of non-coherent 1 ms blocks, sqrt(d / (2 C/N0 T)) chip with

@@ -73,9 +73,10 @@ int day_of_year(const GpsTime& t) {
 std::string missing_navigation(const NavData& nav, const std::string& nav_path, const GpsTime& t_hint) {
   std::string covers = "no GPS ephemeris at all";
   if (!nav.ephemerides.empty()) {
-    const auto [lo, hi] = std::minmax_element(nav.ephemerides.begin(), nav.ephemerides.end(), [](const auto& a, const auto& b) {
-      return GpsTime{a.week, a.toe_s}.seconds_since(GpsTime{b.week, b.toe_s}) < 0.0;
-    });
+    const auto [lo, hi] =
+        std::minmax_element(nav.ephemerides.begin(), nav.ephemerides.end(), [](const auto& a, const auto& b) {
+          return GpsTime{a.week, a.toe_s}.seconds_since(GpsTime{b.week, b.toe_s}) < 0.0;
+        });
     covers = fmt::format("ephemerides of {} to {}", date_of({lo->week, lo->toe_s}), date_of({hi->week, hi->toe_s}));
   }
   const CalendarTime c = calendar_from_gps_time(t_hint);
@@ -179,7 +180,8 @@ void run_snap(SnapOptions o) {
   }
   if (!o.json_path.empty()) write_text(o.json_path, snap_document(opened.input, o.nav_path, entries).dump(2) + "\n");
   write_tracks(o, entries, nav, leap_seconds);
-  const bool any_signal = std::any_of(entries.begin(), entries.end(), [](const auto& e) { return !e.result.signals.empty(); });
+  const bool any_signal =
+      std::any_of(entries.begin(), entries.end(), [](const auto& e) { return !e.result.signals.empty(); });
   if (!any_signal)
     throw UserError(fmt::format("{}: no satellite found in {} snapshot(s): check --fs, --if, --format, "
                                 "--inverted-spectrum (or the metadata file)",
@@ -215,7 +217,9 @@ void add_snap_command(CommandParents& parents) {
   cmd->add_option("--start-ms", o->start_ms, "First snapshot's start after the file's first sample (ms)")
       ->check(finite_in(0.0, 1e9, "a time in ms"))
       ->capture_default_str();
-  cmd->add_option("--length-ms", o->length_ms, "Snapshot length (ms)")->check(CLI::Range(2, 100))->capture_default_str();
+  cmd->add_option("--length-ms", o->length_ms, "Snapshot length (ms)")
+      ->check(CLI::Range(2, 100))
+      ->capture_default_str();
   cmd->add_option("--every-ms", o->every_ms, "Take a snapshot every this many ms to the end of the file (0: one)")
       ->check(finite_in(0.0, 1e9, "a time in ms"))
       ->capture_default_str();

@@ -16,16 +16,17 @@ bool contains(const std::vector<int>& v, int x) { return std::find(v.begin(), v.
 
 nlohmann::json satellite_json(const SnapshotSignal& s, const CoarseTimeFix& fix) {
   const bool used = contains(fix.used_prns, s.prn);
-  nlohmann::json j = {{"prn", s.prn},
-                      {"code_phase_chips", s.code_phase_chips},
-                      {"doppler_hz", s.doppler_hz},
-                      {"cn0_dbhz", s.cn0_dbhz},
-                      {"refined", s.refined},
-                      {"used", used},
-                      {"excluded", contains(fix.excluded_prns, s.prn)},
-                      {"predicted_doppler_hz", s.predicted_doppler_hz ? nlohmann::json(*s.predicted_doppler_hz) : nullptr},
-                      {"residual_m", used ? nlohmann::json(fix.residuals_m.at(s.prn)) : nullptr},
-                      {"elevation_deg", used ? nlohmann::json(fix.elevation_rad.at(s.prn) * kRadToDeg) : nullptr}};
+  nlohmann::json j = {
+      {"prn", s.prn},
+      {"code_phase_chips", s.code_phase_chips},
+      {"doppler_hz", s.doppler_hz},
+      {"cn0_dbhz", s.cn0_dbhz},
+      {"refined", s.refined},
+      {"used", used},
+      {"excluded", contains(fix.excluded_prns, s.prn)},
+      {"predicted_doppler_hz", s.predicted_doppler_hz ? nlohmann::json(*s.predicted_doppler_hz) : nullptr},
+      {"residual_m", used ? nlohmann::json(fix.residuals_m.at(s.prn)) : nullptr},
+      {"elevation_deg", used ? nlohmann::json(fix.elevation_rad.at(s.prn) * kRadToDeg) : nullptr}};
   if (!s.refinement_note.empty()) j["refinement_note"] = s.refinement_note;
   return j;
 }

@@ -21,9 +21,10 @@ double number_in(const std::string& item, double lo, double hi, const std::strin
     if (used == item.size() && v >= lo && v <= hi) return v;
   } catch (const std::exception&) {
   }
-  throw UserError(fmt::format("--position-hint '{}': {} '{}' is not a number in [{}, {}] (expected LAT,LON,H in "
-                              "degrees, degrees and metres, e.g. 37.5,127.0,50)",
-                              text, what, item, lo, hi));
+  throw UserError(
+      fmt::format("--position-hint '{}': {} '{}' is not a number in [{}, {}] (expected LAT,LON,H in "
+                  "degrees, degrees and metres, e.g. 37.5,127.0,50)",
+                  text, what, item, lo, hi));
 }
 
 }  // namespace
@@ -41,7 +42,8 @@ GpsTime parse_time_hint(const std::string& text, int leap_seconds) {
   c.minute = std::stoi(m[5]);
   c.second = std::stod(m[6]);
   if (!is_valid_calendar(c) || c.year < 1980)
-    throw UserError(fmt::format("--time-hint '{}' is not a date and time after the GPS epoch ({})", text, expected));
+    throw UserError(
+        fmt::format("--time-hint '{}' is not a real date and time after the GPS epoch ({})", text, expected));
   const GpsTime t = gps_time_from_calendar(c);
   return m[8].length() > 0 ? t.plus_seconds(leap_seconds) : t;
 }
