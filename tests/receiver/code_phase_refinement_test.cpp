@@ -57,8 +57,7 @@ TEST(CodePhaseRefinement, FindsThePeakCentreAndDopplerFromTheAcquisitionsValues)
     ToneSpec t;
     t.seed = seed;
     const CodePhaseRefiner refiner(t.fs_hz, t.if_hz);
-    const RefinedSignal r =
-        refiner.refine(make_signal(t), t.prn, t.code_phase_chips + 0.3, t.doppler_hz - 60.0);
+    const RefinedSignal r = refiner.refine(make_signal(t), t.prn, t.code_phase_chips + 0.3, t.doppler_hz - 60.0);
     ASSERT_TRUE(r.converged) << r.reason;
     // 45 dB-Hz over 10 ms: sqrt(0.5 / (2 C/N0 T)) = 0.028 chip of noise; 0.1 chip is 3.5 sigma.
     EXPECT_LT(std::abs(chip_error(r.code_phase_chips, t.code_phase_chips)), 0.1) << seed;

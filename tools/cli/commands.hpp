@@ -23,6 +23,7 @@ void add_bench_jam_command(CommandParents& parents);
 void add_bench_leverarm_command(CommandParents& parents);
 void add_bench_rx_command(CommandParents& parents);
 void add_bench_sim_command(CommandParents& parents);
+void add_bench_snapshot_command(CommandParents& parents);
 void add_bench_stream_command(CommandParents& parents);
 void add_bench_threshold_command(CommandParents& parents);
 void add_fuse_command(CommandParents& parents);

@@ -33,6 +33,7 @@ int main(int argc, char** argv) {
   add_bench_leverarm_command(parents);
   add_bench_rx_command(parents);
   add_bench_sim_command(parents);
+  add_bench_snapshot_command(parents);
   add_bench_stream_command(parents);
   add_bench_threshold_command(parents);
   add_fuse_command(parents);
