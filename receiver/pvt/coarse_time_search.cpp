@@ -135,14 +135,26 @@ class CandidateFitter {
           [&](const Eigen::Vector3d& r) { return (r - centre).norm() <= radius_m + config_.grid_spacing_m; });
   }
 
-  /// Candidates over every place that sees all the satellites.
-  void over_visible_region(CoarseTimeSearch& search) {
-    std::vector<Eigen::Vector3d> positions;
-    for (const auto& s : snapshots_) positions.push_back(s.r_ecef_m);
-    const auto grid = visible_surface_grid(positions, config_.grid_spacing_m, config_.min_elevation_rad);
+  /// Candidates over every place that sees all the satellites; false when there is none.
+  bool over_visible_region(CoarseTimeSearch& search) {
+    const auto grid =
+        visible_surface_grid(positions_except(satellites_.size()), config_.grid_spacing_m, config_.min_elevation_rad);
     if (grid.empty())
       search.reason = fmt::format("no place on Earth sees all {} satellites at the hinted time", satellites_.size());
     for (const Eigen::Vector3d& candidate : grid) fit(search, candidate, [](const Eigen::Vector3d&) { return true; });
+    return !grid.empty();
+  }
+
+  /// The one satellite without which some place sees all the rest, if exactly one is.
+  std::optional<std::size_t> unseen_satellite() const {
+    std::optional<std::size_t> unseen;
+    for (std::size_t k = 0; k < satellites_.size(); ++k) {
+      if (visible_surface_grid(positions_except(k), config_.grid_spacing_m, config_.min_elevation_rad).empty())
+        continue;
+      if (unseen) return std::nullopt;  // two candidates: which one is false cannot be told
+      unseen = k;
+    }
+    return unseen;
   }
 
  private:
@@ -158,6 +170,14 @@ class CandidateFitter {
     if (!fit.passed || !implausible_place(fit, config_).empty() || !within(fit.fit.state.r_ecef_m)) return;
     keep_if_new(time_beyond_tolerance(fit, config_).empty() ? search.fixes : search.beyond_time_tolerance,
                 std::move(fit));
+  }
+
+  /// The satellites' positions but satellite `k`'s (k = their number: all).
+  std::vector<Eigen::Vector3d> positions_except(std::size_t k) const {
+    std::vector<Eigen::Vector3d> positions;
+    for (std::size_t i = 0; i < snapshots_.size(); ++i)
+      if (i != k) positions.push_back(snapshots_[i].r_ecef_m);
+    return positions;
   }
 
   const std::vector<CoarseTimeSatellite>& satellites_;
@@ -195,7 +215,15 @@ CoarseTimeSearch search_without_position(const std::vector<CoarseTimeSatellite>&
   }
   search.from_doppler = false;
   search.searched_visible_region = true;
-  fitter.over_visible_region(search);
+  if (fitter.over_visible_region(search)) return search;
+  const std::optional<std::size_t> unseen = fitter.unseen_satellite();
+  if (!unseen || static_cast<int>(satellites.size()) - 1 < config.min_grid_satellites) return search;
+  std::vector<CoarseTimeSatellite> rest = satellites;
+  rest.erase(rest.begin() + static_cast<std::ptrdiff_t>(*unseen));
+  CandidateFitter rest_fitter(rest, context, config);
+  search.unseen_prns = {satellites[*unseen].prn};
+  search.reason.clear();
+  rest_fitter.over_visible_region(search);
   return search;
 }
 

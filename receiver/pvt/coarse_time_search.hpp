@@ -14,6 +14,11 @@
 // Candidates only choose whole milliseconds, so their ranges are predicted cheaply:
 // satellite positions and clocks at the hinted time less a typical 75 ms flight (their
 // error, tens of metres, is nothing next to the 150 km). Sets seen before are skipped.
+//
+// A false detection (a long snapshot's non-coherent sum over many PRNs) can name a
+// satellite that no place sees together with the others: the visible region is then
+// empty. When leaving out exactly one satellite gives a region again, that satellite is
+// set aside (unseen_prns) and the region of the rest is searched.
 #include <optional>
 #include <string>
 #include <vector>
@@ -35,7 +40,10 @@ struct CoarseTimeSearch {
   std::optional<DopplerPosition> doppler;  ///< when Dopplers were given
   int candidates = 0;                      ///< whole-millisecond sets tried
   bool too_few_satellites = false;         ///< for the global grid, and no Doppler position
-  std::string reason;                      ///< when no candidate could be made
+  /// Satellites left out because no place sees them with the others: a detection of a
+  /// signal that is not there (its whole-millisecond sets would all fail anyway).
+  std::vector<int> unseen_prns;
+  std::string reason;  ///< when no candidate could be made
 };
 
 CoarseTimeSearch search_without_position(const std::vector<CoarseTimeSatellite>& satellites,

@@ -225,7 +225,9 @@ class CoarseTimeRun {
 
   CoarseTimeFix searched_fix(const CoarseTimeSearch& search) const {
     const auto start = search.from_doppler ? CoarseTimeStart::doppler : CoarseTimeStart::grid;
-    return fix_from(search.fixes.front(), start, search.candidates, snap_, ctx_);
+    CoarseTimeFix fix = fix_from(search.fixes.front(), start, search.candidates, snap_, ctx_);
+    fix.excluded_prns.insert(fix.excluded_prns.end(), search.unseen_prns.begin(), search.unseen_prns.end());
+    return fix;
   }
 
   /// The fix from the hints failed for `why`: solve again without the position hint, then

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <numbers>
 
 #include "snapshot_scene.hpp"
@@ -222,6 +223,29 @@ TEST(CoarseTimeSolver, AWrongWholeMillisecondFromTheHintsIsRepaired) {
     ++repaired;
   }
   EXPECT_GE(repaired, 2);
+}
+
+TEST(CoarseTimeSolver, ADetectionOfASatelliteBelowTheHorizonIsSetAsideWithoutAPositionHint) {
+  // A long snapshot's non-coherent sum can report a satellite that is not in the signal:
+  // one below the horizon leaves no place that sees every satellite.
+  Scene s = scene_at(1, 561000.0, 40);
+  const GpsTime t = s.spec.t_true;
+  int below = 0;
+  for (int prn = 1; prn <= gps::kMaxPrn && below == 0; ++prn) {
+    const Ephemeris* eph = broadcast_navigation().select(prn, t);
+    if (eph == nullptr || s.ephemerides.count(prn) > 0) continue;
+    const Eigen::Vector3d d = satellite_state(*eph, t).r_ecef_m - s.r_true;
+    if (d.dot(s.r_true.normalized()) < -0.5 * d.norm()) below = prn;  // 30 degrees below
+  }
+  ASSERT_NE(below, 0);
+  s.ephemerides[below] = *broadcast_navigation().select(below, t);
+  s.measurements.push_back({below, 512.25, std::nullopt, 45.0});
+  const CoarseTimeFix fix = solve(s, 20.0, std::nullopt, false);
+  ASSERT_TRUE(fix.valid) << fix.reason;
+  EXPECT_LT((fix.r_ecef_m - s.r_true).norm(), kMaxError_m);
+  EXPECT_EQ(fix.start, CoarseTimeStart::grid);
+  EXPECT_NE(std::find(fix.excluded_prns.begin(), fix.excluded_prns.end(), below), fix.excluded_prns.end());
+  EXPECT_EQ(std::find(fix.used_prns.begin(), fix.used_prns.end(), below), fix.used_prns.end());
 }
 
 TEST(CoarseTimeSolver, TooFewSatellitesAreRefusedWithoutBlamingAHint) {

@@ -89,7 +89,8 @@ std::vector<SnapshotPoint> cut_points(const Scenario& sc, const NavData& nav, co
       auto& kept = points[k].samples;
       const std::int64_t want_from = start + static_cast<std::int64_t>(kept.size());
       if (kept.size() >= samples_per_point || want_from >= last || want_from < first) continue;
-      const auto take = std::min<std::int64_t>(last - want_from, static_cast<std::int64_t>(samples_per_point - kept.size()));
+      const auto take =
+          std::min<std::int64_t>(last - want_from, static_cast<std::int64_t>(samples_per_point - kept.size()));
       kept.insert(kept.end(), samples.begin() + (want_from - first), samples.begin() + (want_from - first + take));
     }
   }
@@ -119,7 +120,8 @@ std::vector<SnapshotPoint> scenario_points(const Scenario& sc, const NavData& na
 Scenario bench_scenario(const std::string& path, double cn0_dbhz) {
   Scenario sc = load_scenario(path, DEEPNAV_SOURCE_DIR);
   if (sc.trajectory.preset.empty())
-    throw InputError(fmt::format("{}: the snapshot benchmark needs a preset trajectory (static, land-circle...)", path));
+    throw InputError(
+        fmt::format("{}: the snapshot benchmark needs a preset trajectory (static, land-circle...)", path));
   sc.cn0.model = Cn0Spec::Model::fixed;
   sc.cn0.fixed_dbhz = cn0_dbhz;
   return sc;
@@ -139,8 +141,14 @@ std::vector<Outcome> solve_points(const std::string& name, const Scenario& sc, c
       const GpsTime t_hint = sc.start_time.plus_seconds(p.t_s + p.time_error_s);
       const std::clock_t began = std::clock();
       const SnapshotResult r = positioner.solve(p.samples, t_hint);
-      Outcome o{name, length_ms, static_cast<int>(k), p.time_error_s, r.fix.valid, 0.0,
-                1e3 * static_cast<double>(std::clock() - began) / CLOCKS_PER_SEC, r.fix.reason};
+      Outcome o{name,
+                length_ms,
+                static_cast<int>(k),
+                p.time_error_s,
+                r.fix.valid,
+                0.0,
+                1e3 * static_cast<double>(std::clock() - began) / CLOCKS_PER_SEC,
+                r.fix.reason};
       if (o.solved) o.horizontal_error_m = horizontal_m(r.fix.r_ecef_m, p.truth_ecef_m);
       out.push_back(std::move(o));
     }
@@ -172,8 +180,8 @@ void add_row(BenchReport& report, const std::string& scenario, int length_ms, co
     if (o.solved) errors.push_back(o.horizontal_error_m);
   }
   report.add_row({scenario, static_cast<long long>(length_ms), static_cast<long long>(errors.size()), tried,
-                  median(errors), quantile(errors, 0.95), errors.empty() ? std::nan("") : *std::max_element(errors.begin(), errors.end()),
-                  median(cpu)});
+                  median(errors), quantile(errors, 0.95),
+                  errors.empty() ? std::nan("") : *std::max_element(errors.begin(), errors.end()), median(cpu)});
 }
 
 nlohmann::json outcomes_json(const std::vector<Outcome>& outcomes) {
