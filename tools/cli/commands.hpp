@@ -23,12 +23,14 @@ void add_bench_jam_command(CommandParents& parents);
 void add_bench_leverarm_command(CommandParents& parents);
 void add_bench_rx_command(CommandParents& parents);
 void add_bench_sim_command(CommandParents& parents);
+void add_bench_snapshot_command(CommandParents& parents);
 void add_bench_stream_command(CommandParents& parents);
 void add_bench_threshold_command(CommandParents& parents);
 void add_fuse_command(CommandParents& parents);
 void add_run_command(CommandParents& parents);
 void add_serve_command(CommandParents& parents);
 void add_sim_command(CommandParents& parents);
+void add_snap_command(CommandParents& parents);
 
 /// Exit status of `run` and `acquire` when the signal held nothing to find: no satellite
 /// acquired, or too little signal for one observation epoch (or one coherent block). The

@@ -33,12 +33,14 @@ int main(int argc, char** argv) {
   add_bench_leverarm_command(parents);
   add_bench_rx_command(parents);
   add_bench_sim_command(parents);
+  add_bench_snapshot_command(parents);
   add_bench_stream_command(parents);
   add_bench_threshold_command(parents);
   add_fuse_command(parents);
   add_run_command(parents);
   add_serve_command(parents);
   add_sim_command(parents);
+  add_snap_command(parents);
 
   try {
     app.parse(argc, argv);

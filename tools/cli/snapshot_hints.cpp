@@ -1,0 +1,63 @@
+#include "tools/cli/snapshot_hints.hpp"
+
+#include <fmt/format.h>
+
+#include <regex>
+#include <sstream>
+#include <vector>
+
+#include "ins/wgs84.hpp"
+#include "tools/cli/commands.hpp"
+
+namespace deepnav::cli {
+namespace {
+
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+
+double number_in(const std::string& item, double lo, double hi, const std::string& what, const std::string& text) {
+  try {
+    std::size_t used = 0;
+    const double v = std::stod(item, &used);
+    if (used == item.size() && v >= lo && v <= hi) return v;
+  } catch (const std::exception&) {
+  }
+  throw UserError(
+      fmt::format("--position-hint '{}': {} '{}' is not a number in [{}, {}] (expected LAT,LON,H in "
+                  "degrees, degrees and metres, e.g. 37.5,127.0,50)",
+                  text, what, item, lo, hi));
+}
+
+}  // namespace
+
+GpsTime parse_time_hint(const std::string& text, int leap_seconds) {
+  static const std::regex kIso(R"((\d{4})-(\d{2})-(\d{2})[T ](\d{2}):(\d{2}):(\d{2}(\.\d+)?)(Z?))");
+  const std::string expected = "expected a date and time like 2022-01-01T00:00:03Z (UTC) or 2022-01-01T00:00:21 (GPS)";
+  std::smatch m;
+  if (!std::regex_match(text, m, kIso)) throw UserError(fmt::format("--time-hint '{}': {}", text, expected));
+  CalendarTime c;
+  c.year = std::stoi(m[1]);
+  c.month = std::stoi(m[2]);
+  c.day = std::stoi(m[3]);
+  c.hour = std::stoi(m[4]);
+  c.minute = std::stoi(m[5]);
+  c.second = std::stod(m[6]);
+  if (!is_valid_calendar(c) || c.year < 1980)
+    throw UserError(
+        fmt::format("--time-hint '{}' is not a real date and time after the GPS epoch ({})", text, expected));
+  const GpsTime t = gps_time_from_calendar(c);
+  return m[8].length() > 0 ? t.plus_seconds(leap_seconds) : t;
+}
+
+Eigen::Vector3d parse_position_hint(const std::string& text) {
+  std::vector<std::string> items;
+  std::stringstream s(text);
+  for (std::string item; std::getline(s, item, ',');) items.push_back(item);
+  if (items.size() != 3)
+    throw UserError(fmt::format("--position-hint '{}': expected LAT,LON,H (three numbers, e.g. 37.5,127.0,50)", text));
+  const double lat = number_in(items[0], -90.0, 90.0, "latitude", text);
+  const double lon = number_in(items[1], -180.0, 360.0, "longitude", text);
+  const double h = number_in(items[2], -1000.0, 100000.0, "height", text);
+  return wgs84::llh_to_ecef({lat * kDeg, lon * kDeg, h});
+}
+
+}  // namespace deepnav::cli

@@ -1,0 +1,22 @@
+#pragma once
+// The hints of `deepnav snap` as the command line writes them: --time-hint (a date and
+// time, UTC with a trailing Z, else GPS time) and --position-hint LAT,LON,H (degrees,
+// degrees, metres above the WGS-84 ellipsoid).
+#include <Eigen/Core>
+#include <string>
+
+#include "ins/gps_time.hpp"
+
+namespace deepnav::cli {
+
+/// "2022-01-01T00:00:03Z" (UTC: GPS time is ahead by `leap_seconds`) or
+/// "2022-01-01T00:00:21" (GPS time); a space may replace the T and seconds may have a
+/// fraction. Throws UserError naming --time-hint and the expected form.
+GpsTime parse_time_hint(const std::string& text, int leap_seconds);
+
+/// "LAT,LON,H" to ECEF (m). Throws UserError naming --position-hint for a malformed text,
+/// a latitude outside [-90, 90], a longitude outside [-180, 360] or a height outside
+/// [-1000, 100000] m.
+Eigen::Vector3d parse_position_hint(const std::string& text);
+
+}  // namespace deepnav::cli
