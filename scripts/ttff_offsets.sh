@@ -35,7 +35,12 @@ src=$(cd "$(dirname "$0")/.." && pwd)
 mkdir -p "$out"
 offsets=(0 3 9 15 21 27)
 RANDOM=$seed
-for ((k = 0; k < random; k++)); do offsets+=("$(printf '%d.%03d' $((RANDOM % 30)) $((RANDOM % 1000)))"); done
+# printf -v, not $(printf ...): bash seeds RANDOM afresh in a subshell, so offsets drawn in
+# one would differ from run to run whatever the seed.
+for ((k = 0; k < random; k++)); do
+  printf -v drawn '%d.%03d' $((RANDOM % 30)) $((RANDOM % 1000))
+  offsets+=("$drawn")
+done
 for offset in "${offsets[@]}"; do
   point="$out/offset_$offset"
   [ -f "$point/run/summary.json" ] && continue
