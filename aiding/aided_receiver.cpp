@@ -377,7 +377,9 @@ struct AidedReceiver::Impl : ChannelAiding {
     ranging = 0;
     for (const auto& o : ep.observations)
       if (rx.ephemeris(o.prn)) ++ranging;
-    if (!nav && ep.pvt.valid && imu_feed.covers()) start_ins(ep);
+    // A hot start's coarse-time fix has no receiver clock behind it (its clock bias is
+    // modulo 1 ms): the INS and its clock model start from the first fix with one.
+    if (!nav && ep.pvt.valid && !ep.coarse_time && imu_feed.covers()) start_ins(ep);
     watch_atmosphere(ep);
     ultra.clear_pseudorange_residuals();
     if (nav) {

@@ -94,8 +94,9 @@ struct GnssReceiver::Impl {
   std::map<int, NavigationStatus> finished_status;       ///< of channels already released
   std::int64_t first_index = -1, end_index = -1;         ///< span of the samples read so far
   bool gap_since_epoch = false;                          ///< samples lost since the last observation epoch
-  std::optional<double> ephemerides_complete_s;     ///< four satellites first had ephemerides
+  std::optional<double> ephemerides_complete_s;          ///< four satellites first had ephemerides
   std::optional<FirstFixOrigin> first_fix;
+  std::optional<HotStart> hot_start;  ///< ReceiverConfig::hot_start, until the clock is set
 
   Impl(ReceiverConfig c, SampleSource& s)
       : cfg(checked(std::move(c), s)),
@@ -106,7 +107,9 @@ struct GnssReceiver::Impl {
         workers(channel_workers(cfg.threads)),
         acquisition(cfg.acquisition, cfg.reacquire_interval_s),
         guided(cfg.guided, fs, cfg.tracking.if_hz),
-        pvt(cfg.pvt, cfg.atmosphere) {}
+        pvt(cfg.pvt, cfg.atmosphere) {
+    if (cfg.hot_start) hot_start.emplace(*cfg.hot_start, fs, cfg.atmosphere);
+  }
 
   int free_channels() const { return cfg.channels - static_cast<int>(channels.size()); }
   bool channel_free() const { return free_channels() > 0; }
@@ -206,8 +209,12 @@ struct GnssReceiver::Impl {
   }
 
   /// The first fix: decoded ephemerides only (cold) or some given.
-  void note_first_fix(const PvtSolution& fix) {
+  void note_first_fix(const PvtSolution& fix, bool coarse_time) {
     if (first_fix || !fix.valid) return;
+    if (coarse_time) {
+      first_fix = FirstFixOrigin{"coarse-time", ephemerides_complete_s};
+      return;
+    }
     const std::map<int, Ephemeris> decoded = navigation.decoded();
     const bool cold =
         std::all_of(fix.used_prns.begin(), fix.used_prns.end(), [&](int prn) { return decoded.count(prn) > 0; });
@@ -316,6 +323,39 @@ struct GnssReceiver::Impl {
     return !(ch.tracking().lock_detector().ready() && ch.tracking().cn0_dbhz() < cfg.tracking.lost_cn0_dbhz);
   }
 
+  /// A channel whose code phase a coarse-time fix may take: past pull-in, its code loop
+  /// locked and its C/N0 measured above the loss threshold.
+  bool code_phase_usable(const ReceiverChannel& ch) const {
+    const TrackingChannel& t = ch.tracking();
+    if (t.state() != ChannelState::bit_sync && t.state() != ChannelState::tracking) return false;
+    if (guided.awaiting_confirmation(ch.prn())) return false;
+    return t.lock_detector().ready() && t.lock_detector().code_locked() && t.cn0_dbhz() >= cfg.tracking.lost_cn0_dbhz;
+  }
+
+  /// The hot start's coarse-time fix at sample `s` (the clock is not set yet).
+  void hot_start_fix(std::int64_t s, ReceiverEpoch& ep) {
+    const GpsTime t_hint = hot_start->time_hint_at(s);
+    std::vector<SnapshotMeasurement> measurements;
+    std::map<int, Ephemeris> ephemerides;
+    for (const ReceiverChannel& ch : channels) {
+      if (!code_phase_usable(ch)) continue;
+      auto e = navigation.available(ch.prn(), t_hint);
+      if (!e) continue;
+      const double chips = ch.tracking().code_chips_at(s);
+      double phase = chips - std::floor(chips / gps::kCodeLength_chips) * gps::kCodeLength_chips;
+      if (!(phase < gps::kCodeLength_chips)) phase = 0.0;  // rounding at the period's end
+      measurements.push_back({ch.prn(), phase, ch.last_doppler_hz(), ch.tracking().cn0_dbhz()});
+      ephemerides.emplace(ch.prn(), std::move(*e));
+    }
+    const int attempts_before = hot_start->report().attempts;
+    ep.pvt = hot_start->solve(measurements, ephemerides, navigation.iono(), s);
+    ep.coarse_time = true;
+    // The first refusal is worth a word (a wrong hint); the next ones say the same.
+    if (attempts_before == 0 && hot_start->report().attempts == 1 && !ep.pvt.valid)
+      spdlog::warn("t = {:.2f} s: {}; the first fix waits for the broadcast time of week", ep.t_s, ep.pvt.reason);
+    note_first_fix(ep.pvt, true);
+  }
+
   /// Observables and PVT at sample `s`, common to all channels.
   ReceiverEpoch observe(std::int64_t s) {
     ReceiverEpoch ep;
@@ -333,7 +373,10 @@ struct GnssReceiver::Impl {
     }
     clock.set_from_transmit_times(transmit_sow, s);
     ep.t_rx = clock.at(s);
-    if (!ep.t_rx) return ep;
+    if (!ep.t_rx) {
+      if (hot_start) hot_start_fix(s, ep);
+      return ep;
+    }
     for (const ReceiverChannel* ch : sent) navigation.adopt_assisted(ch->prn(), *ep.t_rx);
     note_ephemerides(s);
     std::vector<PseudorangeObservation> ranging;
@@ -343,7 +386,7 @@ struct GnssReceiver::Impl {
       if (navigation.ephemeris(o.prn)) ranging.push_back({o.prn, o.pseudorange_m, o.doppler_hz, o.cn0_dbhz});
     }
     ep.pvt = pvt.solve(*ep.t_rx, ranging, navigation.in_use(), navigation.iono());
-    note_first_fix(ep.pvt);
+    note_first_fix(ep.pvt, false);
     // Steer the receiver clock so that pseudoranges stay near the geometric ranges.
     if (ep.pvt.valid) clock.steer(ep.pvt.clock_bias_m);
     return ep;
@@ -444,6 +487,10 @@ AcquisitionEvidence GnssReceiver::acquisition_evidence() const {
 }
 std::optional<int> GnssReceiver::signal_week() const { return impl_->clock.signal_week(); }
 std::optional<FirstFixOrigin> GnssReceiver::first_fix_origin() const { return impl_->first_fix; }
+std::optional<HotStartReport> GnssReceiver::hot_start_report() const {
+  if (!impl_->hot_start) return std::nullopt;
+  return impl_->hot_start->report();
+}
 
 const std::vector<GuidedSearchRecord>& GnssReceiver::guided_searches() const { return impl_->guided.records(); }
 

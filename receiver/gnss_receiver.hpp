@@ -18,6 +18,7 @@
 #include "receiver/acquisition/acquisition.hpp"
 #include "receiver/acquisition/guided_reacquisition.hpp"
 #include "receiver/acquisition/signal_diagnostics.hpp"
+#include "receiver/hot_start.hpp"
 #include "receiver/pvt/pvt_solver.hpp"
 #include "receiver/receiver_channel.hpp"
 #include "receiver/sources/sample_source.hpp"
@@ -60,6 +61,10 @@ struct ReceiverConfig {
   /// PVT solution reads them from here, and so do tight coupling and the ultra-tight NCO commands
   /// (through atmosphere()).
   AtmosphereModels atmosphere;
+  /// Hot start: until the receiver clock is set, each epoch is a coarse-time fix from the
+  /// code phases (receiver/hot_start.hpp) with these hints; it needs ephemerides
+  /// given (set_assisted_ephemerides). None: a cold or assisted start.
+  std::optional<HotStartHints> hot_start;
 };
 
 /// Everything the receiver knows at one observation epoch.
@@ -70,6 +75,9 @@ struct ReceiverEpoch {
   std::vector<ChannelObservation> observations;
   PvtSolution pvt;
   int channels_tracking = 0;
+  /// `pvt` is a hot start's coarse-time fix: from code phases before the receiver clock was
+  /// set, so no observations and no `t_rx` (its time is the fix's own, `pvt.t`).
+  bool coarse_time = false;
 };
 
 /// Each observed satellite's C/N0 (dB-Hz) at the epoch, by PRN.
@@ -82,7 +90,8 @@ inline std::map<int, double> cn0_by_prn(const ReceiverEpoch& epoch) {
 /// How the receiver came to its first fix (summary.json, the run's closing line).
 struct FirstFixOrigin {
   /// "cold": every satellite of the fix had its ephemeris decoded from the signal;
-  /// "ephemerides given": one or more came from assistance (--ephemeris-from).
+  /// "ephemerides given": one or more came from assistance (--ephemeris-from);
+  /// "coarse-time": a hot start's fix from code phases before any time of week was decoded.
   std::string method;
   /// When four satellites first had ephemerides (s since the first sample), decoded or given.
   std::optional<double> ephemerides_complete_s;
@@ -141,6 +150,8 @@ class GnssReceiver {
   std::optional<int> signal_week() const;
   /// How the first PVT fix was obtained, once there was one.
   std::optional<FirstFixOrigin> first_fix_origin() const;
+  /// What the hot start did, when one was configured (ReceiverConfig::hot_start).
+  std::optional<HotStartReport> hot_start_report() const;
   /// Per PRN, over every channel that tracked it (dropped ones included).
   std::vector<NavigationStatus> navigation_status() const;
   /// Every filter-guided search finished so far, in the order they finished.

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <sstream>
 
 #include "aiding/navigation_session.hpp"
 #include "ins/imu_file.hpp"
@@ -21,6 +22,7 @@
 #include "receiver/sources/sample_source_factory.hpp"
 #include "signals/data_path.hpp"
 #include "signals/rinex_nav.hpp"
+#include "signals/text_output_file.hpp"
 #include "tools/bench/process_usage.hpp"
 #include "tools/cli/atmosphere_options.hpp"
 #include "tools/cli/cli_checks.hpp"
@@ -28,6 +30,7 @@
 #include "tools/cli/long_integration_options.hpp"
 #include "tools/cli/output_folder.hpp"
 #include "tools/cli/progress.hpp"
+#include "tools/cli/snapshot_hints.hpp"
 #include "tools/cli/source_options.hpp"
 #include "tools/cli/stop_signals.hpp"
 #include "tools/cli/summary_file.hpp"
@@ -44,6 +47,9 @@ struct RunOptions {
   ReceiverConfig receiver;
   // INS aiding (--mode loose|tight|ultra).
   std::string assist_ephemeris;
+  // Hot start (with --ephemeris-from): coarse-time fixes before any time of week is decoded.
+  std::string time_hint, position_hint;
+  std::string save_ephemerides;
   std::string mode = "scalar", imu_path, imu_grade = "tactical", imu_grades_file = "data/imu_grades.yaml";
   std::vector<double> imu_lever_arm_m{0.0, 0.0, 0.0};
   bool filter_troposphere = false;
@@ -113,6 +119,15 @@ aiding::AidedReceiverConfig aided_config(const RunOptions& o, aiding::NavMode mo
   return c;
 }
 
+/// The hot start's hints from --time-hint (UTC converted with the navigation file's leap
+/// seconds) and --position-hint.
+HotStartHints hot_start_hints(const RunOptions& o, const NavData& nav) {
+  HotStartHints hints;
+  hints.first_sample_time = parse_time_hint(o.time_hint, leap_seconds_of(nav));
+  if (!o.position_hint.empty()) hints.position_ecef_m = parse_position_hint(o.position_hint);
+  return hints;
+}
+
 /// The session's configuration from the options (assistance files read here).
 aiding::NavigationSessionConfig session_config(const RunOptions& o, aiding::NavMode mode) {
   aiding::NavigationSessionConfig c;
@@ -132,6 +147,7 @@ aiding::NavigationSessionConfig session_config(const RunOptions& o, aiding::NavM
     }
     if (!o.assist_ephemeris.empty())
       c.assisted_ephemerides = o.assist_ephemeris == o.assist_nav ? *iono_nav : read_rinex_nav(o.assist_ephemeris);
+    if (!o.time_hint.empty()) c.navigator.receiver.hot_start = hot_start_hints(o, *c.assisted_ephemerides);
   } catch (const std::runtime_error& e) {
     throw UserError(e.what());
   }
@@ -165,6 +181,19 @@ nlohmann::json first_fix_json(const std::optional<FirstFixOrigin>& origin) {
            origin->ephemerides_complete_s ? nlohmann::json(*origin->ephemerides_complete_s) : nlohmann::json(nullptr)}};
 }
 
+/// What the hot start did: {"attempts", "fixes", "first_fix_s", "first_time_correction_s",
+/// "last_refusal"}; null without --time-hint.
+nlohmann::json hot_start_json(const std::optional<HotStartReport>& report) {
+  if (!report) return nullptr;
+  const auto or_null = [](const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };
+  return {
+      {"attempts", report->attempts},
+      {"fixes", report->fixes},
+      {"first_fix_s", or_null(report->first_fix_sample_s)},
+      {"first_time_correction_s", or_null(report->first_correction_s)},
+      {"last_refusal", report->last_refusal.empty() ? nlohmann::json(nullptr) : nlohmann::json(report->last_refusal)}};
+}
+
 /// "16.0 s (cold; ephemerides of four satellites at 15.1 s)", or "-" without a fix.
 std::string first_fix_text(const RunStatistics& stats, const std::optional<FirstFixOrigin>& origin) {
   if (!stats.first_fix_s()) return "-";
@@ -189,6 +218,7 @@ nlohmann::json run_summary(const RunOptions& o, const OpenedSource& opened, aidi
       {"fixes", stats.fixes()},
       {"time_to_first_fix_s", stats.first_fix_s() ? nlohmann::json(*stats.first_fix_s()) : nlohmann::json(nullptr)},
       {"first_fix", first_fix_json(receiver.first_fix_origin())},
+      {"hot_start", hot_start_json(receiver.hot_start_report())},
       {"acquired_prns", receiver.acquired_prns()},
       {"ephemerides", receiver.ephemerides().size()},
       {"ephemerides_decoded", receiver.decoded_ephemerides().size()},
@@ -290,6 +320,41 @@ class SummarySink : public ProductSink {
   std::function<nlohmann::json()> summary_;
 };
 
+/// --save-ephemerides: the ephemerides in use at the end (decoded, else given) as a RINEX 3
+/// navigation file, for the next run's --ephemeris-from (a hot start).
+class SavedEphemeridesSink : public ProductSink {
+ public:
+  SavedEphemeridesSink(const std::string& path, const GnssReceiver& receiver) : file_(path), receiver_(receiver) {}
+  void finish(const NavData&) override {
+    NavData nav;
+    for (const auto& [prn, eph] : receiver_.ephemerides()) nav.ephemerides.push_back(eph);
+    nav.iono = receiver_.iono();
+    nav.utc = receiver_.utc();
+    std::ostringstream rinex;
+    write_rinex3_nav(rinex, nav, "deepnav");
+    file_.write(rinex.str());
+    file_.commit();
+  }
+  void abandon() noexcept override { file_.fail(); }
+  std::string name() const override { return "--save-ephemerides"; }
+
+ private:
+  TextOutputFile file_;
+  const GnssReceiver& receiver_;
+};
+
+/// --save-ephemerides may replace the navigation files given as assistance (read whole at
+/// the start: the saved set is their update) but no other input.
+void refuse_saving_over_inputs(const std::string& path, const std::vector<NamedInput>& inputs) {
+  for (const NamedInput& input : inputs) {
+    if (input.path.empty() || input.option == "--ephemeris-from" || input.option == "--iono-from") continue;
+    std::error_code ec;
+    if (std::filesystem::equivalent(path, input.path, ec) && !ec)
+      throw UserError(fmt::format("--save-ephemerides '{}' would replace the input '{}' ({}): choose another file",
+                                  path, input.path, input.option));
+  }
+}
+
 /// The files `run` reads, which its products must not replace.
 std::vector<NamedInput> run_inputs(CLI::App& root, const RunOptions& o, const OpenedSource& opened) {
   std::vector<NamedInput> inputs = config_file_input(root);
@@ -328,6 +393,7 @@ void run_receiver(CLI::App& root, RunOptions o) {
   std::vector<std::string> product_names = file_product_names();
   product_names.push_back("summary.json");
   const OutputFolder out(o.out_dir, product_names, run_inputs(root, o, opened));
+  if (!o.save_ephemerides.empty()) refuse_saving_over_inputs(o.save_ephemerides, run_inputs(root, o, opened));
 
   const aiding::NavMode mode = parse_mode(o);
   std::optional<ImuLog> imu;
@@ -345,6 +411,8 @@ void run_receiver(CLI::App& root, RunOptions o) {
   });
   std::vector<ProductSink*> sinks{&stats};
   for (const auto& p : products) sinks.push_back(p.get());
+  std::optional<SavedEphemeridesSink> saved_ephemerides;
+  if (!o.save_ephemerides.empty()) sinks.push_back(&saved_ephemerides.emplace(o.save_ephemerides, session.receiver()));
   sinks.push_back(&summary);
 
   const double total_s = opened.duration_s.value_or(0.0);
@@ -362,8 +430,7 @@ void run_receiver(CLI::App& root, RunOptions o) {
   // After a hangup the terminal is gone: the results stay in the products.
   if (stop_signals.signal() != SIGHUP) {
     fmt::print("{} fixes in {} epochs; first fix at {}; satellites acquired: {}\n", stats.fixes(), stats.epochs(),
-               first_fix_text(stats, session.receiver().first_fix_origin()),
-               session.receiver().acquired_prns().size());
+               first_fix_text(stats, session.receiver().first_fix_origin()), session.receiver().acquired_prns().size());
     if (truth && !stats.horizontal_error_m().values.empty())
       fmt::print("error vs truth: horizontal RMS {:.2f} m, vertical RMS {:.2f} m, velocity RMS {:.3f} m/s\n",
                  stats.horizontal_error_m().rms(), stats.vertical_error_m().rms(), stats.velocity_error_mps().rms());
@@ -417,6 +484,18 @@ void add_run_command(CommandParents& parents) {
          "--ephemeris-from", o->assist_ephemeris,
          "RINEX navigation file whose ephemerides are used until the broadcast ones are decoded (assisted start)")
       ->check(CLI::ExistingFile);
+  CLI::Option* time_hint =
+      cmd->add_option("--time-hint", o->time_hint,
+                      "Hot start: approximate time of the file's first sample, 2022-01-01T00:00:03Z (UTC) or without "
+                      "Z (GPS), within +-2 minutes: fixes from code phases (coarse time) before any time of week is "
+                      "decoded")
+          ->needs(cmd->get_option("--ephemeris-from"));
+  cmd->add_option("--position-hint", o->position_hint,
+                  "Hot start: approximate position LAT,LON,H (deg, deg, m) within ~100 km (default: from the Dopplers)")
+      ->needs(time_hint);
+  cmd->add_option("--save-ephemerides", o->save_ephemerides,
+                  "Write the ephemerides in use at the end (decoded, else given) as RINEX 3 navigation to FILE, for a "
+                  "later run's --ephemeris-from");
   cmd->add_option("--mode", o->mode,
                   "scalar, or INS-aided: loose (PVT), tight (pseudorange/rate), ultra (filter steers the channels)")
       ->check(CLI::IsMember({"scalar", "loose", "tight", "ultra"}))

@@ -28,9 +28,6 @@
 namespace deepnav::cli {
 namespace {
 
-/// UTC - GPS offset when the navigation file does not give it (since 2017).
-constexpr int kDefaultLeapSeconds = 18;
-
 struct SnapOptions {
   SourceRequest source;
   std::string nav_path;
@@ -167,7 +164,7 @@ void run_snap(SnapOptions o) {
   } catch (const std::exception& e) {
     throw UserError(fmt::format("--nav: {}", e.what()));
   }
-  const int leap_seconds = nav.leap_seconds_valid ? nav.utc.delta_t_ls : kDefaultLeapSeconds;
+  const int leap_seconds = leap_seconds_of(nav);
   const GpsTime t0 = parse_time_hint(o.time_hint, leap_seconds);
   std::optional<Eigen::Vector3d> hint;
   if (!o.position_hint.empty()) hint = parse_position_hint(o.position_hint);

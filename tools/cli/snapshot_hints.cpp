@@ -29,6 +29,11 @@ double number_in(const std::string& item, double lo, double hi, const std::strin
 
 }  // namespace
 
+int leap_seconds_of(const NavData& nav) {
+  constexpr int kLeapSecondsSince2017 = 18;
+  return nav.leap_seconds_valid ? nav.utc.delta_t_ls : kLeapSecondsSince2017;
+}
+
 GpsTime parse_time_hint(const std::string& text, int leap_seconds) {
   static const std::regex kIso(R"((\d{4})-(\d{2})-(\d{2})[T ](\d{2}):(\d{2}):(\d{2}(\.\d+)?)(Z?))");
   const std::string expected = "expected a date and time like 2022-01-01T00:00:03Z (UTC) or 2022-01-01T00:00:21 (GPS)";

@@ -1,13 +1,18 @@
 #pragma once
-// The hints of `deepnav snap` as the command line writes them: --time-hint (a date and
-// time, UTC with a trailing Z, else GPS time) and --position-hint LAT,LON,H (degrees,
-// degrees, metres above the WGS-84 ellipsoid).
+// The coarse-time hints as the command line writes them (`deepnav snap`, and `deepnav run`'s
+// hot start): --time-hint (a date and time, UTC with a trailing Z, else GPS time) and
+// --position-hint LAT,LON,H (degrees, degrees, metres above the WGS-84 ellipsoid).
 #include <Eigen/Core>
 #include <string>
 
 #include "ins/gps_time.hpp"
+#include "signals/rinex_nav.hpp"
 
 namespace deepnav::cli {
+
+/// UTC - GPS offset (s) a UTC time hint is converted with: the navigation file's LEAP
+/// SECONDS, else 18 (since 2017).
+int leap_seconds_of(const NavData& nav);
 
 /// "2022-01-01T00:00:03Z" (UTC: GPS time is ahead by `leap_seconds`) or
 /// "2022-01-01T00:00:21" (GPS time); a space may replace the T and seconds may have a
