@@ -15,8 +15,7 @@ constexpr std::size_t kSatellitesToTry = 6;
 
 }  // namespace
 
-HotStart::HotStart(HotStartHints hints, double sample_rate_hz, AtmosphereModels atmosphere,
-                                 CoarseTimeConfig config)
+HotStart::HotStart(HotStartHints hints, double sample_rate_hz, AtmosphereModels atmosphere, CoarseTimeConfig config)
     : hints_(std::move(hints)), fs_(sample_rate_hz), atmosphere_(atmosphere), solver_(config, atmosphere) {}
 
 GpsTime HotStart::time_hint_at(std::int64_t sample) const {
@@ -25,8 +24,8 @@ GpsTime HotStart::time_hint_at(std::int64_t sample) const {
 }
 
 PvtSolution HotStart::solve(const std::vector<SnapshotMeasurement>& measurements,
-                                   const std::map<int, Ephemeris>& ephemerides, const IonoParameters& iono,
-                                   std::int64_t sample) {
+                            const std::map<int, Ephemeris>& ephemerides, const IonoParameters& iono,
+                            std::int64_t sample) {
   std::size_t with_ephemeris = 0;
   for (const SnapshotMeasurement& m : measurements) with_ephemeris += ephemerides.count(m.prn);
   if (with_ephemeris < kSatellitesToTry) {
@@ -49,7 +48,8 @@ PvtSolution HotStart::solve(const std::vector<SnapshotMeasurement>& measurements
     const bool used = std::find(fix.used_prns.begin(), fix.used_prns.end(), m.prn) != fix.used_prns.end();
     if (used && m.doppler_hz) dopplers_hz[m.prn] = *m.doppler_hz;
   }
-  if (const auto v = velocity_from_dopplers(dopplers_hz, ephemerides, fix.receive_time, fix.r_ecef_m, iono, atmosphere_)) {
+  if (const auto v =
+          velocity_from_dopplers(dopplers_hz, ephemerides, fix.receive_time, fix.r_ecef_m, iono, atmosphere_)) {
     pvt.v_ecef_mps = v->v_ecef_mps;
     pvt.clock_drift_mps = v->clock_drift_mps;
   } else {

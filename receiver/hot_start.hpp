@@ -42,15 +42,14 @@ struct HotStartHints {
 struct HotStartReport {
   int attempts = 0;  ///< epochs tried (satellites with ephemerides enough to try)
   int fixes = 0;
-  std::string last_refusal;                    ///< the reason the last refused attempt gave
-  std::optional<double> first_correction_s;    ///< the first fix's time correction (true - hint)
-  std::optional<double> first_fix_sample_s;    ///< when the first fix was made (s since sample 0)
+  std::string last_refusal;                  ///< the reason the last refused attempt gave
+  std::optional<double> first_correction_s;  ///< the first fix's time correction (true - hint)
+  std::optional<double> first_fix_sample_s;  ///< when the first fix was made (s since sample 0)
 };
 
 class HotStart {
  public:
-  HotStart(HotStartHints hints, double sample_rate_hz, AtmosphereModels atmosphere,
-                  CoarseTimeConfig config = {});
+  HotStart(HotStartHints hints, double sample_rate_hz, AtmosphereModels atmosphere, CoarseTimeConfig config = {});
 
   /// The approximate GPS time of absolute sample `sample`: the last fix's, else the hint's,
   /// advanced by the samples since.
@@ -58,8 +57,8 @@ class HotStart {
   /// A fix at `sample` from the channels' code phases and Dopplers there; `ephemerides` by
   /// PRN, those in use at the hinted time. Not valid (with the reason) when the solver
   /// refuses it or too few satellites have ephemerides.
-  PvtSolution solve(const std::vector<SnapshotMeasurement>& measurements,
-                    const std::map<int, Ephemeris>& ephemerides, const IonoParameters& iono, std::int64_t sample);
+  PvtSolution solve(const std::vector<SnapshotMeasurement>& measurements, const std::map<int, Ephemeris>& ephemerides,
+                    const IonoParameters& iono, std::int64_t sample);
   const HotStartReport& report() const { return report_; }
 
  private:

@@ -8,9 +8,9 @@
 namespace deepnav {
 
 std::optional<DopplerVelocity> velocity_from_dopplers(const std::map<int, double>& dopplers_hz,
-                                                      const std::map<int, Ephemeris>& ephemerides,
-                                                      const GpsTime& t, const Eigen::Vector3d& r_ecef_m,
-                                                      const IonoParameters& iono, const AtmosphereModels& atmosphere) {
+                                                      const std::map<int, Ephemeris>& ephemerides, const GpsTime& t,
+                                                      const Eigen::Vector3d& r_ecef_m, const IonoParameters& iono,
+                                                      const AtmosphereModels& atmosphere) {
   std::vector<Eigen::Vector4d> rows;
   std::vector<double> rates;
   for (const auto& [prn, doppler_hz] : dopplers_hz) {

@@ -29,8 +29,8 @@ struct DopplerVelocity {
 /// `ephemerides` are left out. nullopt with fewer than four satellites or a geometry that
 /// does not fix the four unknowns.
 std::optional<DopplerVelocity> velocity_from_dopplers(const std::map<int, double>& dopplers_hz,
-                                                      const std::map<int, Ephemeris>& ephemerides,
-                                                      const GpsTime& t, const Eigen::Vector3d& r_ecef_m,
-                                                      const IonoParameters& iono, const AtmosphereModels& atmosphere);
+                                                      const std::map<int, Ephemeris>& ephemerides, const GpsTime& t,
+                                                      const Eigen::Vector3d& r_ecef_m, const IonoParameters& iono,
+                                                      const AtmosphereModels& atmosphere);
 
 }  // namespace deepnav

@@ -52,16 +52,16 @@ TEST(DopplerVelocity, SatellitesWithoutEphemerisLeftOutAndTooFewRefused) {
   // Without the first satellite's ephemeris: left out, the rest still fix the velocity.
   std::map<int, Ephemeris> fewer = s.ephemerides;
   fewer.erase(fewer.begin());
-  const auto v = velocity_from_dopplers(dopplers, fewer, s.spec.t_true, s.r_true, broadcast_navigation().iono,
-                                        AtmosphereModels{});
+  const auto v =
+      velocity_from_dopplers(dopplers, fewer, s.spec.t_true, s.r_true, broadcast_navigation().iono, AtmosphereModels{});
   ASSERT_TRUE(v.has_value());
   EXPECT_EQ(v->satellites, static_cast<int>(fewer.size()));
   EXPECT_LT(v->v_ecef_mps.norm(), 0.05);
   // Three satellites cannot fix four unknowns.
   while (fewer.size() > 3) fewer.erase(fewer.begin());
-  EXPECT_FALSE(velocity_from_dopplers(dopplers, fewer, s.spec.t_true, s.r_true, broadcast_navigation().iono,
-                                      AtmosphereModels{})
-                   .has_value());
+  EXPECT_FALSE(
+      velocity_from_dopplers(dopplers, fewer, s.spec.t_true, s.r_true, broadcast_navigation().iono, AtmosphereModels{})
+          .has_value());
 }
 
 }  // namespace
