@@ -3,6 +3,7 @@
 
 #include "ins/imu_model.hpp"
 #include "ins/input_file.hpp"
+#include "ins/iso_date_time.hpp"
 #include "ins/yaml_checks.hpp"
 #include "signals/sim/multipath_presets.hpp"
 
@@ -12,7 +13,6 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -137,18 +137,12 @@ GpsTime parse_start_time(const Field& f) {
                                f["sow"].number_in(0, kSecondsPerWeek - 1e-9));
   }
   const std::string s = f.text();
-  // Exactly "YYYY-MM-DDThh:mm:ss[.fff]" (or a space for the T): no signs, no trailing text.
-  static const std::regex kIso(R"((\d{4})-(\d{2})-(\d{2})[T ](\d{2}):(\d{2}):(\d{2}(\.\d+)?))");
-  std::smatch m;
+  // Exactly "YYYY-MM-DDThh:mm:ss[.fff]" (or a space for the T): no signs, no trailing text,
+  // no "Z" (the scenario's times are GPS time).
   const std::string expected = "expected a GPS time like \"2022-01-01T02:00:00\" or {week: 2190, sow: 525600}";
-  if (!std::regex_match(s, m, kIso)) f.fail(expected + ", got '" + s + "'");
-  CalendarTime c;
-  c.year = std::stoi(m[1]);
-  c.month = std::stoi(m[2]);
-  c.day = std::stoi(m[3]);
-  c.hour = std::stoi(m[4]);
-  c.minute = std::stoi(m[5]);
-  c.second = std::stod(m[6]);
+  const std::optional<IsoDateTime> written = parse_iso_date_time(s, false);
+  if (!written) f.fail(expected + ", got '" + s + "'");
+  const CalendarTime c = written->calendar;
   if (!is_valid_calendar(c)) f.fail("'" + s + "' is not a real date and time (" + expected.substr(9) + ")");
   const GpsTime t = gps_time_from_calendar(c);
   if (t.week < 0) f.fail("'" + s + "' is before the GPS epoch (1980-01-06)");

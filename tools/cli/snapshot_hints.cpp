@@ -2,10 +2,10 @@
 
 #include <fmt/format.h>
 
-#include <regex>
 #include <sstream>
 #include <vector>
 
+#include "ins/iso_date_time.hpp"
 #include "ins/wgs84.hpp"
 #include "tools/cli/commands.hpp"
 
@@ -35,22 +35,14 @@ int leap_seconds_of(const NavData& nav) {
 }
 
 GpsTime parse_time_hint(const std::string& text, int leap_seconds) {
-  static const std::regex kIso(R"((\d{4})-(\d{2})-(\d{2})[T ](\d{2}):(\d{2}):(\d{2}(\.\d+)?)(Z?))");
   const std::string expected = "expected a date and time like 2022-01-01T00:00:03Z (UTC) or 2022-01-01T00:00:21 (GPS)";
-  std::smatch m;
-  if (!std::regex_match(text, m, kIso)) throw UserError(fmt::format("--time-hint '{}': {}", text, expected));
-  CalendarTime c;
-  c.year = std::stoi(m[1]);
-  c.month = std::stoi(m[2]);
-  c.day = std::stoi(m[3]);
-  c.hour = std::stoi(m[4]);
-  c.minute = std::stoi(m[5]);
-  c.second = std::stod(m[6]);
-  if (!is_valid_calendar(c) || c.year < 1980)
+  const std::optional<IsoDateTime> written = parse_iso_date_time(text, true);
+  if (!written) throw UserError(fmt::format("--time-hint '{}': {}", text, expected));
+  if (!is_valid_calendar(written->calendar) || written->calendar.year < 1980)
     throw UserError(
         fmt::format("--time-hint '{}' is not a real date and time after the GPS epoch ({})", text, expected));
-  const GpsTime t = gps_time_from_calendar(c);
-  return m[8].length() > 0 ? t.plus_seconds(leap_seconds) : t;
+  const GpsTime t = gps_time_from_calendar(written->calendar);
+  return written->utc ? t.plus_seconds(leap_seconds) : t;
 }
 
 Eigen::Vector3d parse_position_hint(const std::string& text) {
