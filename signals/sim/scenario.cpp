@@ -159,8 +159,8 @@ TrajectorySpec parse_trajectory(const Field& f, const std::string& base_dir, con
   if (f.has("file")) {
     spec.preset.clear();
     spec.csv_path = resolve_path(f["file"].text(), base_dir, search_root);
-    if (!std::filesystem::exists(spec.csv_path))
-      f["file"].fail("trajectory file '" + spec.csv_path + "' does not exist");
+    if (const auto missing = missing_file_reason(spec.csv_path))
+      f["file"].fail("trajectory file '" + spec.csv_path + "' " + *missing);
   } else if (f.has("preset")) {
     spec.preset = f["preset"].text();
   }
@@ -259,7 +259,8 @@ ImuSpec parse_imu(const Field& f, const std::string& base_dir, const std::string
   if (f.has("grade")) spec.grade = f["grade"].text();
   spec.grades_file =
       resolve_path(f.has("grades_file") ? f["grades_file"].text() : "data/imu_grades.yaml", base_dir, search_root);
-  if (!std::filesystem::exists(spec.grades_file)) f.fail("IMU grades file '" + spec.grades_file + "' does not exist");
+  if (const auto missing = missing_file_reason(spec.grades_file))
+    f.fail("IMU grades file '" + spec.grades_file + "' " + *missing);
   try {
     load_imu_grade(spec.grades_file, spec.grade);
   } catch (const std::exception& e) {
@@ -518,10 +519,10 @@ Scenario parse_scenario(const std::string& yaml_text, const std::string& origin,
   }
   const std::string nav = f.has("nav_file") ? f["nav_file"].text() : "data/brdc0010.22n";
   s.nav_file = resolve_path(nav, base_dir, search_root);
-  if (!std::filesystem::exists(s.nav_file)) {
-    if (f.has("nav_file")) f["nav_file"].fail("navigation file '" + s.nav_file + "' does not exist");
-    throw std::invalid_argument(origin + ": default navigation file '" + s.nav_file +
-                                "' does not exist (set nav_file)");
+  if (const auto missing = missing_file_reason(s.nav_file)) {
+    if (f.has("nav_file")) f["nav_file"].fail("navigation file '" + s.nav_file + "' " + *missing);
+    throw std::invalid_argument(origin + ": default navigation file '" + s.nav_file + "' " + *missing +
+                                " (set nav_file)");
   }
   if (f.has("trajectory")) s.trajectory = parse_trajectory(f["trajectory"], base_dir, search_root);
   if (f.has("elevation_mask_deg")) s.elevation_mask_rad = f["elevation_mask_deg"].number_in(-10, 90) * kDegToRad;

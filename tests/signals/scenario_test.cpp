@@ -136,6 +136,18 @@ TEST(Scenario, StartTimeBoundsAgreeInBothForms) {
   EXPECT_NO_THROW(parse_scenario(scenario_to_yaml(late), "written.yaml", DEEPNAV_SOURCE_DIR, DEEPNAV_SOURCE_DIR));
 }
 
+TEST(Scenario, APathTooLongToLookUpIsAnErrorNamingTheField) {
+  // Found by the scenario fuzzer: a file name past the system's limit made the existence
+  // check throw std::filesystem::filesystem_error, which no reader of scenarios expects.
+  const std::string name(5000, 'x');
+  expect_error("start_time: \"2022-01-01T02:00:00\"\nduration_s: 1\nnav_file: " + name + "\n",
+               {"nav_file", "cannot be looked up"});
+  expect_error("start_time: \"2022-01-01T02:00:00\"\nduration_s: 1\ntrajectory: {file: " + name + "}\n",
+               {"trajectory.file", "cannot be looked up"});
+  expect_error("start_time: \"2022-01-01T02:00:00\"\nduration_s: 1\nimu: {grades_file: " + name + "}\n",
+               {"imu", "cannot be looked up"});
+}
+
 TEST(Scenario, ErrorsDefaultToNoneAndPresetsFillEveryField) {
   EXPECT_EQ(parse(kMinimal).errors, error_preset("none"));
   EXPECT_EQ(parse(std::string(kMinimal) + "errors: {preset: none}\n").errors, error_preset("none"));
