@@ -522,7 +522,9 @@ NavData read_rinex_nav(std::istream& in, const std::string& name) {
 }
 
 NavData read_rinex_nav(const std::string& path) {
-  if (std::filesystem::exists(path)) check_input_file(path, "RINEX navigation file", kMaxTextInputBytes);
+  // A path that cannot be looked up (too long) is a file that cannot be opened, below.
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec)) check_input_file(path, "RINEX navigation file", kMaxTextInputBytes);
   std::ifstream file(path);
   if (!file) throw std::runtime_error(fmt::format("{}: cannot open RINEX navigation file", path));
   return read_rinex_nav(file, path);

@@ -13,6 +13,7 @@
 #include "receiver/stream/tcp_sample_source.hpp"
 #include "receiver/stream/thread_safe_logging.hpp"
 #include "receiver/stream/udp_sample_source.hpp"
+#include "signals/data_path.hpp"
 #include "signals/gps_constants.hpp"
 #include "signals/if_metadata.hpp"
 
@@ -265,10 +266,10 @@ FileSampleSourceOptions file_source_options(const SourceRequest& r, SourceSettin
   if (overrides(SourceSetting::spectrum_sense, r.inverted_given, r.inverted ? "true" : "false",
                 meta ? (meta->inverted_spectrum ? "true" : "false") : ""))
     so.inverted_spectrum = r.inverted;
-  if (!std::filesystem::exists(so.path))
-    throw InputError(meta && r.input.empty() ? fmt::format("--metadata '{}': its sample file '{}' does not exist",
-                                                           r.metadata, so.path.string())
-                                             : fmt::format("--input: file '{}' does not exist", so.path.string()));
+  if (const auto missing = missing_file_reason(so.path.string()))
+    throw InputError(meta && r.input.empty() ? fmt::format("--metadata '{}': its sample file '{}' {}", r.metadata,
+                                                           so.path.string(), *missing)
+                                             : fmt::format("--input: file '{}' {}", so.path.string(), *missing));
   if (!(so.sample_rate_hz > 0.0))
     throw InputError(fmt::format("--input '{}': a file needs its sample rate (--fs, or --metadata)", so.path.string()));
   if (settings) {

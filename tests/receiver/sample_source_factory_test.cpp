@@ -143,6 +143,11 @@ TEST(FileSourceOptions, MissingPiecesAreNamed) {
   missing.fs_hz = 4.0e6;
   EXPECT_EQ(options_error(missing), "--input: file '" + missing.input + "' does not exist");
 
+  // A name past the system's limit cannot even be looked up: said so, not a filesystem_error.
+  SourceRequest too_long = missing;
+  too_long.input = std::string(5000, 'x');
+  EXPECT_EQ(options_error(too_long).rfind("--input: file '" + too_long.input + "' cannot be looked up (", 0), 0u);
+
   SourceRequest bad_format = no_rate;
   bad_format.fs_hz = 4.0e6;
   bad_format.format = "int7";

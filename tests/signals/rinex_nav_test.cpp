@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <random>
 #include <sstream>
@@ -384,6 +385,16 @@ TEST(RinexNavErrors, MissingAndEmptyFile) {
     FAIL() << "no error";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("brdc9999.22n: cannot open"), std::string::npos) << e.what();
+  }
+  // A name past the system's limit: the same error, not std::filesystem::filesystem_error.
+  const std::string too_long(5000, 'x');
+  try {
+    read_rinex_nav(too_long);
+    FAIL() << "no error";
+  } catch (const std::filesystem::filesystem_error& e) {
+    FAIL() << "filesystem_error escaped: " << e.what();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(": cannot open RINEX navigation file"), std::string::npos) << e.what();
   }
   EXPECT_NE(error_of("", "empty.22n").find("empty.22n:0: empty file"), std::string::npos) << error_of("");
 }
