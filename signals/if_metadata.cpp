@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "ins/input_file.hpp"
+#include "ins/iso_date_time.hpp"
 #include "signals/gps_constants.hpp"
 #include "signals/sample_packing.hpp"
 #include "signals/xml_nesting.hpp"
@@ -224,6 +225,23 @@ class Reader {
   Element root_;
 };
 
+/// The recording's start: the file's <timestamp>, else the one session's <toa>. A date
+/// that is given but unreadable is an error: it would otherwise date the run silently wrong.
+std::optional<MetadataStartTime> start_time_of(const Reader& r, const std::optional<Element>& file) {
+  std::optional<Element> date;
+  if (file) date = r.optional_one(*file, "timestamp");
+  if (!date) {
+    const auto sessions = r.root().children("session");
+    if (sessions.size() == 1) date = r.optional_one(r.resolve(sessions.front()), "toa");
+  }
+  if (!date) return std::nullopt;
+  const std::optional<IsoDateTime> written = parse_iso_date_time(date->text(), true);
+  if (!written || !is_valid_calendar(written->calendar) || written->calendar.year < 1980)
+    r.fail(*date, fmt::format("'{}' is not a date and time after the GPS epoch: expected UTC like 2021-12-02T08:47:00Z",
+                              date->text()));
+  return MetadataStartTime{written->calendar, date->path};
+}
+
 /// Bit positions of one value: global bit index (byte * 8 + bit) of each of its bits, from
 /// its least significant bit up.
 using ValueBits = std::vector<int>;
@@ -354,6 +372,7 @@ IfMetadata read_if_metadata(const std::filesystem::path& xml_path) {
     m.data_path = std::filesystem::path(url.text());
     if (m.data_path.is_relative()) m.data_path = xml_path.parent_path() / m.data_path;
   }
+  m.start_time = start_time_of(r, file);
   const auto lanes = root.children("lane");
   if (lanes.empty()) r.fail(root, "has no <lane>: the layout of the samples is not described");
   std::optional<Element> lane;

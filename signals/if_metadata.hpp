@@ -21,6 +21,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "ins/gps_time.hpp"
 #include "signals/sample_format.hpp"
 
 namespace deepnav {
@@ -29,6 +30,13 @@ namespace deepnav {
 class MetadataError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+};
+
+/// When the recording's first sample was taken, as a metadata file dates it. The standard's
+/// dates are UTC (its reference reader converts them with gmtime), with or without the "Z".
+struct MetadataStartTime {
+  CalendarTime utc;
+  std::string element;  ///< where it was read, for messages: "file/timestamp" or "session[capture]/toa"
 };
 
 struct IfMetadata {
@@ -51,6 +59,9 @@ struct IfMetadata {
   /// The <freqbase> the sample rate is built on (metadata/system[fe]/freqbase; times the
   /// stream's <ratefactor>), for messages about the rate.
   std::string sample_rate_element;
+  /// The <file>'s <timestamp>, else the one <session>'s <toa> (time of acquisition; with
+  /// several sessions none is taken); absent when the file gives neither.
+  std::optional<MetadataStartTime> start_time;
 };
 
 /// Reads and checks the file; throws MetadataError naming the file and element.

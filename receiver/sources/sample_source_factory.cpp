@@ -237,6 +237,10 @@ FileSampleSourceOptions file_source_options(const SourceRequest& r, SourceSettin
     so.footer_bytes = meta->footer_bytes;
     so.length_bytes = meta->length_bytes;
     where.metadata = r.metadata;
+    if (meta->start_time) {
+      where.start_time_utc = meta->start_time->utc;
+      where.start_time_origin = fmt::format("{}'s <{}>", r.metadata, meta->start_time->element);
+    }
     spdlog::info("{}: {} at {} Hz, IF {} Hz{}, from '{}'", r.metadata, to_string(so.format), so.sample_rate_hz,
                  so.intermediate_frequency_hz, so.inverted_spectrum ? ", inverted spectrum" : "", so.path.string());
   } else {

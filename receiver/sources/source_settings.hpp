@@ -4,8 +4,10 @@
 // message about a setting that looks wrong names what to change: the flag, or the file,
 // or the flag that overrode the file.
 #include <map>
+#include <optional>
 #include <string>
 
+#include "ins/gps_time.hpp"
 #include "signals/sample_format.hpp"
 
 namespace deepnav {
@@ -28,6 +30,10 @@ struct SourceSettings {
   std::map<SourceSetting, SettingOrigin> origins;
   /// The metadata file's value of each setting a flag overrode, as the file gave it.
   std::map<SourceSetting, std::string> overridden;
+  /// The metadata's date of the file's first sample (UTC), and where it was read
+  /// ("x.xml's <metadata/session[capture]/toa>"); absent when the metadata dates nothing.
+  std::optional<CalendarTime> start_time_utc;
+  std::string start_time_origin;
 
   SettingOrigin origin(SourceSetting s) const;
   /// The flag that sets it: "--format", "--fs", "--if", "--inverted-spectrum".

@@ -6,6 +6,8 @@
 #   within twice the steady state's (the fixes from 10 s on); no fix wrong;
 # - with --position-hint too: the first fix at the first epoch (1 s);
 # - the ephemerides saved by one run (--save-ephemerides) start the next one hot;
+# - without --time-hint, a metadata file's date of the recording (<file><timestamp>, UTC)
+#   is the hint, and names the week;
 # - time hint 60 s late, no position hint: a fix, or a refusal; never a wrong fix;
 # - time hint 10 minutes off: refused, the time hint named, no coarse-time fix; the run
 #   goes on as an assisted start;
@@ -35,6 +37,18 @@ check_py "with a position hint: the first fix at the first epoch" \
 run_on_sim "$work/sim" "$work/saved" --ephemeris-from "$work/saved.rnx" --time-hint 2022-01-01T02:00:00
 check_py "ephemerides saved by a run: a hot start from them" \
   -m checks.receiver_hot_start "$work/saved" "$work/sim" --first-fix-by 2
+
+# The sim's metadata dated 1.5 s late in UTC (18 leap seconds behind GPS time).
+sed 's#^    <url>\(.*\)</url>#&\n    <timestamp>2022-01-01T01:59:43.5Z</timestamp>#' "$work/sim/if_ibyte.xml" \
+  > "$work/sim/dated.xml"
+"$deepnav" run --metadata "$work/sim/dated.xml" --out "$work/dated" "${hot[@]}" > "$work/dated.log" 2>&1 ||
+  abort "run dated by its metadata failed: $(tail -n 5 "$work/dated.log")"
+check_py "the metadata's date as the time hint: first fix by 2 s as coarse-time" \
+  -m checks.receiver_hot_start "$work/dated" "$work/sim" --first-fix-by 2
+check_json_each "$work/dated/summary.json" \
+  "its time correction near -1.5 s (above)" hot_start.first_time_correction_s '>' -1.6 \
+  "its time correction near -1.5 s (below)" hot_start.first_time_correction_s '<' -1.4
+check "the log names the metadata's timestamp" "grep -q 'time hint: 2022-01-01T01:59:43.500Z from .*dated.xml.s <metadata/file/timestamp>' '$work/dated.log'"
 
 run_on_sim "$work/sim" "$work/late" "${hot[@]}" --time-hint 2022-01-01T02:01:00
 check_json "time hint 60 s late, no position hint: a fix or a refusal" "$work/late/summary.json" \

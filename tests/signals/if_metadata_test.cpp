@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <set>
 #include <string>
 #include <utility>
@@ -216,6 +217,53 @@ TEST(IfMetadata, InversionHeaderCyclesAndReferences) {
                                     "</packedbits><format>IQ</format><encoding>OB</encoding>"))
                 .format,
             SampleFormat::cu8);
+}
+
+TEST(IfMetadata, TheFileTimestampElseTheOneSessionsToaDatesTheRecording) {
+  const std::string chunk = "<sizeword>1</sizeword><countwords>2</countwords>";
+  const std::string stream =
+      "<ratefactor>1</ratefactor><quantization>8</quantization><packedbits>16</packedbits><format>IQ</format>"
+      "<encoding>INT8</encoding>";
+  const std::string plain = document(chunk, stream);
+  // Texts with a session (inserted before the lane) and a file timestamp (after the url).
+  auto with = [&](const std::string& sessions, const std::optional<std::string>& timestamp) {
+    std::string t = plain;
+    t.insert(t.find("  <lane id=\"A\">"), sessions);
+    if (timestamp) t.insert(t.find("</url>") + 6, "<timestamp>" + *timestamp + "</timestamp>");
+    return t;
+  };
+  const std::string toa = R"(<session id="capture"><toa>2021-12-02T08:47:00Z</toa></session>
+  )";
+  EXPECT_FALSE(read("undated.xml", plain).start_time);
+
+  const IfMetadata session = read("toa.xml", with(toa, std::nullopt));
+  ASSERT_TRUE(session.start_time);
+  EXPECT_EQ(session.start_time->element, "metadata/session[capture]/toa");
+  EXPECT_EQ(session.start_time->utc.year, 2021);
+  EXPECT_EQ(session.start_time->utc.month, 12);
+  EXPECT_EQ(session.start_time->utc.day, 2);
+  EXPECT_EQ(session.start_time->utc.hour, 8);
+  EXPECT_EQ(session.start_time->utc.minute, 47);
+
+  // The file's own timestamp comes first; without a Z it is still UTC (the standard's dates are).
+  const IfMetadata file = read("timestamp.xml", with(toa, "2021-12-02T08:47:12.25"));
+  ASSERT_TRUE(file.start_time);
+  EXPECT_EQ(file.start_time->element, "metadata/file/timestamp");
+  EXPECT_EQ(file.start_time->utc.minute, 47);
+  EXPECT_DOUBLE_EQ(file.start_time->utc.second, 12.25);
+
+  // Two sessions and no file timestamp: which one is the file's is not said, so none.
+  EXPECT_FALSE(read("two.xml", with(toa + R"(<session id="other"><toa>2021-12-03T00:00:00Z</toa></session>
+  )",
+                                    std::nullopt))
+                   .start_time);
+
+  // A date given but unreadable or impossible is an error naming the element.
+  for (const char* bad : {"2021-12-02 noon", "2021-02-30T00:00:00Z", "1979-12-31T23:59:59Z", ""}) {
+    const std::string msg = error_of(with("", bad));
+    EXPECT_NE(msg.find("<metadata/file/timestamp>"), std::string::npos) << bad << ": " << msg;
+    EXPECT_NE(msg.find("expected UTC like 2021-12-02T08:47:00Z"), std::string::npos) << bad << ": " << msg;
+  }
 }
 
 TEST(IfMetadata, UnsupportedAndBrokenDescriptionsNameTheElement) {

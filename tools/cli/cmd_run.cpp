@@ -119,17 +119,20 @@ aiding::AidedReceiverConfig aided_config(const RunOptions& o, aiding::NavMode mo
   return c;
 }
 
-/// The hot start's hints from --time-hint (UTC converted with the navigation file's leap
-/// seconds) and --position-hint.
-HotStartHints hot_start_hints(const RunOptions& o, const NavData& nav) {
+/// The hot start's hints from --time-hint, else the metadata's date of the recording (UTC
+/// converted with the navigation file's leap seconds), and --position-hint; none without a time.
+std::optional<HotStartHints> hot_start_hints(const RunOptions& o, const SourceSettings& source, const NavData& nav) {
+  const std::optional<GpsTime> t = first_sample_time_hint(o.time_hint, source, leap_seconds_of(nav));
+  if (!t) return std::nullopt;
   HotStartHints hints;
-  hints.first_sample_time = parse_time_hint(o.time_hint, leap_seconds_of(nav));
+  hints.first_sample_time = *t;
   if (!o.position_hint.empty()) hints.position_ecef_m = parse_position_hint(o.position_hint);
   return hints;
 }
 
 /// The session's configuration from the options (assistance files read here).
-aiding::NavigationSessionConfig session_config(const RunOptions& o, aiding::NavMode mode) {
+aiding::NavigationSessionConfig session_config(const RunOptions& o, const SourceSettings& source,
+                                               aiding::NavMode mode) {
   aiding::NavigationSessionConfig c;
   if (mode == aiding::NavMode::scalar) {
     c.navigator.mode = mode;
@@ -147,7 +150,7 @@ aiding::NavigationSessionConfig session_config(const RunOptions& o, aiding::NavM
     }
     if (!o.assist_ephemeris.empty())
       c.assisted_ephemerides = o.assist_ephemeris == o.assist_nav ? *iono_nav : read_rinex_nav(o.assist_ephemeris);
-    if (!o.time_hint.empty()) c.navigator.receiver.hot_start = hot_start_hints(o, *c.assisted_ephemerides);
+    if (c.assisted_ephemerides) c.navigator.receiver.hot_start = hot_start_hints(o, source, *c.assisted_ephemerides);
   } catch (const std::runtime_error& e) {
     throw UserError(e.what());
   }
@@ -379,6 +382,13 @@ void check_week_option(int week) {
                     week, last));
 }
 
+/// Without --week, a metadata file's date of the recording names the week near the data.
+void take_week_from_metadata(const SourceSettings& source, ReceiverConfig& receiver) {
+  if (receiver.reference_week > 0 || !source.start_time_utc) return;
+  receiver.reference_week = gps_time_from_calendar(*source.start_time_utc).week;
+  receiver.reference_week_origin = "the week of " + source.start_time_origin;
+}
+
 void run_receiver(CLI::App& root, RunOptions o) {
   std::optional<TruthFile> truth;
   try {
@@ -390,6 +400,7 @@ void run_receiver(CLI::App& root, RunOptions o) {
   StopOnSignals stop_signals;
   o.source.stop = &stop_signals.flag();
   OpenedSource opened = open_sample_source(o.source);
+  take_week_from_metadata(opened.settings, o.receiver);
   std::vector<std::string> product_names = file_product_names();
   product_names.push_back("summary.json");
   const OutputFolder out(o.out_dir, product_names, run_inputs(root, o, opened));
@@ -398,7 +409,7 @@ void run_receiver(CLI::App& root, RunOptions o) {
   const aiding::NavMode mode = parse_mode(o);
   std::optional<ImuLog> imu;
   if (mode != aiding::NavMode::scalar) imu = read_imu(o);
-  const aiding::NavigationSessionConfig config = session_config(o, mode);
+  const aiding::NavigationSessionConfig config = session_config(o, opened.settings, mode);
   const ImuIntegrity imu_integrity = imu ? check_imu(o, *imu, config.navigator.imu) : ImuIntegrity{};
   std::vector<std::unique_ptr<ProductSink>> products = file_products(
       o.out_dir, std::filesystem::path(opened.input).filename().string(), 1.0 / o.receiver.observation_rate_hz);
@@ -535,9 +546,11 @@ void add_run_command(CommandParents& parents) {
                   "IMU position from the antenna, body axes x y z (m), as a scenario's imu.lever_arm_m")
       ->expected(3)
       ->check(finite_in(-100.0, 100.0, "metres"));
-  cmd->add_option("--week", o->receiver.reference_week,
-                  "GPS week near the data: resolves the week number the satellites broadcast modulo 1024, and must "
-                  "agree with it (default: the --ephemeris-from file's epoch, else the build date)");
+  cmd->add_option(
+      "--week", o->receiver.reference_week,
+      "GPS week near the data: resolves the week number the satellites broadcast modulo 1024, and must "
+      "agree with it (default: the week of the --metadata file's date, else the --ephemeris-from file's epoch, "
+      "else the build date)");
   add_print_config(*cmd, o->print_config);
   cmd->footer(fmt::format(
       "Exit status: 0 done; {} nothing found: no satellite acquired (the message names the likely cause: --fs, "

@@ -165,10 +165,16 @@ void run_snap(SnapOptions o) {
     throw UserError(fmt::format("--nav: {}", e.what()));
   }
   const int leap_seconds = leap_seconds_of(nav);
-  const GpsTime t0 = parse_time_hint(o.time_hint, leap_seconds);
+  const OpenedSource opened = open_sample_source(o.source);
+  const std::optional<GpsTime> t_hint = first_sample_time_hint(o.time_hint, opened.settings, leap_seconds);
+  if (!t_hint)
+    throw UserError(
+        fmt::format("{}: no time hint: give --time-hint (the time of the file's first sample within +-2 minutes), or a "
+                    "--metadata file that dates the recording (<file><timestamp> or <session><toa>)",
+                    opened.input));
+  const GpsTime t0 = *t_hint;
   std::optional<Eigen::Vector3d> hint;
   if (!o.position_hint.empty()) hint = parse_position_hint(o.position_hint);
-  const OpenedSource opened = open_sample_source(o.source);
   std::vector<SnapEntry> entries;
   try {
     entries = take_snapshots(o, opened, nav, t0, hint);
@@ -207,8 +213,7 @@ void add_snap_command(CommandParents& parents) {
       ->required();
   cmd->add_option("--time-hint", o->time_hint,
                   "Approximate time of the file's first sample: 2022-01-01T00:00:03Z (UTC) or without Z (GPS); "
-                  "within +-2 minutes")
-      ->required();
+                  "within +-2 minutes (default: the --metadata file's date of the recording)");
   cmd->add_option("--position-hint", o->position_hint,
                   "Approximate position LAT,LON,H (deg, deg, m), within ~100 km: narrows the search");
   cmd->add_option("--start-ms", o->start_ms, "First snapshot's start after the file's first sample (ms)")

@@ -1,6 +1,7 @@
 #include "tools/cli/snapshot_hints.hpp"
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include <sstream>
 #include <vector>
@@ -43,6 +44,16 @@ GpsTime parse_time_hint(const std::string& text, int leap_seconds) {
         fmt::format("--time-hint '{}' is not a real date and time after the GPS epoch ({})", text, expected));
   const GpsTime t = gps_time_from_calendar(written->calendar);
   return written->utc ? t.plus_seconds(leap_seconds) : t;
+}
+
+std::optional<GpsTime> first_sample_time_hint(const std::string& time_hint, const SourceSettings& source,
+                                              int leap_seconds) {
+  if (!time_hint.empty()) return parse_time_hint(time_hint, leap_seconds);
+  if (!source.start_time_utc) return std::nullopt;
+  const CalendarTime& c = *source.start_time_utc;
+  spdlog::info("time hint: {:04d}-{:02d}-{:02d}T{:02d}:{:02d}:{:06.3f}Z from {}", c.year, c.month, c.day, c.hour,
+               c.minute, c.second, source.start_time_origin);
+  return gps_time_from_calendar(c).plus_seconds(leap_seconds);
 }
 
 Eigen::Vector3d parse_position_hint(const std::string& text) {
