@@ -136,15 +136,17 @@ class AidedNavigator {
   wgs84::Llh antenna_llh() const;
   double clock_bias_m() const { return clock_bias_m_; }
   double clock_drift_mps() const { return clock_drift_mps_; }
-  /// Starts estimating the zenith troposphere residual from now on, from 0 with this
-  /// 1-sigma (m); the height and clock variances grow to match.
-  void enable_troposphere_state(double sigma_m);
+  /// Starts estimating the zenith troposphere residual from now on, from `zenith_m` (the
+  /// fixes' fit) with this 1-sigma (m); the position and clock variances grow to match.
+  /// Returns the 1-sigma room given to the height (m).
+  double enable_troposphere_state(double zenith_m, double sigma_m);
   bool troposphere_state_enabled() const { return cfg_.troposphere.enabled; }
   /// The estimated zenith troposphere residual (m; 0 while the state is off).
   double troposphere_residual_m() const { return troposphere_residual_m_; }
   /// Starts estimating the ionosphere model's scale error from now on, from `scale` (the
-  /// fixes' fit) with this 1-sigma; the height and clock variances grow to match.
-  void enable_ionosphere_state(double scale, double sigma);
+  /// fixes' fit) with this 1-sigma; the position and clock variances grow to match.
+  /// Returns the 1-sigma room given to the height (m).
+  double enable_ionosphere_state(double scale, double sigma);
   bool ionosphere_state_enabled() const { return cfg_.ionosphere.enabled; }
   /// The estimated scale error of the ionosphere model (0 while the state is off).
   double ionosphere_scale_residual() const { return ionosphere_scale_residual_; }
@@ -189,6 +191,10 @@ class AidedNavigator {
   KalmanFilter<kStates> kf_;  ///< error states; the covariance must stay positive definite
   NavigatorConfig cfg_;
   double clock_bias_m_, clock_drift_mps_;  ///< receiver clock model (c * dt, c * dt')
+  /// A delay state taken mid-run: the position and clock took the model's error until now
+  /// and may have to move by about `vertical_m` in height (1-sigma room), less across.
+  void release_position_and_clock(double vertical_m);
+
   double troposphere_residual_m_ = 0.0;
   double ionosphere_scale_residual_ = 0.0;
   Eigen::Vector3d last_f_b_mps2_ = Eigen::Vector3d::Zero();

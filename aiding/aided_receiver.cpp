@@ -237,9 +237,7 @@ struct AidedReceiver::Impl : ChannelAiding {
     const GnssFix fix = alignment_fix(ep.pvt, ep.t_s, coupling.pvt_position_sigma_scale_m);
     const std::optional<InsStart> start = init.add_fix(fix);
     if (!start) return;
-    NavigatorConfig nc = navigator_config(coupling);
-    // A restart keeps what was found.
-    if (troposphere_watch.report.found_at_s) nc.troposphere.enabled = true;
+    const NavigatorConfig nc = navigator_config(coupling);
     // The fix's clock bias is against the receiver clock before this epoch's re-setting
     // (observe() steers it right after the fix, before the next block's follow): move it
     // onto the clock as it is now, and follow the steps from there.
@@ -247,8 +245,9 @@ struct AidedReceiver::Impl : ChannelAiding {
     const double clock_step_m = gps::kSpeedOfLight_mps * (steps_s - followed_clock_steps_s);
     followed_clock_steps_s = steps_s;
     nav.emplace(start_navigator(*start, fix, nc, clock_step_m, ep.t_s));
-    if (ionosphere_watch.report.found_at_s && !nc.ionosphere.enabled)
-      nav->enable_ionosphere_state(ionosphere_watch.report.fitted_error, 0.2);
+    // A restart keeps what was found, started as when it was found.
+    if (troposphere_watch.report.found_at_s) take_troposphere_state();
+    if (ionosphere_watch.report.found_at_s && !nc.ionosphere.enabled) take_ionosphere_state();
     start_method = start->method;
   }
 
@@ -316,9 +315,7 @@ struct AidedReceiver::Impl : ChannelAiding {
       find_mismatch(ep, troposphere_watch);
       if (troposphere_watch.report.found_at_s &&
           take_state(ep, troposphere_watch, nav && nav->troposphere_state_enabled())) {
-        // From 0 with room for the error the fixes show (the prior's half metre would take
-        // minutes to reach it).
-        nav->enable_troposphere_state(std::max(0.5, std::abs(troposphere_watch.report.fitted_error)));
+        take_troposphere_state();
         spdlog::info("t = {:.2f} s: the aided filter estimates the zenith troposphere residual from now on", ep.t_s);
       }
     }
@@ -330,10 +327,20 @@ struct AidedReceiver::Impl : ChannelAiding {
       find_mismatch(ep, ionosphere_watch);
       if (ionosphere_watch.report.found_at_s &&
           take_state(ep, ionosphere_watch, nav && nav->ionosphere_state_enabled())) {
-        nav->enable_ionosphere_state(ionosphere_watch.report.fitted_error, 0.2);
+        take_ionosphere_state();
         spdlog::info("t = {:.2f} s: the aided filter estimates the ionosphere model's scale error from now on", ep.t_s);
       }
     }
+  }
+
+  /// The filter's troposphere state from the fixes' fit: the model's elevation pattern
+  /// leaves the rows at once (from 0 the state took tens of seconds to separate from the
+  /// height and clock, and the horizontal position kept the lean the error gave it).
+  void take_troposphere_state() {
+    troposphere_watch.report.height_room_m = nav->enable_troposphere_state(troposphere_watch.report.fitted_error, 0.5);
+  }
+  void take_ionosphere_state() {
+    ionosphere_watch.report.height_room_m = nav->enable_ionosphere_state(ionosphere_watch.report.fitted_error, 0.2);
   }
 
   /// Whether the filter is to take a found mismatch's state now (a ranging mode, the
@@ -462,7 +469,15 @@ const std::string& AidedReceiver::ins_start_method() const { return impl_->start
 int AidedReceiver::filter_restarts() const { return impl_->restarts; }
 int AidedReceiver::satellite_exclusions() const { return impl_->faults.exclusions(); }
 int AidedReceiver::withheld_solutions() const { return impl_->withheld; }
-const DelayMismatchReport& AidedReceiver::troposphere_mismatch() const { return impl_->troposphere_watch.report; }
-const DelayMismatchReport& AidedReceiver::ionosphere_mismatch() const { return impl_->ionosphere_watch.report; }
+DelayMismatchReport AidedReceiver::troposphere_mismatch() const {
+  DelayMismatchReport r = impl_->troposphere_watch.report;
+  if (impl_->nav && impl_->nav->troposphere_state_enabled()) r.state_estimate = impl_->nav->troposphere_residual_m();
+  return r;
+}
+DelayMismatchReport AidedReceiver::ionosphere_mismatch() const {
+  DelayMismatchReport r = impl_->ionosphere_watch.report;
+  if (impl_->nav && impl_->nav->ionosphere_state_enabled()) r.state_estimate = impl_->nav->ionosphere_scale_residual();
+  return r;
+}
 
 }  // namespace deepnav::aiding

@@ -100,9 +100,10 @@ class AidedReceiver {
   /// Epochs whose solution was withheld for its covariance (max_published_sigma_m).
   int withheld_solutions() const;
   /// What the watch for a troposphere (zenith error, m) and an ionosphere (scale error)
-  /// model mismatch found; a state on from the start is not reported here.
-  const DelayMismatchReport& troposphere_mismatch() const;
-  const DelayMismatchReport& ionosphere_mismatch() const;
+  /// model mismatch found, with the filter's estimate of that state now; a state on from
+  /// the start is not reported here.
+  DelayMismatchReport troposphere_mismatch() const;
+  DelayMismatchReport ionosphere_mismatch() const;
 
  private:
   struct Impl;

@@ -73,11 +73,15 @@ std::vector<RangeResidual> fix_residuals(const PvtSolution& fix, const std::map<
 
 /// What a watch for a model mismatch found: when (nullopt: not found), the model error
 /// fitted (as found, or the latest fit while none is), and when the filter took the
-/// model's state on it (its first tight or ultra-tight epoch from then).
+/// model's state on it (its first tight or ultra-tight epoch from then), starting it from
+/// the fit with this much room (1-sigma, m) for the height and clock to move back; and
+/// the state's estimate at the end (nullopt while it is off).
 struct DelayMismatchReport {
   std::optional<double> found_at_s;
   double fitted_error = 0.0;
   std::optional<double> state_from_s;
+  std::optional<double> height_room_m;
+  std::optional<double> state_estimate;
 };
 
 class DelayMismatchDetector {

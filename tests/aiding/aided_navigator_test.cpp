@@ -5,6 +5,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <random>
 
@@ -117,7 +118,8 @@ struct TightRun {
   NavData nav_data = read_rinex_nav(std::string(DEEPNAV_SOURCE_DIR) + "/data/brdc0010.22n");
   GpsTime t0 = gps_time_from_calendar(CalendarTime{2022, 1, 1, 2, 0, 0.0});
   double clock_bias0_m = 3000.0, clock_drift_mps = 90.0;  // 10 us and 0.3 ppm
-  bool signal_has_ionosphere = true;  ///< false: the measurements lack the delay the navigator models
+  bool signal_has_ionosphere = true;   ///< false: the measurements lack the delay the navigator models
+  bool signal_has_troposphere = true;  ///< false: likewise for the troposphere
 
   /// Satellite `e` measured from the truth at t_s (pseudorange and rate noise in sigmas
   /// given, plus `pseudorange_fault_m`), predicted from the navigator's own state.
@@ -127,8 +129,12 @@ struct TightRun {
     std::normal_distribution<double> n01;
     const GpsTime t_rx = t0.plus_seconds(t_s);
     const double b = clock_bias0_m + clock_drift_mps * t_s;
-    const RangePrediction actual = predict_range(e, t_rx, b, truth.r_ecef_m, truth.v_ecef_mps,
-                                                 signal_has_ionosphere ? nav_data.iono : IonoParameters{});
+    RangePrediction actual = predict_range(e, t_rx, b, truth.r_ecef_m, truth.v_ecef_mps,
+                                           signal_has_ionosphere ? nav_data.iono : IonoParameters{});
+    if (!signal_has_troposphere) {  // what is left of the delay and the carrier's rate is the ionosphere's
+      actual.atmosphere_m = actual.ionosphere_m;
+      actual.carrier_atmosphere_rate_mps = -actual.ionosphere_rate_mps;
+    }
     RangeMeasurement m;
     m.prn = e.prn;
     m.geometry = predict_range(e, t_rx, nav.clock_bias_m(), nav.antenna_ecef_m(), nav.antenna_velocity_ecef_mps(),
@@ -228,6 +234,60 @@ TEST(AidedNavigator, IonosphereScaleStateTakesTheModelsDelayTheSignalLacks) {
   // comes back.
   EXPECT_NEAR(with.scale_residual, -1.0, 0.3);
   EXPECT_LT(std::abs(with.mean_down_m), 0.25 * std::abs(without.mean_down_m));
+}
+
+TEST(AidedNavigator, TroposphereStateTakenMidRunStartsFromTheFitAndUndoesTheLean) {
+  // Tight coupling without troposphere in the measurements, the navigator modelling it: for
+  // a minute the 17 states take the model's error into the position (most into the height,
+  // some across); then the zenith state is taken from a fit 10 % short of the truth.
+  const SimulatedRun run("land-circle", "tactical", 150.0, 100.0, 13);
+  TightRun tr;
+  tr.signal_has_troposphere = false;
+  const auto sats = tr.visible(run.trajectory->at(0.0).r_ecef_m);
+  const RangePrediction look = predict_range(*sats.front(), tr.t0, 0.0, run.trajectory->at(0.0).r_ecef_m,
+                                             Eigen::Vector3d::Zero(), tr.nav_data.iono);
+  const double model_zenith_m = (look.atmosphere_m - look.ionosphere_m) / look.troposphere_mapping;
+  ASSERT_GT(model_zenith_m, 2.0);
+  AidedNavigator nav(run.perturbed_start({2.0, -2.0, 3.0}, {0.1, 0.1, -0.1}, {0.1 * kDeg, 0.1 * kDeg, 1.0 * kDeg}),
+                     tr.clock_bias0_m, tr.clock_drift_mps, testing::navigator_config(run.imu_model),
+                     InitialUncertainty{});
+  std::mt19937_64 rng(43);
+  constexpr double kTakenAt = 60.0;
+  double next = 1.0;
+  Eigen::Vector3d sum_before = Eigen::Vector3d::Zero(), sum_after = Eigen::Vector3d::Zero();
+  int before = 0, after = 0;
+  for (const ImuSample& s : run.imu) {
+    nav.propagate(s);
+    if (std::abs(s.t_s - next) > 1e-6) continue;
+    next += 1.0;
+    if (s.t_s == kTakenAt) {
+      const double room_m = nav.enable_troposphere_state(-0.9 * model_zenith_m, 0.5);
+      EXPECT_DOUBLE_EQ(nav.troposphere_residual_m(), -0.9 * model_zenith_m) << "starts from the fit";
+      EXPECT_NEAR(room_m, 2.7 * model_zenith_m, 1e-9) << "room for a few times the zenith error in height";
+    }
+    const TrajectoryState truth = run.trajectory->at(s.t_s);
+    std::vector<RangeMeasurement> ms;
+    for (const Ephemeris* e : sats) ms.push_back(tr.measure(*e, nav, truth, s.t_s, 0.5, 0.02, rng));
+    nav.update_ranges(ms);
+    const Eigen::Vector3d err = testing::antenna_error_ned(nav, *run.trajectory);
+    if (s.t_s >= kTakenAt - 30.0 && s.t_s < kTakenAt) {
+      sum_before += err;
+      ++before;
+    } else if (s.t_s >= kTakenAt + 10.0) {
+      sum_after += err;
+      ++after;
+    }
+  }
+  ASSERT_TRUE(nav.healthy());
+  const Eigen::Vector3d mean_before = sum_before / before, mean_after = sum_after / after;
+  std::printf("mean error before n %+.3f e %+.3f d %+.3f, after n %+.3f e %+.3f d %+.3f, state %.3f of %.3f\n",
+              mean_before(0), mean_before(1), mean_before(2), mean_after(0), mean_after(1), mean_after(2),
+              nav.troposphere_residual_m(), -model_zenith_m);
+  EXPECT_GT(std::abs(mean_before(2)), 2.0 * model_zenith_m) << "the model's error is in the height";
+  // Ten seconds on, the height is back and the lean gone; the state finds the rest.
+  EXPECT_LT(std::abs(mean_after(2)), 0.5);
+  EXPECT_LT(mean_after.head<2>().norm(), 0.5 * mean_before.head<2>().norm());
+  EXPECT_NEAR(nav.troposphere_residual_m(), -model_zenith_m, 0.3);
 }
 
 /// Tight coupling on the land circle with a pseudorange step of `step_m` on the first

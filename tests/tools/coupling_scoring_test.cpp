@@ -30,6 +30,19 @@ TEST(CouplingScoreRun, NoValidEpochNoFigures) {
   EXPECT_FALSE(s.error_at_m.has_value());
 }
 
+TEST(CouplingScoreRun, HeightSettledAfterAMismatchFromTheFirstDetection) {
+  const nlohmann::json epochs = {epoch(30.0, "tight", true, 0.0, 0.0, 7.0), epoch(40.0, "tight", true, 9.0, 9.0, 3.0),
+                                 epoch(41.0, "tight", false, 0.0, 0.0, 99.0),  // no solution: left out
+                                 epoch(42.0, "tight", true, 0.0, 0.0, -4.0)};
+  EXPECT_DOUBLE_EQ(vertical_rms_from(epochs, 40.0), std::sqrt((9.0 + 16.0) / 2.0));
+  EXPECT_TRUE(std::isnan(vertical_rms_from(epochs, 50.0)));
+
+  EXPECT_FALSE(mismatch_found_s({{"troposphere_mismatch_s", nullptr}, {"ionosphere_mismatch_s", nullptr}}));
+  EXPECT_FALSE(mismatch_found_s(nlohmann::json::object())) << "points made before the watches recorded nothing";
+  EXPECT_EQ(mismatch_found_s({{"troposphere_mismatch_s", 32.0}, {"ionosphere_mismatch_s", nullptr}}), 32.0);
+  EXPECT_EQ(mismatch_found_s({{"troposphere_mismatch_s", 32.0}, {"ionosphere_mismatch_s", 26.0}}), 26.0);
+}
+
 TEST(CouplingSpread, MeanAndSampleStandardDeviation) {
   const Spread s = spread({1.0, 2.0, 3.0});
   EXPECT_EQ(s.n, 3);

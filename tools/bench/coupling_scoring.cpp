@@ -28,6 +28,27 @@ RunScore score_run(const nlohmann::json& epochs, const std::string& mode, double
   return s;
 }
 
+double vertical_rms_from(const nlohmann::json& epochs, double from_s) {
+  double sum_v = 0.0;
+  int n = 0;
+  for (const auto& e : epochs) {
+    if (e[0].get<double>() < from_s || !e[2].get<bool>()) continue;
+    sum_v += e[5].get<double>() * e[5].get<double>();
+    ++n;
+  }
+  return n > 0 ? std::sqrt(sum_v / n) : NAN;
+}
+
+std::optional<double> mismatch_found_s(const nlohmann::json& mode_record) {
+  std::optional<double> first;
+  for (const char* key : {"troposphere_mismatch_s", "ionosphere_mismatch_s"})
+    if (mode_record.contains(key) && !mode_record[key].is_null()) {
+      const double t = mode_record[key].get<double>();
+      first = first ? std::min(*first, t) : t;
+    }
+  return first;
+}
+
 Spread spread(const std::vector<double>& v) {
   Spread s;
   s.n = static_cast<int>(v.size());

@@ -22,6 +22,14 @@ struct RunScore {
 /// velocity error]) from `score_from_s` on, with the error vector taken at `score_at_s`.
 RunScore score_run(const nlohmann::json& epochs, const std::string& mode, double score_from_s, double score_at_s);
 
+/// The vertical RMS of a mode's epochs from `from_s` on (NaN: no valid epoch there): how
+/// well the height has settled after a delay model's mismatch was found.
+double vertical_rms_from(const nlohmann::json& epochs, double from_s);
+
+/// When a mode's run first found a delay model mismatch (troposphere or ionosphere, as the
+/// point records them); nullopt when it found none.
+std::optional<double> mismatch_found_s(const nlohmann::json& mode_record);
+
 struct Spread {
   double mean = NAN, std = NAN;  ///< std: sample standard deviation (0 for one value)
   int n = 0;

@@ -279,15 +279,22 @@ nlohmann::json run_summary(const RunOptions& o, const OpenedSource& opened, aidi
     summary["imu_samples_beyond_range"] = imu_integrity.beyond_range.samples;
     summary["satellite_exclusions"] = aided->satellite_exclusions();
     summary["withheld_solutions"] = aided->withheld_solutions();
-    const auto state_from = [](const aiding::DelayMismatchReport& m) {
-      return m.state_from_s ? nlohmann::json(*m.state_from_s) : nlohmann::json(nullptr);
+    const auto or_null = [](const std::optional<double>& v) {
+      return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
     };
-    if (const aiding::DelayMismatchReport& m = aided->troposphere_mismatch(); m.found_at_s)
-      summary["troposphere_mismatch"] = {
-          {"found_at_s", *m.found_at_s}, {"zenith_error_m", m.fitted_error}, {"state_from_s", state_from(m)}};
-    if (const aiding::DelayMismatchReport& m = aided->ionosphere_mismatch(); m.found_at_s)
-      summary["ionosphere_mismatch"] = {
-          {"found_at_s", *m.found_at_s}, {"scale_error", m.fitted_error}, {"state_from_s", state_from(m)}};
+    // When the mismatch was found, by how much, when the filter took the state (from the
+    // fit, the height given room to move back) and what it estimates at the end.
+    const auto mismatch_json = [&](const aiding::DelayMismatchReport& m, const char* error_key) {
+      return nlohmann::json{{"found_at_s", *m.found_at_s},
+                            {error_key, m.fitted_error},
+                            {"state_from_s", or_null(m.state_from_s)},
+                            {"height_room_m", or_null(m.height_room_m)},
+                            {"state_at_end", or_null(m.state_estimate)}};
+    };
+    if (const aiding::DelayMismatchReport m = aided->troposphere_mismatch(); m.found_at_s)
+      summary["troposphere_mismatch"] = mismatch_json(m, "zenith_error_m");
+    if (const aiding::DelayMismatchReport m = aided->ionosphere_mismatch(); m.found_at_s)
+      summary["ionosphere_mismatch"] = mismatch_json(m, "scale_error");
   }
   summary["interrupted"] = opened.interrupted();
   // What failed, if anything: the run itself (the products hold what came before), and
