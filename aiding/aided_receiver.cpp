@@ -23,6 +23,15 @@ namespace {
 
 constexpr double kRecentPvt_s = 3.0;
 
+/// The ionosphere watch's fit with the troposphere's error fitted beside it. Each fix's
+/// fit is the noisier for it (the two signatures differ mostly at low elevation), so the
+/// window combines more fixes before the agreement test can pass.
+DelayMismatchConfig beside_troposphere(DelayMismatchConfig c) {
+  c.also_fitted = DelaySignature::troposphere_zenith;
+  c.window_fixes *= 3;
+  return c;
+}
+
 /// The coupling settings of an IF run: the receiver's atmosphere models with the filter's.
 CouplingSettings coupling_settings(const AidedReceiverConfig& c) {
   CouplingSettings s;
@@ -54,6 +63,11 @@ struct AidedReceiver::Impl : ChannelAiding {
   struct MismatchWatch {
     DelayMismatchDetector check;
     DelayMismatchReport report;
+    /// The same fit with the other model's error fitted beside (DelayMismatchConfig::
+    /// also_fitted), fed alongside from the start; its verdict counts once `beside_from`
+    /// (the other watch's finding) is set.
+    std::optional<DelayMismatchDetector> beside;
+    const std::optional<double>* beside_from = nullptr;
   };
   MismatchWatch troposphere_watch, ionosphere_watch;
   std::string start_method;
@@ -78,8 +92,11 @@ struct AidedReceiver::Impl : ChannelAiding {
               cfg.fault_exclusion ? &faults : nullptr, cfg.receiver.atmosphere),
         modes(cfg.mode, cfg.limits),
         faults(cfg.faults),
-        troposphere_watch{DelayMismatchDetector(cfg.troposphere_mismatch), {}},
-        ionosphere_watch{DelayMismatchDetector(cfg.ionosphere_mismatch), {}},
+        troposphere_watch{DelayMismatchDetector(cfg.troposphere_mismatch), {}, {}, nullptr},
+        ionosphere_watch{DelayMismatchDetector(cfg.ionosphere_mismatch),
+                         {},
+                         DelayMismatchDetector(beside_troposphere(cfg.ionosphere_mismatch)),
+                         &troposphere_watch.report.found_at_s},
         fs(source.sample_rate_hz()) {
     rx.set_channel_aiding(this);
   }
@@ -321,13 +338,16 @@ struct AidedReceiver::Impl : ChannelAiding {
     }
     // A missing troposphere reads as an ionosphere scale error too (-2.5 for the 2.3 m
     // zenith delay: both signatures grow towards the horizon, and one fit cannot tell them
-    // apart); it is found first, by its wider margin, and explains the residuals.
-    const bool troposphere_explains = troposphere_watch.report.found_at_s.has_value();
-    if (!cfg.ionosphere.enabled && cfg.ionosphere.enable_on_mismatch && !troposphere_explains) {
+    // apart); it is found first, by its wider margin. From then on the ionosphere watch
+    // asks only what the troposphere's signature cannot explain (a signal lacking both).
+    if (!cfg.ionosphere.enabled && cfg.ionosphere.enable_on_mismatch) {
       find_mismatch(ep, ionosphere_watch);
       if (ionosphere_watch.report.found_at_s &&
           take_state(ep, ionosphere_watch, nav && nav->ionosphere_state_enabled())) {
         take_ionosphere_state();
+        // The troposphere state took the part of the missing ionosphere that looks like
+        // troposphere: free it to give that part back.
+        if (nav->troposphere_state_enabled()) nav->enable_troposphere_state(nav->troposphere_residual_m(), 1.0);
         spdlog::info("t = {:.2f} s: the aided filter estimates the ionosphere model's scale error from now on", ep.t_s);
       }
     }
@@ -340,7 +360,10 @@ struct AidedReceiver::Impl : ChannelAiding {
     troposphere_watch.report.height_room_m = nav->enable_troposphere_state(troposphere_watch.report.fitted_error, 0.5);
   }
   void take_ionosphere_state() {
-    ionosphere_watch.report.height_room_m = nav->enable_ionosphere_state(ionosphere_watch.report.fitted_error, 0.2);
+    // Fitted beside the troposphere's error the scale is the less certain (measured: -1.24
+    // to -1.34 where the signal lacks it all): room for the filter to settle it.
+    const double sigma = troposphere_watch.report.found_at_s ? 0.5 : 0.2;
+    ionosphere_watch.report.height_room_m = nav->enable_ionosphere_state(ionosphere_watch.report.fitted_error, sigma);
   }
 
   /// Whether the filter is to take a found mismatch's state now (a ranging mode, the
@@ -354,18 +377,23 @@ struct AidedReceiver::Impl : ChannelAiding {
 
   void find_mismatch(const ReceiverEpoch& ep, MismatchWatch& w) {
     if (w.report.found_at_s) return;  // the detector takes no more epochs: its fit stays as found
+    std::vector<RangeResidual> residuals;
     if (nav && modes.mode() == NavMode::ultra) {
       // Steered channels' pseudoranges echo the filter: the discriminators tell instead.
-      w.check.add(ultra.mean_pseudorange_residuals(), cfg.receiver.pvt.range_errors);
+      residuals = ultra.mean_pseudorange_residuals();
     } else {
       if (!ep.pvt.valid) return;
-      w.check.add(fix_residuals(ep.pvt, cn0_by_prn(ep)), cfg.receiver.pvt.range_errors);
+      residuals = fix_residuals(ep.pvt, cn0_by_prn(ep));
     }
-    w.report.fitted_error = w.check.fitted_error();
+    w.check.add(residuals, cfg.receiver.pvt.range_errors);
+    if (w.beside) w.beside->add(residuals, cfg.receiver.pvt.range_errors);
+    const DelayMismatchDetector& verdict =
+        w.beside && w.beside_from && w.beside_from->has_value() ? *w.beside : w.check;
+    w.report.fitted_error = verdict.fitted_error();
     const bool troposphere = &w == &troposphere_watch;
     spdlog::debug("t = {:.2f} s: {} model error fitted {:+.3f}", ep.t_s, troposphere ? "troposphere" : "ionosphere",
                   w.report.fitted_error);
-    if (!w.check.mismatch()) return;
+    if (!verdict.mismatch()) return;
     w.report.found_at_s = ep.t_s;
     if (troposphere)
       spdlog::warn(

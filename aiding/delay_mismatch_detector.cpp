@@ -26,25 +26,35 @@ std::vector<RangeResidual> fix_residuals(const PvtSolution& fix, const std::map<
   return out;
 }
 
+namespace {
+
+/// How a model error of this kind reaches one satellite's pseudorange (see the header).
+double signature_of(DelaySignature s, const RangeResidual& e) {
+  return s == DelaySignature::troposphere_zenith ? troposphere_mapping(e.elevation_rad) : e.ionosphere_model_m;
+}
+
+}  // namespace
+
 void DelayMismatchDetector::add(const std::vector<RangeResidual>& epoch, const RangeErrorModel& weights) {
   const auto n = static_cast<Eigen::Index>(epoch.size());
-  if (n < 6) return;  // five unknowns with the zenith error: one redundant satellite at least
-  Eigen::MatrixXd H(n, 4);
+  const Eigen::Index nuisances = cfg_.also_fitted ? 5 : 4;
+  if (n < nuisances + 2) return;  // the nuisances and the error: one redundant satellite at least
+  Eigen::MatrixXd H(n, nuisances);
   Eigen::VectorXd w(n), m(n), r(n);
   for (Eigen::Index i = 0; i < n; ++i) {
     const RangeResidual& e = epoch[static_cast<std::size_t>(i)];
-    H.row(i) << e.los.transpose(), 1.0;  // position (along the line of sight) and clock
+    H.block<1, 4>(i, 0) << e.los.transpose(), 1.0;  // position (along the line of sight) and clock
+    if (cfg_.also_fitted) H(i, 4) = signature_of(*cfg_.also_fitted, e);
     w(i) = 1.0 / weights.pseudorange_variance_m2(e.elevation_rad, e.cn0_dbhz);
-    m(i) = cfg_.signature == DelaySignature::troposphere_zenith ? troposphere_mapping(e.elevation_rad)
-                                                                : e.ionosphere_model_m;
+    m(i) = signature_of(cfg_.signature, e);
     r(i) = e.residual_m;
   }
-  // e with position and clock eliminated (Schur complement): information m' W m - b' N^-1 b
-  // and right-hand side m' W r - b' N^-1 H' W r, b = H' W m.
-  const Eigen::Matrix4d N = H.transpose() * w.asDiagonal() * H;
+  // e with the nuisances eliminated (Schur complement): information m' W m - b' N^-1 b and
+  // right-hand side m' W r - b' N^-1 H' W r, b = H' W m.
+  const Eigen::MatrixXd N = H.transpose() * w.asDiagonal() * H;
   const auto solver = N.ldlt();
-  const Eigen::Vector4d b = H.transpose() * w.asDiagonal() * m;
-  const Eigen::Vector4d c = H.transpose() * w.asDiagonal() * r;
+  const Eigen::VectorXd b = H.transpose() * w.asDiagonal() * m;
+  const Eigen::VectorXd c = H.transpose() * w.asDiagonal() * r;
   const double information = m.dot(w.cwiseProduct(m)) - b.dot(solver.solve(b));
   const double rhs = m.dot(w.cwiseProduct(r)) - b.dot(solver.solve(c));
   if (!(information > 1e-9) || !std::isfinite(information) || !std::isfinite(rhs)) return;

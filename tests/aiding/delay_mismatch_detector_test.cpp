@@ -116,8 +116,9 @@ TEST(DelayMismatchDetector, FixResidualsCarryTheFixsLookAngles) {
 
 /// The same sky with an ionosphere model of 4 m at the zenith (Klobuchar's obliquity
 /// factor) and residuals of that delay scaled by `scale`, plus position and clock errors.
-std::vector<RangeResidual> ionosphere_sky(const Eigen::Vector3d& d_enu, double clock_m, double scale) {
-  std::vector<RangeResidual> out = sky(d_enu, clock_m, 0.0);
+std::vector<RangeResidual> ionosphere_sky(const Eigen::Vector3d& d_enu, double clock_m, double scale,
+                                          double zenith_m = 0.0) {
+  std::vector<RangeResidual> out = sky(d_enu, clock_m, zenith_m);
   for (RangeResidual& r : out) {
     const double f = 1.0 + 16.0 * std::pow(0.53 - r.elevation_rad / M_PI, 3);
     r.ionosphere_model_m = 4.0 * f;
@@ -140,6 +141,36 @@ TEST(DelayMismatchDetector, IonosphereSignatureRecoversTheModelsScaleError) {
   EXPECT_TRUE(missing.mismatch());
   EXPECT_NEAR(weak.fitted_error(), 0.4, 1e-9);
   EXPECT_FALSE(weak.mismatch());
+}
+
+TEST(DelayMismatchDetector, TheIonosphereBesideTheTroposphereIsToldApart) {
+  // The signal lacks both delays: the troposphere's fit alone takes part of the ionosphere's
+  // (its signature looks alike); fitted beside the troposphere's error the ionosphere's
+  // scale comes out whole, and with the troposphere alone missing it reads none.
+  const DelayMismatchConfig single{.signature = DelaySignature::ionosphere_scale, .threshold = 0.75};
+  DelayMismatchConfig beside = single;
+  beside.also_fitted = DelaySignature::troposphere_zenith;
+  DelayMismatchDetector troposphere_alone, both_single(single), both_beside(beside), none_beside(beside);
+  const RangeErrorModel weights;
+  const Eigen::Vector3d d_enu(2.0, -1.0, 6.0);
+  for (int k = 0; k < 30; ++k) {
+    troposphere_alone.add(ionosphere_sky(d_enu, 25.0, -1.0, -2.3), weights);
+    both_single.add(ionosphere_sky(d_enu, 25.0, -1.0, -2.3), weights);
+    both_beside.add(ionosphere_sky(d_enu, 25.0, -1.0, -2.3), weights);
+    none_beside.add(ionosphere_sky(d_enu, 25.0, 0.0, -2.3), weights);
+  }
+  EXPECT_LT(troposphere_alone.fitted_error(), -2.5) << "the zenith fit takes some of the ionosphere";
+  EXPECT_GT(std::abs(both_single.fitted_error() + 1.0), 0.5) << "one signature cannot tell them apart";
+  EXPECT_NEAR(both_beside.fitted_error(), -1.0, 1e-9);
+  EXPECT_TRUE(both_beside.mismatch());
+  EXPECT_NEAR(none_beside.fitted_error(), 0.0, 1e-9);
+  EXPECT_FALSE(none_beside.mismatch());
+  // One satellite more is needed for the extra unknown: seven of the eight here.
+  DelayMismatchDetector few(beside);
+  std::vector<RangeResidual> six = ionosphere_sky(d_enu, 25.0, -1.0, -2.3);
+  six.resize(6);
+  for (int k = 0; k < 30; ++k) few.add(six, weights);
+  EXPECT_EQ(few.fitted_error(), 0.0);
 }
 
 }  // namespace
