@@ -9,7 +9,7 @@
 namespace deepnav::galileo {
 namespace {
 
-/// E01's I/NAV batch of 2022-02-19 22:00 GST (data/galileo_20220220_e1.rnx, first record).
+/// E01's I/NAV batch of 2022-02-19 22:00 GST (data/galileo_20220220.rnx, first record).
 GalileoEphemeris e01() {
   GalileoEphemeris eph;
   eph.prn = 1;
@@ -60,7 +60,7 @@ TEST(GalileoTime, GstWeekIsGpsWeekLess1024) {
 }
 
 TEST(GalileoTime, GgtoFollowsTheIcdFormula) {
-  // GAGP of data/galileo_20220220_e1.rnx: a0, a1, t0G = 86400, week 2198 (GPS numbering).
+  // GAGP of data/galileo_20220220.rnx: a0, a1, t0G = 86400, week 2198 (GPS numbering).
   GgtoParameters g{5.9080775827E-09, 3.552713679E-15, 86400, 2198 - kGstWeekOffsetFromGps, true};
   EXPECT_NEAR(gst_minus_gpst_s(g, {1174, 86400.0}), 5.9080775827E-09, 1e-20);
   EXPECT_NEAR(gst_minus_gpst_s(g, {1174, 86400.0 + 1e4}), 5.9080775827E-09 + 3.552713679E-15 * 1e4, 1e-20);
