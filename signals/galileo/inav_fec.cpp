@@ -27,18 +27,21 @@ struct ViterbiDeleter {
 using ViterbiDecoder = std::unique_ptr<void, ViterbiDeleter>;
 
 /// A libfec rate-1/2 K=7 decoder for the I/NAV code. libfec keeps the code's polynomials in
-/// process-wide tables of the instruction set it picks when the first decoder is made, so
-/// they are set once, after that. Its registers hold the newest bit lowest: the generators
-/// bit-reversed (171 -> 0x4f, 133 -> 0x6d); a negative one marks an inverted symbol. This is
-/// the CCSDS convention, which Galileo follows.
+/// process-wide tables of the instruction set it picks when its first decoder is made, and
+/// fills them with its defaults then: the first decoder is made, and the polynomials set, once
+/// and alone, so that no later one races with it. Its registers hold the newest bit lowest:
+/// the generators bit-reversed (171 -> 0x4f, 133 -> 0x6d); a negative one marks an inverted
+/// symbol. This is the CCSDS convention, which Galileo follows.
 ViterbiDecoder make_decoder() {
-  static std::once_flag polynomials_set;
-  ViterbiDecoder decoder(create_viterbi27(kPagePartDataBits));
-  if (!decoder) throw std::runtime_error("I/NAV Viterbi decoder: libfec could not allocate a decoder");
-  std::call_once(polynomials_set, [] {
+  static std::once_flag tables_ready;
+  std::call_once(tables_ready, [] {
+    const ViterbiDecoder first(create_viterbi27(kPagePartDataBits));
+    if (!first) throw std::runtime_error("I/NAV Viterbi decoder: libfec could not allocate a decoder");
     int polynomials[2] = {0x4f, -0x6d};
     set_viterbi27_polynomial(polynomials);
   });
+  ViterbiDecoder decoder(create_viterbi27(kPagePartDataBits));
+  if (!decoder) throw std::runtime_error("I/NAV Viterbi decoder: libfec could not allocate a decoder");
   return decoder;
 }
 
