@@ -39,7 +39,7 @@ SatelliteState satellite_state(const GalileoEphemeris& eph, const GstTime& t) {
 }
 
 double e1_clock_correction_s(const GalileoEphemeris& eph, const GstTime& t) {
-  return satellite_state(eph, t).clock_bias_s - eph.bgd_e1e5b_s;
+  return satellite_state(eph, t).clock_bias_s - (eph.clock_for_e1e5a() ? eph.bgd_e1e5a_s : eph.bgd_e1e5b_s);
 }
 
 std::optional<double> sisa_metres(int index) {

@@ -37,6 +37,8 @@ struct GalileoEphemeris {
   double transmission_time_s = 0.0;  ///< seconds of week, when known
   bool transmission_time_known = false;
 
+  /// Whether the clock refers to the E1,E5a pair (F/NAV) rather than E1,E5b (I/NAV).
+  bool clock_for_e1e5a() const { return (data_sources & (1 << 8)) != 0; }
   /// Whether the E1-B signal and its navigation data may be used.
   bool healthy_on_e1b() const { return e1b.usable(); }
 };
@@ -46,8 +48,9 @@ struct GalileoEphemeris {
 /// group delay. Weeks are used as for GPS: toe a week before or after t works.
 SatelliteState satellite_state(const GalileoEphemeris& eph, const GstTime& t);
 
-/// Satellite clock correction for a single-frequency E1 user (ICD 5.1.5): the I/NAV clock,
-/// which refers to the E1,E5b ionosphere-free pair, less BGD(E1,E5b).
+/// Satellite clock correction for a single-frequency E1 user (ICD 5.1.5): the clock less the
+/// group delay of the pair it refers to: BGD(E1,E5b) for I/NAV's (E1,E5b) clock, BGD(E1,E5a)
+/// for a data set whose data_sources say its clock is F/NAV's (E1,E5a; bit 8).
 double e1_clock_correction_s(const GalileoEphemeris& eph, const GstTime& t);
 
 /// SISA in metres (ICD 5.1.11, Table 89): 0-49: 0-0.49 m by 1 cm, 50-74: 0.5-0.98 m by 2 cm,

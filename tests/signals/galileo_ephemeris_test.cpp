@@ -107,6 +107,10 @@ TEST(GalileoEphemeris, ClockWithRelativityAndTheE5bGroupDelay) {
   // e = 2.9e-4: the relativistic term is at most F e sqrt(A), about 0.7 ns.
   EXPECT_LE(std::abs(st.relativistic_s), std::abs(kRelativisticF) * eph.orbit.e * eph.orbit.sqrt_a + 1e-20);
   EXPECT_NEAR(e1_clock_correction_s(eph, t), st.clock_bias_s - 3.0e-9, 1e-18);
+  // An F/NAV data set's clock refers to E1,E5a: its own group delay applies.
+  GalileoEphemeris fnav = eph;
+  fnav.data_sources = 258;  // F/NAV E5a-I, clock for E5a,E1
+  EXPECT_NEAR(e1_clock_correction_s(fnav, t), st.clock_bias_s - eph.bgd_e1e5a_s, 1e-18);
   // toc in the previous week still works (weeks count).
   const GstTime next_week{eph.week + 1, 100.0};
   EXPECT_NEAR(satellite_state(eph, next_week).clock_bias_s - satellite_state(eph, next_week).relativistic_s,
