@@ -4,7 +4,7 @@
 set -euo pipefail
 packages=(build-essential cmake ninja-build pkg-config libeigen3-dev libfftw3-dev libboost-dev
           libyaml-cpp-dev nlohmann-json3-dev libfmt-dev libspdlog-dev libcli11-dev
-          libgtest-dev libbenchmark-dev python3-matplotlib rtklib clang-format
+          libgtest-dev libbenchmark-dev python3-matplotlib rtklib clang-format libfec-dev
           g++-aarch64-linux-gnu qemu-user  # these two: the AArch64 correlator test (tests/cross)
           "$@")
 missing=()

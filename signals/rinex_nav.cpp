@@ -16,6 +16,8 @@
 #include <string_view>
 
 #include "ins/input_file.hpp"
+#include "signals/galileo/galileo_constants.hpp"
+#include "signals/galileo/inav_words.hpp"
 #include "signals/gps_constants.hpp"
 #include "signals/lnav_message.hpp"
 #include "signals/rinex_fields.hpp"
@@ -198,6 +200,60 @@ void read_header_line_v2(const LineReader& reader, std::string_view line, std::s
   }
 }
 
+/// A header value against the range [lo, hi] its Galileo message field can carry; the error
+/// names the line.
+void check_galileo_header_field(const LineReader& reader, const char* label, const char* field, double value, double lo,
+                                double hi) {
+  if (value >= lo && value <= hi) return;
+  reader.fail(
+      fmt::format("{}: {} = {:g} is outside [{:.6g}, {:.6g}], the range a Galileo satellite can broadcast "
+                  "(OS SIS ICD message field): a corrupt navigation file",
+                  label, field, value, lo, hi));
+}
+
+/// The same for a signed field of `bits` bits with LSB `lsb`.
+void check_galileo_header_field(const LineReader& reader, const char* label, const char* field, double value, int bits,
+                                double lsb) {
+  const double half_range = std::ldexp(lsb, bits - 1);
+  check_galileo_header_field(reader, label, field, value, -half_range, half_range - lsb);
+}
+
+/// RINEX 3's Galileo header lines: NeQuick G coefficients, GST-GPST and GST-UTC. Their weeks
+/// are RINEX's continuous ones (GPS numbering) and are kept as GST weeks.
+void read_galileo_header_line(const LineReader& reader, std::string_view line, std::string_view label,
+                              std::string_view kind, NavData& nav) {
+  if (label == "IONOSPHERIC CORR" && kind == "GAL") {
+    const std::array<double, 4> ai = four_numbers(reader, line, 5, 12, "IONOSPHERIC CORR GAL");
+    // a_i0: 11 bits of 1/4 sfu; a_i1: signed 11 bits of 2^-8; a_i2: signed 14 bits of 2^-15.
+    check_galileo_header_field(reader, "IONOSPHERIC CORR GAL", "a_i0", ai[0], 0.0, 2047 * 0x1p-2);
+    check_galileo_header_field(reader, "IONOSPHERIC CORR GAL", "a_i1", ai[1], 11, 0x1p-8);
+    check_galileo_header_field(reader, "IONOSPHERIC CORR GAL", "a_i2", ai[2], 14, 0x1p-15);
+    nav.galileo_iono.ai0_sfu = ai[0];
+    nav.galileo_iono.ai1_sfu_per_deg = ai[1];
+    nav.galileo_iono.ai2_sfu_per_deg2 = ai[2];
+    nav.galileo_iono.valid = true;
+  } else if (label == "TIME SYSTEM CORR" && kind == "GAGP") {
+    nav.ggto.a0g_s = header_double(reader, line, 5, 17, "TIME SYSTEM CORR GAGP a0");
+    nav.ggto.a1g_sps = header_double(reader, line, 22, 16, "TIME SYSTEM CORR GAGP a1");
+    check_galileo_header_field(reader, "TIME SYSTEM CORR GAGP", "A0G", nav.ggto.a0g_s, 16, 0x1p-35);
+    check_galileo_header_field(reader, "TIME SYSTEM CORR GAGP", "A1G", nav.ggto.a1g_sps, 12, 0x1p-51);
+    nav.ggto.t0g_s = header_int(reader, line, 38, 7, "TIME SYSTEM CORR GAGP T", 0, 604800);
+    nav.ggto.wn0g = header_int(reader, line, 45, 5, "TIME SYSTEM CORR GAGP W", galileo::kGstWeekOffsetFromGps, 100000) -
+                    galileo::kGstWeekOffsetFromGps;
+    nav.ggto.valid = true;
+  } else if (label == "TIME SYSTEM CORR" && kind == "GAUT") {
+    nav.galileo_utc.a0_s = header_double(reader, line, 5, 17, "TIME SYSTEM CORR GAUT a0");
+    nav.galileo_utc.a1_sps = header_double(reader, line, 22, 16, "TIME SYSTEM CORR GAUT a1");
+    check_galileo_header_field(reader, "TIME SYSTEM CORR GAUT", "A0", nav.galileo_utc.a0_s, 32, 0x1p-30);
+    check_galileo_header_field(reader, "TIME SYSTEM CORR GAUT", "A1", nav.galileo_utc.a1_sps, 24, 0x1p-50);
+    nav.galileo_utc.tot_s = header_int(reader, line, 38, 7, "TIME SYSTEM CORR GAUT T", 0, 604800);
+    nav.galileo_utc.wnt =
+        header_int(reader, line, 45, 5, "TIME SYSTEM CORR GAUT W", galileo::kGstWeekOffsetFromGps, 100000) -
+        galileo::kGstWeekOffsetFromGps;
+    nav.galileo_utc.valid = true;
+  }
+}
+
 void read_header_line_v3(const LineReader& reader, std::string_view line, std::string_view label, NavData& nav,
                          Header& header) {
   const std::string_view kind = trim(column(line, 0, 4));
@@ -217,6 +273,8 @@ void read_header_line_v3(const LineReader& reader, std::string_view line, std::s
     nav.utc.valid = true;
   } else if (label == "LEAP SECONDS") {
     read_leap_seconds(reader, line, nav);
+  } else {
+    read_galileo_header_line(reader, line, label, kind, nav);
   }
 }
 
@@ -265,7 +323,7 @@ struct EpochLine {
   std::array<double, 3> clock;
 };
 
-EpochLine parse_epoch_line(const LineReader& reader, std::string_view line, double version) {
+EpochLine parse_epoch_line(const LineReader& reader, std::string_view line, double version, int max_prn) {
   EpochLine ep{};
   const bool v2 = version < 3.0;
   auto whole = [&](std::size_t start, std::size_t width, const char* what, int lo, int hi) {
@@ -275,7 +333,7 @@ EpochLine parse_epoch_line(const LineReader& reader, std::string_view line, doub
       return to_int(*v, what, lo, hi);
     });
   };
-  ep.prn = v2 ? whole(0, 2, "PRN", 1, gps::kMaxPrn) : whole(1, 2, "PRN", 1, gps::kMaxPrn);
+  ep.prn = v2 ? whole(0, 2, "PRN", 1, max_prn) : whole(1, 2, "PRN", 1, max_prn);
   if (v2) {
     const int yy = whole(2, 3, "year", 0, 99);
     ep.toc.year = yy < 80 ? 2000 + yy : 1900 + yy;
@@ -411,7 +469,7 @@ int reconcile_week(int week, double toe_s, const GpsTime& toc) {
 
 Ephemeris read_gps_record(LineReader& reader, std::string_view first_line, double version) {
   const int record_line = reader.line_no();
-  const EpochLine ep = parse_epoch_line(reader, first_line, version);
+  const EpochLine ep = parse_epoch_line(reader, first_line, version, gps::kMaxPrn);
   std::array<std::array<double, 4>, kOrbitLines> o{};
   for (int i = 0; i < kOrbitLines; ++i) {
     o[static_cast<std::size_t>(i)] =
@@ -466,6 +524,95 @@ Ephemeris read_gps_record(LineReader& reader, std::string_view first_line, doubl
   return eph;
 }
 
+/// A Galileo record's values against the I/NAV fields that carry them (the word encoder
+/// checks each field's width); angles may come in any normalisation, so they are wrapped into
+/// one turn first. The error names the record and the field.
+void check_galileo_ranges(const LineReader& reader, int record_line, const galileo::GalileoEphemeris& eph) {
+  galileo::GalileoEphemeris wrapped = eph;
+  for (double* angle :
+       {&wrapped.orbit.m0_rad, &wrapped.orbit.omega0_rad, &wrapped.orbit.omega_rad, &wrapped.orbit.i0_rad}) {
+    *angle = std::remainder(*angle, 2.0 * galileo::kPi);
+  }
+  wrapped.iod_nav = 0;  // checked as a whole number on its own
+  with_context(reader, fmt::format("record of E{:02d} starting at line {}", eph.prn, record_line), [&] {
+    for (int type = 1; type <= 4; ++type) galileo::inav::encode_ephemeris_word(type, wrapped);
+    return 0;
+  });
+  constexpr double kMinSqrtA = 2525.0;  // sqrt of the Earth's equatorial radius, 6378137 m
+  if (eph.orbit.sqrt_a < kMinSqrtA) {
+    reader.fail(record_line + 2,
+                fmt::format("E{:02d} (record at line {}), broadcast orbit line 2, field 4: sqrt A = {:g} "
+                            "sqrt(m) puts the orbit inside the Earth (at least {} expected)",
+                            eph.prn, record_line, eph.orbit.sqrt_a, kMinSqrtA));
+  }
+}
+
+/// Health bits of a RINEX Galileo record: E1-B DVS (bit 0) and HS (1-2), E5a DVS (3) and HS
+/// (4-5), E5b DVS (6) and HS (7-8).
+galileo::SignalStatus signal_status(int bits, int first_bit) {
+  return {(bits >> (first_bit + 1)) & 3, ((bits >> first_bit) & 1) != 0};
+}
+
+/// A Galileo record of RINEX 3 (Table A8 of RINEX 3.04): the epoch line with toc and the clock,
+/// then seven broadcast orbit lines.
+galileo::GalileoEphemeris read_galileo_record(LineReader& reader, std::string_view first_line, double version) {
+  const int record_line = reader.line_no();
+  const EpochLine ep = parse_epoch_line(reader, first_line, version, galileo::kMaxPrn);
+  std::array<std::array<double, 4>, kOrbitLines> o{};
+  for (int i = 0; i < kOrbitLines; ++i) {
+    o[static_cast<std::size_t>(i)] =
+        read_orbit_line(reader, version, i + 1, i + 1 < kOrbitLines ? (i == 4 ? 3 : 4) : 1, ep.prn, record_line);
+  }
+  galileo::GalileoEphemeris eph;
+  eph.prn = ep.prn;
+  eph.af0_s = ep.clock[0];
+  eph.af1_sps = ep.clock[1];
+  eph.af2_sps2 = ep.clock[2];
+  // The epoch is on GST, whose labels are GPS time's up to the GGTO: week and seconds alike.
+  const GpsTime toc = gps_time_from_calendar(ep.toc);
+  eph.toc_s = toc.sow;
+  KeplerElements& k = eph.orbit;
+  int rinex_week = 0;
+  with_context(reader, fmt::format("record of E{:02d} starting at line {}", ep.prn, record_line), [&] {
+    eph.iod_nav = to_int(o[0][0], "IODnav", 0, 1023);
+    k.crs_m = o[0][1];
+    k.delta_n_radps = o[0][2];
+    k.m0_rad = o[0][3];
+    k.cuc_rad = o[1][0];
+    k.e = o[1][1];
+    k.cus_rad = o[1][2];
+    k.sqrt_a = o[1][3];
+    k.toe_s = o[2][0];
+    k.cic_rad = o[2][1];
+    k.omega0_rad = o[2][2];
+    k.cis_rad = o[2][3];
+    k.i0_rad = o[3][0];
+    k.crc_m = o[3][1];
+    k.omega_rad = o[3][2];
+    k.omega_dot_radps = o[3][3];
+    k.idot_radps = o[4][0];
+    eph.data_sources = to_int(o[4][1], "data sources", 0, 1023);
+    rinex_week = to_int(o[4][2], "GAL week", galileo::kGstWeekOffsetFromGps, 100000);
+    eph.sisa_index = galileo::sisa_index_from_metres(o[5][0]);
+    const int health = to_int(o[5][1], "SV health", 0, 511);
+    eph.e1b = signal_status(health, 0);
+    eph.e5a = signal_status(health, 3);
+    eph.e5b = signal_status(health, 6);
+    eph.bgd_e1e5a_s = o[5][2];
+    eph.bgd_e1e5b_s = o[5][3];
+    eph.transmission_time_known = std::abs(o[6][0]) < kUnknownTransmit;
+    eph.transmission_time_s = eph.transmission_time_known ? o[6][0] : 0.0;
+    if (!(k.e >= 0.0 && k.e < 1.0)) throw std::invalid_argument(fmt::format("eccentricity {} not in [0, 1)", k.e));
+    if (!(k.toe_s >= 0.0 && k.toe_s < kSecondsPerWeek)) {
+      throw std::invalid_argument(fmt::format("toe {} not in [0, 604800)", k.toe_s));
+    }
+    return 0;
+  });
+  check_galileo_ranges(reader, record_line, eph);
+  eph.week = reconcile_week(rinex_week, k.toe_s, toc) - galileo::kGstWeekOffsetFromGps;
+  return eph;
+}
+
 /// Lines of a RINEX 3 record of another satellite system: its continuation lines start with
 /// blanks (GLONASS/SBAS have 3 or 4 of them, Galileo/BeiDou/QZSS/IRNSS 7, depending on version).
 void skip_other_record(LineReader& reader, std::istream& in) {
@@ -510,6 +657,8 @@ NavData read_rinex_nav(std::istream& in, const std::string& name) {
     const char system = line[0];
     if (system == 'G') {
       nav.ephemerides.push_back(read_gps_record(reader, line, header.version));
+    } else if (system == 'E') {
+      nav.galileo_ephemerides.push_back(read_galileo_record(reader, line, header.version));
     } else if (system >= 'A' && system <= 'Z') {
       skip_other_record(reader, in);
       ++nav.skipped_records;

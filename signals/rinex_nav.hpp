@@ -1,12 +1,16 @@
 #pragma once
-// GPS broadcast navigation files: reader for RINEX 2.10/2.11 and 3.0x (GPS records of
-// mixed files; other systems are skipped), writer for RINEX 3.04 GPS navigation files.
+// GPS and Galileo broadcast navigation files: reader for RINEX 2.10/2.11 and 3.0x (GPS and
+// Galileo records of mixed files; other systems are skipped), writer for RINEX 3.04 GPS
+// navigation files.
 #include <iosfwd>
 #include <string>
 #include <vector>
 
 #include "ins/gps_time.hpp"
 #include "signals/ephemeris.hpp"
+#include "signals/galileo/galileo_ephemeris.hpp"
+#include "signals/galileo/gst.hpp"
+#include "signals/galileo/nequick_parameters.hpp"
 #include "signals/iono_utc.hpp"
 
 namespace deepnav {
@@ -19,8 +23,15 @@ struct NavData {
   /// the A0/A1 line was present; delta_t_ls alone comes from LEAP SECONDS.
   UtcParameters utc;
   bool leap_seconds_valid = false;
+  /// Galileo records (E) of RINEX 3 files in file order (duplicates kept): I/NAV and F/NAV
+  /// data sets alike, told apart by data_sources. week is the GST week (RINEX's continuous
+  /// "GAL week" less 1024).
+  std::vector<galileo::GalileoEphemeris> galileo_ephemerides;
+  galileo::NequickParameters galileo_iono;  ///< IONOSPHERIC CORR GAL
+  galileo::GgtoParameters ggto;             ///< TIME SYSTEM CORR GAGP (GST - GPST), wn0g a GST week
+  UtcParameters galileo_utc;                ///< TIME SYSTEM CORR GAUT (GST - UTC), wnt a GST week
   double rinex_version = 0.0;
-  int skipped_records = 0;  ///< records of other satellite systems in mixed files
+  int skipped_records = 0;  ///< records of other satellite systems (neither GPS nor Galileo) in mixed files
   std::string source;       ///< the file (or stream name) it was read from, for messages
 
   /// The healthy ephemeris of `prn` with the toe closest to t among those whose fit
@@ -35,7 +46,7 @@ NavData read_rinex_nav(const std::string& path);
 /// Same from a stream; `name` is used in error messages.
 NavData read_rinex_nav(std::istream& in, const std::string& name);
 
-/// Writes a RINEX 3.04 GPS navigation file. The header date is the latest toc in the data
+/// Writes a RINEX 3.04 GPS navigation file (GPS records and parameters only). The header date is the latest toc in the data
 /// (not the wall clock), so equal inputs give equal bytes.
 void write_rinex3_nav(std::ostream& out, const NavData& nav, const std::string& program_name);
 

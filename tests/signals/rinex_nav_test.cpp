@@ -322,10 +322,13 @@ std::string mixed_rinex3() {
   return join_lines(out);
 }
 
-TEST(RinexNav, MixedRinex3SkipsOtherSystems) {
+TEST(RinexNav, MixedRinex3ReadsGpsAndGalileoAndSkipsOtherSystems) {
   const NavData nav = read_text(mixed_rinex3(), "mixed.rnx");
   ASSERT_EQ(nav.ephemerides.size(), 2u);
-  EXPECT_EQ(nav.skipped_records, 4);
+  EXPECT_EQ(nav.skipped_records, 3);  // two GLONASS records and an SBAS one
+  ASSERT_EQ(nav.galileo_ephemerides.size(), 1u);
+  EXPECT_EQ(nav.galileo_ephemerides[0].prn, 11);
+  EXPECT_EQ(nav.galileo_ephemerides[0].week, 2190 - 1024);
   EXPECT_EQ(nav.ephemerides[0].prn, 1);
   EXPECT_EQ(nav.ephemerides[1].prn, 2);
   EXPECT_EQ(nav.ephemerides[1].sqrt_a, brdc().ephemerides[1].sqrt_a);
