@@ -5,6 +5,7 @@
 #include "signals/if_metadata.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -21,8 +22,10 @@ namespace {
 
 using namespace std::string_literals;
 
+/// A scratch folder of this process: ctest runs every case as a process of its own, two at
+/// once, and cases writing the same file name (bad.xml) into one folder raced.
 std::filesystem::path write_xml(const std::string& name, const std::string& text) {
-  const auto dir = std::filesystem::temp_directory_path() / "deepnav_if_metadata";
+  const auto dir = std::filesystem::temp_directory_path() / ("deepnav_if_metadata_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const auto path = dir / name;
   std::ofstream(path) << text;
