@@ -23,7 +23,7 @@ class BitCursor {
     if (width < 64 && (value >> width) != 0) {
       throw std::invalid_argument(fmt::format("I/NAV page: {} = {} has more than {} bits", name, value, width));
     }
-    for (int k = width - 1; k >= 0; --k) bits_[static_cast<std::size_t>(pos_++)] = (value >> k) & 1;
+    for (int k = width - 1; k >= 0; --k) bits_[static_cast<std::size_t>(pos_++)] = k < 64 && ((value >> k) & 1);
   }
   std::uint64_t get(int width) {
     std::uint64_t value = 0;

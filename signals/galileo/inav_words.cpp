@@ -46,7 +46,9 @@ class WordWriter {
   void put_raw(std::uint64_t raw, int bits, const char* name) {
     if (pos_ + bits > kWordBits)
       throw std::logic_error(fmt::format("I/NAV word {}: {} overruns the word", type_, name));
-    for (int k = bits - 1; k >= 0; --k) word_[static_cast<std::size_t>(pos_++)] = (raw >> k) & 1;
+    // A spare run may be wider than the 64-bit value: its upper bits are zero (and a shift
+    // by 64 or more is undefined).
+    for (int k = bits - 1; k >= 0; --k) word_[static_cast<std::size_t>(pos_++)] = k < 64 && ((raw >> k) & 1);
     if (pos_ == kTypeBits) type_ = static_cast<int>(raw);
   }
 
