@@ -64,10 +64,9 @@ struct AidedReceiver::Impl : ChannelAiding {
     DelayMismatchDetector check;
     DelayMismatchReport report;
     /// The same fit with the other model's error fitted beside (DelayMismatchConfig::
-    /// also_fitted), fed alongside from the start; its verdict counts once `beside_from`
-    /// (the other watch's finding) is set.
+    /// also_fitted), fed alongside from the start; its verdict counts once the other
+    /// model's mismatch is found (the ionosphere's, beside the troposphere's).
     std::optional<DelayMismatchDetector> beside;
-    const std::optional<double>* beside_from = nullptr;
   };
   MismatchWatch troposphere_watch, ionosphere_watch;
   std::string start_method;
@@ -92,11 +91,10 @@ struct AidedReceiver::Impl : ChannelAiding {
               cfg.fault_exclusion ? &faults : nullptr, cfg.receiver.atmosphere),
         modes(cfg.mode, cfg.limits),
         faults(cfg.faults),
-        troposphere_watch{DelayMismatchDetector(cfg.troposphere_mismatch), {}, {}, nullptr},
+        troposphere_watch{DelayMismatchDetector(cfg.troposphere_mismatch), {}, {}},
         ionosphere_watch{DelayMismatchDetector(cfg.ionosphere_mismatch),
                          {},
-                         DelayMismatchDetector(beside_troposphere(cfg.ionosphere_mismatch)),
-                         &troposphere_watch.report.found_at_s},
+                         DelayMismatchDetector(beside_troposphere(cfg.ionosphere_mismatch))},
         fs(source.sample_rate_hz()) {
     rx.set_channel_aiding(this);
   }
@@ -387,8 +385,8 @@ struct AidedReceiver::Impl : ChannelAiding {
     }
     w.check.add(residuals, cfg.receiver.pvt.range_errors);
     if (w.beside) w.beside->add(residuals, cfg.receiver.pvt.range_errors);
-    const DelayMismatchDetector& verdict =
-        w.beside && w.beside_from && w.beside_from->has_value() ? *w.beside : w.check;
+    // Only the ionosphere watch fits beside another model: the troposphere's, once found.
+    const DelayMismatchDetector& verdict = w.beside && troposphere_watch.report.found_at_s ? *w.beside : w.check;
     w.report.fitted_error = verdict.fitted_error();
     const bool troposphere = &w == &troposphere_watch;
     spdlog::debug("t = {:.2f} s: {} model error fitted {:+.3f}", ep.t_s, troposphere ? "troposphere" : "ionosphere",

@@ -175,25 +175,27 @@ std::optional<NothingFound> nothing_found(const RunOptions& o, const OpenedSourc
   return std::nullopt;
 }
 
+/// A figure of the summary that may be missing: the number, or null.
+nlohmann::json number_or_null(const std::optional<double>& v) {
+  return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+}
+
 /// How the receiver's first fix was obtained: {"method", "ephemerides_complete_s"}, null
 /// before any fix.
 nlohmann::json first_fix_json(const std::optional<FirstFixOrigin>& origin) {
   if (!origin) return nullptr;
-  return {{"method", origin->method},
-          {"ephemerides_complete_s",
-           origin->ephemerides_complete_s ? nlohmann::json(*origin->ephemerides_complete_s) : nlohmann::json(nullptr)}};
+  return {{"method", origin->method}, {"ephemerides_complete_s", number_or_null(origin->ephemerides_complete_s)}};
 }
 
 /// What the hot start did: {"attempts", "fixes", "first_fix_s", "first_time_correction_s",
 /// "last_refusal"}; null without --time-hint.
 nlohmann::json hot_start_json(const std::optional<HotStartReport>& report) {
   if (!report) return nullptr;
-  const auto or_null = [](const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };
   return {
       {"attempts", report->attempts},
       {"fixes", report->fixes},
-      {"first_fix_s", or_null(report->first_fix_sample_s)},
-      {"first_time_correction_s", or_null(report->first_correction_s)},
+      {"first_fix_s", number_or_null(report->first_fix_sample_s)},
+      {"first_time_correction_s", number_or_null(report->first_correction_s)},
       {"last_refusal", report->last_refusal.empty() ? nlohmann::json(nullptr) : nlohmann::json(report->last_refusal)}};
 }
 
@@ -279,17 +281,14 @@ nlohmann::json run_summary(const RunOptions& o, const OpenedSource& opened, aidi
     summary["imu_samples_beyond_range"] = imu_integrity.beyond_range.samples;
     summary["satellite_exclusions"] = aided->satellite_exclusions();
     summary["withheld_solutions"] = aided->withheld_solutions();
-    const auto or_null = [](const std::optional<double>& v) {
-      return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
-    };
     // When the mismatch was found, by how much, when the filter took the state (from the
     // fit, the height given room to move back) and what it estimates at the end.
     const auto mismatch_json = [&](const aiding::DelayMismatchReport& m, const char* error_key) {
       return nlohmann::json{{"found_at_s", *m.found_at_s},
                             {error_key, m.fitted_error},
-                            {"state_from_s", or_null(m.state_from_s)},
-                            {"height_room_m", or_null(m.height_room_m)},
-                            {"state_at_end", or_null(m.state_estimate)}};
+                            {"state_from_s", number_or_null(m.state_from_s)},
+                            {"height_room_m", number_or_null(m.height_room_m)},
+                            {"state_at_end", number_or_null(m.state_estimate)}};
     };
     if (const aiding::DelayMismatchReport m = aided->troposphere_mismatch(); m.found_at_s)
       summary["troposphere_mismatch"] = mismatch_json(m, "zenith_error_m");
