@@ -745,22 +745,79 @@ void write_record(std::ostream& out, const Ephemeris& e) {
   orbit({e.transmission_time_known ? e.transmission_time_s : 0.9999e9, fit_interval_s(e) / 3600.0});
 }
 
+/// toc of a Galileo record on GST with its full week (toe's week unless toc lies across a
+/// week boundary from toe), rounded to a whole second, labelled as a GPS time: the two
+/// scales share second and week boundaries (week offset 1024).
+GpsTime galileo_full_toc(const galileo::GalileoEphemeris& eph) {
+  const double toe = eph.orbit.toe_s;
+  return GpsTime::normalized(eph.week + galileo::kGstWeekOffsetFromGps,
+                             std::round(toe + seconds_of_week_difference(eph.toc_s, toe)));
+}
+
+/// The RINEX health bits of a signal status (the inverse of signal_status).
+int status_bits(const galileo::SignalStatus& s, int first_bit) {
+  return ((s.health & 3) << (first_bit + 1)) | ((s.data_invalid ? 1 : 0) << first_bit);
+}
+
+void write_galileo_record(std::ostream& out, const galileo::GalileoEphemeris& e) {
+  const CalendarTime c = calendar_from_gps_time(galileo_full_toc(e));
+  const int seconds = static_cast<int>(std::lround(c.second));
+  out << fmt::format("E{:02d} {:04d} {:02d} {:02d} {:02d} {:02d} {:02d}", e.prn, c.year, c.month, c.day, c.hour,
+                     c.minute, seconds)
+      << d19(e.af0_s, "af0", e.prn) << d19(e.af1_sps, "af1", e.prn) << d19(e.af2_sps2, "af2", e.prn) << '\n';
+  const auto orbit = [&](std::initializer_list<double> values) {
+    out << "    ";
+    for (double v : values) out << d19(v, "orbit field", e.prn);
+    out << '\n';
+  };
+  const KeplerElements& k = e.orbit;
+  const int health = status_bits(e.e1b, 0) | status_bits(e.e5a, 3) | status_bits(e.e5b, 6);
+  // RINEX writes -1 m where no accuracy prediction is available (NAPA).
+  const double sisa_m = galileo::sisa_metres(e.sisa_index).value_or(-1.0);
+  orbit({static_cast<double>(e.iod_nav), k.crs_m, k.delta_n_radps, k.m0_rad});
+  orbit({k.cuc_rad, k.e, k.cus_rad, k.sqrt_a});
+  orbit({k.toe_s, k.cic_rad, k.omega0_rad, k.cis_rad});
+  orbit({k.i0_rad, k.crc_m, k.omega_rad, k.omega_dot_radps});
+  orbit({k.idot_radps, static_cast<double>(e.data_sources),
+         static_cast<double>(e.week + galileo::kGstWeekOffsetFromGps)});
+  orbit({sisa_m, static_cast<double>(health), e.bgd_e1e5a_s, e.bgd_e1e5b_s});
+  orbit({e.transmission_time_known ? e.transmission_time_s : 0.9999e9});
+}
+
+/// The header's date: the latest toc of the records (GPS ones when there are any, which
+/// keeps a GPS-only file's bytes as they were), not the wall clock.
+std::string header_date(const NavData& nav) {
+  std::optional<GpsTime> latest;
+  const auto consider = [&latest](const GpsTime& t) {
+    if (!latest || t.seconds_since(*latest) > 0) latest = t;
+  };
+  for (const Ephemeris& e : nav.ephemerides) consider(full_toc(e));
+  for (const galileo::GalileoEphemeris& e : nav.galileo_ephemerides) consider(galileo_full_toc(e));
+  if (!latest) return "                   ";
+  const CalendarTime c = calendar_from_gps_time(*latest);
+  return fmt::format("{:04d}{:02d}{:02d} {:02d}{:02d}{:02d} GPS", c.year, c.month, c.day, c.hour, c.minute,
+                     static_cast<int>(c.second));
+}
+
+/// "G: GPS", "E: GALILEO" or "M: MIXED" by the records present (GPS when there are none).
+std::string file_system(const NavData& nav) {
+  const bool gps = !nav.ephemerides.empty() || nav.galileo_ephemerides.empty();
+  const bool gal = !nav.galileo_ephemerides.empty();
+  if (gps && gal) return "M: MIXED";
+  return gal ? "E: GALILEO" : "G: GPS";
+}
+
+/// A TIME SYSTEM CORR line (GPUT, GAGP, GAUT): a0, a1, reference time and week.
+std::string time_system_corr(const char* kind, double a0, double a1, int t_ref_s, int week) {
+  return header_line(fmt::format("{} {:17.10E}{:16.9E} {:6d} {:4d}", kind, a0, a1, t_ref_s, week), "TIME SYSTEM CORR");
+}
+
 }  // namespace
 
 void write_rinex3_nav(std::ostream& out, const NavData& nav, const std::string& program_name) {
-  out << header_line(fmt::format("{:>9.2f}{:11}{:<20}{:<20}", 3.04, "", "N: GNSS NAV DATA", "G: GPS"),
+  out << header_line(fmt::format("{:>9.2f}{:11}{:<20}{:<20}", 3.04, "", "N: GNSS NAV DATA", file_system(nav)),
                      "RINEX VERSION / TYPE");
-  std::string date = "                   ";
-  if (!nav.ephemerides.empty()) {
-    GpsTime latest = full_toc(nav.ephemerides.front());
-    for (const Ephemeris& e : nav.ephemerides) {
-      if (full_toc(e).seconds_since(latest) > 0) latest = full_toc(e);
-    }
-    const CalendarTime c = calendar_from_gps_time(latest);
-    date = fmt::format("{:04d}{:02d}{:02d} {:02d}{:02d}{:02d} GPS", c.year, c.month, c.day, c.hour, c.minute,
-                       static_cast<int>(c.second));
-  }
-  out << header_line(fmt::format("{:<20.20}{:<20}{:<20}", program_name, "", date), "PGM / RUN BY / DATE");
+  out << header_line(fmt::format("{:<20.20}{:<20}{:<20}", program_name, "", header_date(nav)), "PGM / RUN BY / DATE");
   if (nav.iono.valid) {
     const auto& a = nav.iono.alpha;
     const auto& b = nav.iono.beta;
@@ -769,10 +826,21 @@ void write_rinex3_nav(std::ostream& out, const NavData& nav, const std::string& 
     out << header_line(fmt::format("GPSB {:12.4E}{:12.4E}{:12.4E}{:12.4E}", b[0], b[1], b[2], b[3]),
                        "IONOSPHERIC CORR");
   }
-  if (nav.utc.valid) {
+  if (nav.galileo_iono.valid) {
+    const auto& g = nav.galileo_iono;
     out << header_line(
-        fmt::format("GPUT {:17.10E}{:16.9E} {:6d} {:4d}", nav.utc.a0_s, nav.utc.a1_sps, nav.utc.tot_s, nav.utc.wnt),
-        "TIME SYSTEM CORR");
+        fmt::format("GAL  {:12.4E}{:12.4E}{:12.4E}{:12.4E}", g.ai0_sfu, g.ai1_sfu_per_deg, g.ai2_sfu_per_deg2, 0.0),
+        "IONOSPHERIC CORR");
+  }
+  if (nav.utc.valid) out << time_system_corr("GPUT", nav.utc.a0_s, nav.utc.a1_sps, nav.utc.tot_s, nav.utc.wnt);
+  // RINEX counts the Galileo weeks of these lines continuously with GPS weeks.
+  if (nav.ggto.valid) {
+    out << time_system_corr("GAGP", nav.ggto.a0g_s, nav.ggto.a1g_sps, nav.ggto.t0g_s,
+                            nav.ggto.wn0g + galileo::kGstWeekOffsetFromGps);
+  }
+  if (nav.galileo_utc.valid) {
+    const UtcParameters& u = nav.galileo_utc;
+    out << time_system_corr("GAUT", u.a0_s, u.a1_sps, u.tot_s, u.wnt + galileo::kGstWeekOffsetFromGps);
   }
   if (nav.leap_seconds_valid) {
     const UtcParameters& u = nav.utc;
@@ -783,6 +851,7 @@ void write_rinex3_nav(std::ostream& out, const NavData& nav, const std::string& 
   }
   out << header_line("", "END OF HEADER");
   for (const Ephemeris& e : nav.ephemerides) write_record(out, e);
+  for (const galileo::GalileoEphemeris& e : nav.galileo_ephemerides) write_galileo_record(out, e);
 }
 
 }  // namespace deepnav

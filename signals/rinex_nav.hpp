@@ -1,7 +1,7 @@
 #pragma once
 // GPS and Galileo broadcast navigation files: reader for RINEX 2.10/2.11 and 3.0x (GPS and
-// Galileo records of mixed files; other systems are skipped), writer for RINEX 3.04 GPS
-// navigation files.
+// Galileo records of mixed files; other systems are skipped), writer for RINEX 3.04 GPS,
+// Galileo and mixed navigation files.
 #include <iosfwd>
 #include <string>
 #include <vector>
@@ -46,8 +46,10 @@ NavData read_rinex_nav(const std::string& path);
 /// Same from a stream; `name` is used in error messages.
 NavData read_rinex_nav(std::istream& in, const std::string& name);
 
-/// Writes a RINEX 3.04 GPS navigation file (GPS records and parameters only). The header date is the latest toc in the data
-/// (not the wall clock), so equal inputs give equal bytes.
+/// Writes a RINEX 3.04 navigation file: GPS records and parameters, then Galileo records with
+/// the GAL, GAGP and GAUT header lines where present; file type G, E or M (both). The header
+/// date is the latest toc in the data (of the GPS records when there are any; not the wall
+/// clock), so equal inputs give equal bytes, and a GPS-only file is written as before.
 void write_rinex3_nav(std::ostream& out, const NavData& nav, const std::string& program_name);
 
 /// URA index (IS-GPS-200 20.3.3.3.1.3) <-> accuracy in metres as RINEX stores it.

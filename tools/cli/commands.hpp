@@ -27,6 +27,7 @@ void add_bench_snapshot_command(CommandParents& parents);
 void add_bench_stream_command(CommandParents& parents);
 void add_bench_threshold_command(CommandParents& parents);
 void add_fuse_command(CommandParents& parents);
+void add_nav_command(CommandParents& parents);
 void add_run_command(CommandParents& parents);
 void add_serve_command(CommandParents& parents);
 void add_sim_command(CommandParents& parents);

@@ -37,6 +37,7 @@ int main(int argc, char** argv) {
   add_bench_stream_command(parents);
   add_bench_threshold_command(parents);
   add_fuse_command(parents);
+  add_nav_command(parents);
   add_run_command(parents);
   add_serve_command(parents);
   add_sim_command(parents);
