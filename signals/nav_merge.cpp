@@ -9,9 +9,8 @@ namespace deepnav {
 void shift_galileo_weeks(NavData& nav, int weeks) {
   const auto moved = [weeks](int week, const char* what) {
     if (week + weeks < 0) {
-      throw std::invalid_argument(
-          fmt::format("moving the Galileo data by {} weeks puts the {} (GST week {}) before GST week 0", weeks, what,
-                      week));
+      throw std::invalid_argument(fmt::format(
+          "moving the Galileo data by {} weeks puts the {} (GST week {}) before GST week 0", weeks, what, week));
     }
     return week + weeks;
   };

@@ -21,12 +21,18 @@
 #include "ins/sim/trajectory_csv.hpp"
 #include "ins/sim/trajectory_presets.hpp"
 #include "signals/ca_code.hpp"
+#include "signals/galileo/e1_codes.hpp"
+#include "signals/galileo/galileo_constants.hpp"
+#include "signals/galileo/gst.hpp"
 #include "signals/gps_constants.hpp"
 #include "signals/if_metadata.hpp"
 #include "signals/lnav_message.hpp"
+#include "signals/sim/e1_waveform.hpp"
 #include "signals/sim/error_world.hpp"
+#include "signals/sim/floor_div.hpp"
 #include "signals/sim/front_end.hpp"
 #include "signals/sim/if_file_writer.hpp"
+#include "signals/sim/inav_broadcast.hpp"
 #include "signals/sim/line_of_sight.hpp"
 #include "signals/sim/lnav_broadcast.hpp"
 #include "signals/sim/multipath_channel.hpp"
@@ -47,10 +53,24 @@ constexpr double kChip_m = gps::kSpeedOfLight_mps / gps::kCodeRate_cps;
 /// sat_truth.csv's multipath_m is the error of an ideal E-L DLL with this (the receiver's default) spacing.
 constexpr double kTruthDllSpacing_chips = 0.5;
 
+/// Whole milliseconds of a GST week start before the GPS week of the same number plus 1024
+/// weeks: GST and GPS time share weeks, 1024 apart.
+constexpr std::int64_t kGstOriginMs = static_cast<std::int64_t>(galileo::kGstWeekOffsetFromGps) * kMsPerWeek;
+/// Milliseconds per E1 code period (and I/NAV symbol): 4.
+constexpr std::int64_t kE1PeriodMs = 4;
+constexpr double kE1Chips = galileo::kE1CodeLength_chips;
+
 struct SatelliteRun {
-  Ephemeris eph;
+  SatelliteId id;
+  Ephemeris eph;  ///< GPS satellites
+  std::optional<galileo::GalileoEphemeris> galileo;
   const CaCodeChips* code = nullptr;
   std::unique_ptr<LnavSignTable> bits;
+  std::unique_ptr<InavSymbolTable> symbols;  ///< Galileo: E1-B I/NAV symbols by GST code period
+  std::unique_ptr<E1WaveformTables> e1;      ///< Galileo: the composite E1 waveform of its codes
+  /// A key of its own for the seeded per-satellite models (multipath): the GPS PRN, 100 + the
+  /// Galileo SVID.
+  int model_key() const { return id.system == GnssSystem::gps ? id.prn : 100 + id.prn; }
 };
 
 /// Receiver-side state at an epoch boundary plus every satellite's signal there.
@@ -60,6 +80,11 @@ struct BoundaryState {
   std::vector<SatelliteInstant> sats;
   std::vector<PathSet> paths;  ///< per satellite; empty without a multipath model
 };
+
+/// How messages name a satellite: "PRN 5" for GPS (as they always have), "E11" for Galileo.
+std::string satellite_label(const SatelliteId& id) {
+  return id.system == GnssSystem::gps ? fmt::format("PRN {}", id.prn) : id.to_string();
+}
 
 double ramp_offset_db(const Cn0Spec& spec, double t_s) {
   if (spec.ramp_delta_db == 0.0 || t_s <= spec.ramp_start_s) return 0.0;
@@ -101,6 +126,7 @@ struct IfSynthesizer::Impl {
   GpsTime ref_time{};                           ///< the reference epoch as a GpsTime
   std::unique_ptr<ErrorWorld> world;            ///< the truth models the signal follows
   std::unique_ptr<MultipathChannel> multipath;  ///< null for model none: no extra work at all
+  double gst_minus_gpst_s = 0.0;                ///< GGTO at the start, from the file's GAGP (0 without)
 
   Impl(Scenario s, NavData n) : sc(std::move(s)), nav(std::move(n)) {
     samples_per_epoch = std::llround(sc.sample_rate_hz / 1000.0);
@@ -109,6 +135,8 @@ struct IfSynthesizer::Impl {
     ref_ms_abs = static_cast<std::int64_t>(sc.start_time.week) * kMsPerWeek + static_cast<std::int64_t>(sow_ms);
     ref_frac_s = sc.start_time.sow - sow_ms / 1000.0;
     ref_time = GpsTime{sc.start_time.week, sow_ms / 1000.0};
+    if (nav.ggto.valid)
+      gst_minus_gpst_s = galileo::gst_minus_gpst_s(nav.ggto, galileo::gst_from_gps_time(sc.start_time));
     trajectory = make_trajectory();
     world =
         std::make_unique<ErrorWorld>(sc.errors, AtmosphereSwitches{sc.ionosphere, sc.troposphere}, sc.seed,
@@ -121,15 +149,21 @@ struct IfSynthesizer::Impl {
   /// elevation and the antenna's speed along the trajectory (receiver time since the start).
   void make_multipath() {
     std::vector<int> prns;
-    for (const auto& run : runs) prns.push_back(run.eph.prn);
+    for (const auto& run : runs) prns.push_back(run.model_key());
     auto state_at = [this](double t_s) { return trajectory->at(std::clamp(t_s, 0.0, trajectory->duration_s())); };
     auto elevation = [&](std::size_t sat, double t_s) {
       const TrajectoryState st = state_at(t_s);
-      const LineOfSight los = line_of_sight(runs[sat].eph, sc.start_time.plus_seconds(t_s), st.r_ecef_m, st.v_ecef_mps);
+      const LineOfSight los = line_of_sight_of(runs[sat], sc.start_time.plus_seconds(t_s), st.r_ecef_m, st.v_ecef_mps);
       return look_angles(st.r_ecef_m, los.r_sat_ecef_m).elevation_rad;
     };
     auto speed = [&](double t_s) { return state_at(t_s).v_ned_mps.norm(); };
     multipath = std::make_unique<MultipathChannel>(sc.errors.multipath, sc.seed, prns, sc.duration_s, elevation, speed);
+  }
+
+  LineOfSight line_of_sight_of(const SatelliteRun& run, const GpsTime& t, const Eigen::Vector3d& r,
+                               const Eigen::Vector3d& v) const {
+    if (run.galileo) return line_of_sight(*run.galileo, gst_minus_gpst_s, t, r, v);
+    return line_of_sight(run.eph, t, r, v);
   }
 
   std::unique_ptr<Trajectory> make_trajectory() const {
@@ -155,6 +189,10 @@ struct IfSynthesizer::Impl {
     request.elevation_mask_rad = sc.elevation_mask_rad;
     request.prns = sc.prns;
     request.max_satellites = sc.max_satellites;
+    request.systems = sc.systems;
+    request.gst_minus_gpst_s = gst_minus_gpst_s;
+    if (std::find(sc.systems.begin(), sc.systems.end(), GnssSystem::galileo) != sc.systems.end())
+      require_galileo_records();
     const auto chosen = select_satellites(nav, *trajectory, request);
     if (chosen.empty()) {
       throw std::runtime_error(fmt::format("{}: no healthy satellite of '{}' is above the elevation mask at the start",
@@ -167,12 +205,48 @@ struct IfSynthesizer::Impl {
     const auto last_ms = ref_ms_abs + epochs + static_cast<std::int64_t>(std::ceil(clock_span_s * 1000.0)) + 1000;
     for (const auto& c : chosen) {
       SatelliteRun run;
-      run.eph = *c.ephemeris;
-      run.code = &ca_code_chips(c.prn);
-      run.bits = std::make_unique<LnavSignTable>(synthesized_lnav_content(nav, run.eph), first_ms, last_ms);
+      run.id = c.id;
+      if (c.id.system == GnssSystem::galileo) {
+        run.galileo = *c.galileo_ephemeris;
+        // GST code periods of 4 ms, counted from GST's start epoch.
+        run.symbols =
+            std::make_unique<InavSymbolTable>(nav, *run.galileo, floor_div(first_ms - kGstOriginMs, kE1PeriodMs),
+                                              floor_div(last_ms - kGstOriginMs, kE1PeriodMs));
+        run.e1 = std::make_unique<E1WaveformTables>(c.prn);
+      } else {
+        run.eph = *c.ephemeris;
+        run.code = &ca_code_chips(c.prn);
+        run.bits = std::make_unique<LnavSignTable>(synthesized_lnav_content(nav, run.eph), first_ms, last_ms);
+      }
       runs.push_back(std::move(run));
-      info.push_back(SynthesizedSatellite{c.prn, c.elevation_rad * kRadToDeg, c.azimuth_rad * kRadToDeg, 0, 0, 0});
+      SynthesizedSatellite sat{c.prn, c.elevation_rad * kRadToDeg, c.azimuth_rad * kRadToDeg, 0, 0, 0};
+      sat.id = c.id;
+      info.push_back(sat);
     }
+  }
+
+  /// A Galileo scenario needs the file's Galileo records for its start: without them the
+  /// error names the file rather than saying that no satellite is in view.
+  void require_galileo_records() const {
+    const galileo::GstTime start = galileo::gst_from_gps_time(sc.start_time, gst_minus_gpst_s);
+    for (int svid = 1; svid <= galileo::kMaxPrn; ++svid) {
+      if (select_galileo_ephemeris(nav, svid, start) != nullptr) return;
+    }
+    throw std::runtime_error(fmt::format(
+        "{}: systems lists galileo, but the navigation file '{}' has no healthy E1-B I/NAV Galileo record valid at "
+        "the start (GPS week {}, second {:.3f}; {} Galileo records in the file)",
+        sc.source_path, sc.nav_file, sc.start_time.week, sc.start_time.sow, nav.galileo_ephemerides.size()));
+  }
+
+  /// The code phase within the satellite's code period of an unwrapped code phase counted
+  /// (as SatelliteInstant::code_chips is) from the reference epoch: 1023 chips of C/A, 4092 of
+  /// E1, whose periods start at GST multiples of 4 ms.
+  double code_phase_in_period(const SatelliteRun& run, double code_chips) const {
+    if (!run.galileo) return code_chips - std::floor(code_chips / 1023.0) * 1023.0;
+    const double ms = std::floor(code_chips / 1023.0);
+    const std::int64_t abs_ms = ref_ms_abs + static_cast<std::int64_t>(ms);
+    const std::int64_t ms_in_period = abs_ms - floor_div(abs_ms, kE1PeriodMs) * kE1PeriodMs;
+    return static_cast<double>(ms_in_period) * 1023.0 + (code_chips - ms * 1023.0);
   }
 
   ReceiverInstant receiver_at(std::int64_t k, const ClockState& clock, double bias0_s, TrajectoryState& traj) const {
@@ -197,15 +271,19 @@ struct IfSynthesizer::Impl {
     if (spec.model == Cn0Spec::Model::elevation) {
       cn0 = spec.horizon_dbhz + (spec.zenith_dbhz - spec.horizon_dbhz) * std::sin(std::max(0.0, s.elevation_rad));
     }
-    if (const auto it = spec.per_prn_dbhz.find(runs[sat].eph.prn); it != spec.per_prn_dbhz.end()) cn0 = it->second;
+    if (runs[sat].id.system == GnssSystem::gps) {
+      if (const auto it = spec.per_prn_dbhz.find(runs[sat].eph.prn); it != spec.per_prn_dbhz.end()) cn0 = it->second;
+    }
     // The scenario's C/N0 is an isotropic antenna's; the antenna pattern comes on top.
     return cn0 + s.antenna_gain_db + ramp_offset_db(spec, t_s);
   }
 
-  bool in_outage(int prn, double t_s) const {
+  /// An outage's PRN list names GPS satellites; one without a list blocks every satellite.
+  bool in_outage(const SatelliteId& id, double t_s) const {
     for (const auto& o : sc.outages) {
       if (t_s >= o.start_s && t_s < o.end_s &&
-          (o.prns.empty() || std::find(o.prns.begin(), o.prns.end(), prn) != o.prns.end())) {
+          (o.prns.empty() ||
+           (id.system == GnssSystem::gps && std::find(o.prns.begin(), o.prns.end(), id.prn) != o.prns.end()))) {
         return true;
       }
     }
@@ -214,7 +292,7 @@ struct IfSynthesizer::Impl {
 
   /// Signal amplitude for a satellite over the epoch that starts at t_s (0 when blocked).
   float amplitude(std::size_t sat, const SatelliteInstant& s, double t_s) const {
-    if (s.elevation_rad <= 0.0 || in_outage(runs[sat].eph.prn, t_s)) return 0.0f;
+    if (s.elevation_rad <= 0.0 || in_outage(runs[sat].id, t_s)) return 0.0f;
     return static_cast<float>(std::pow(10.0, cn0_dbhz(sat, s, t_s) / 20.0));
   }
 
@@ -222,7 +300,11 @@ struct IfSynthesizer::Impl {
     BoundaryState b;
     b.rx = receiver_at(k, clock, bias0_s, b.traj);
     b.sats.reserve(runs.size());
-    for (const auto& run : runs) b.sats.push_back(evaluate_satellite(run.eph, nav.iono, *world, b.rx, sc.if_hz));
+    for (const auto& run : runs) {
+      b.sats.push_back(run.galileo
+                           ? evaluate_satellite(*run.galileo, gst_minus_gpst_s, nav.iono, *world, b.rx, sc.if_hz)
+                           : evaluate_satellite(run.eph, nav.iono, *world, b.rx, sc.if_hz));
+    }
     if (multipath) {
       b.paths.reserve(runs.size());
       const double t_s = static_cast<double>(k) * 1e-3;
@@ -247,11 +329,11 @@ struct IfSynthesizer::Impl {
       const double range_rate_mps = (1.0 - chips_per_ms / 1023.0) * gps::kSpeedOfLight_mps;
       if (std::isfinite(range_rate_mps) && std::abs(range_rate_mps) <= limit_mps) continue;
       throw std::runtime_error(fmt::format(
-          "synthesizer: PRN {} at t = {:.3f} s: the signal implies a range rate of {:.4g} m/s (the code advanced "
+          "synthesizer: {} at t = {:.3f} s: the signal implies a range rate of {:.4g} m/s (the code advanced "
           "{:.6g} "
-          "chips in 1 ms), beyond {:g} m/s: check the scenario's navigation file ({}, PRN {}) and trajectory ({})",
-          runs[s].eph.prn, static_cast<double>(k) * 1e-3, range_rate_mps, chips_per_ms, limit_mps, sc.nav_file,
-          runs[s].eph.prn, trajectory->description()));
+          "chips in 1 ms), beyond {:g} m/s: check the scenario's navigation file ({}, {}) and trajectory ({})",
+          satellite_label(runs[s].id), static_cast<double>(k) * 1e-3, range_rate_mps, chips_per_ms, limit_mps,
+          sc.nav_file, satellite_label(runs[s].id), trajectory->description()));
     }
   }
 
@@ -260,6 +342,10 @@ struct IfSynthesizer::Impl {
   /// code period (and possibly the data bit) changes, each with that period's bit.
   void add_path(std::size_t s, int n, double code_a, double code_b, double carrier_a, double carrier_b, float amp,
                 float* i_out, float* q_out, float* scratch) const {
+    if (runs[s].galileo) {
+      add_e1_path(runs[s], n, code_a, code_b, carrier_a, carrier_b, amp, i_out, q_out, scratch);
+      return;
+    }
     const double code_step = (code_b - code_a) / n;
     const double carrier_step = (carrier_b - carrier_a) / n;
     int first = 0;
@@ -277,6 +363,40 @@ struct IfSynthesizer::Impl {
       seg.code_step_chips = code_step;
       seg.amplitude = amp * static_cast<float>(runs[s].bits->sign_at_ms(ms));
       add_satellite_segment(i_out + first, q_out + first, count, seg, *runs[s].code, scratch);
+      first += count;
+    }
+  }
+
+  /// add_path for a Galileo satellite: segments split at its 4 ms code periods (GST
+  /// multiples of 4 ms), each with that period's E1-B symbol and E1-C secondary code chip.
+  void add_e1_path(const SatelliteRun& run, int n, double code_a, double code_b, double carrier_a, double carrier_b,
+                   float amp, float* i_out, float* q_out, float* scratch) const {
+    const double code_step = (code_b - code_a) / n;
+    const double carrier_step = (carrier_b - carrier_a) / n;
+    const galileo::E1SecondaryChips& secondary = galileo::e1c_secondary_chips();
+    int first = 0;
+    while (first < n) {
+      const double chips = code_a + first * code_step;
+      // Whole milliseconds from the reference epoch, then the absolute (GPS-labelled) ms:
+      // code periods start at multiples of 4 ms of GST, whose labels are GPS time's.
+      const double ms = std::floor(chips / gps::kCodeLength_chips);
+      const std::int64_t abs_ms = ref_ms_abs + static_cast<std::int64_t>(ms);
+      const std::int64_t period_start_ms = floor_div(abs_ms, kE1PeriodMs) * kE1PeriodMs;
+      const double period_start_chips = static_cast<double>(period_start_ms - ref_ms_abs) * gps::kCodeLength_chips;
+      const double next_edge = period_start_chips + kE1Chips;
+      const int last = std::min(n, static_cast<int>(std::ceil((next_edge - code_a) / code_step)));
+      const int count = std::max(1, last - first);
+      const std::int64_t period = (period_start_ms - kGstOriginMs) / kE1PeriodMs;
+      const int data = run.symbols->sign_at_period(period);
+      const int pilot = secondary[static_cast<std::size_t>(
+          period - floor_div(period, galileo::kE1cSecondaryLength_chips) * galileo::kE1cSecondaryLength_chips)];
+      SignalSegment seg;
+      seg.carrier_phase_cycles = carrier_a + first * carrier_step;
+      seg.carrier_step_cycles = carrier_step;
+      seg.code_phase_chips = std::clamp(chips - period_start_chips, 0.0, kE1Chips - 1e-6);
+      seg.code_step_chips = code_step;
+      seg.amplitude = amp * static_cast<float>(data);
+      add_e1_segment(i_out + first, q_out + first, count, seg, run.e1->levels(data, pilot), scratch);
       first += count;
     }
   }
@@ -469,6 +589,10 @@ SynthesisSummary IfSynthesizer::run(const std::string& out_dir, const SynthesisO
     write_sat_truth_header(*sat_truth);
   }
 
+  // sat_truth.csv's prn column: the GPS PRN as a number in a GPS-only run (as it always was),
+  // "G05" / "E11" in every row once Galileo is in the scenario.
+  const bool mixed = std::find(m.sc.systems.begin(), m.sc.systems.end(), GnssSystem::galileo) != m.sc.systems.end();
+  const auto truth_name = [mixed](const SatelliteId& id) { return mixed ? id.to_string() : std::to_string(id.prn); };
   const std::int64_t truth_stride = std::llround(1000.0 / m.sc.truth_rate_hz);
   const std::int64_t sat_stride = std::llround(1000.0 / m.sc.sat_truth_rate_hz);
   const auto n = m.samples_per_epoch;
@@ -514,7 +638,7 @@ SynthesisSummary IfSynthesizer::run(const std::string& out_dir, const SynthesisO
             sat_truth->write(fmt::format(
                 "{:.3f},{},{:.6f},{:.4f},{:.4f},{:.2f},{:.4f},{:.4f},{:.4f},{:.4f},{:.5f},{:.4f},{:.4f},{:.4f},{},"
                 "{:.4f},{:.4f},{:.4f},{:.4f},{:.3f},{:.4f},{:.2f},{}\n",
-                t_s, m.runs[s].eph.prn, si.code_chips - std::floor(si.code_chips / 1023.0) * 1023.0, si.doppler_hz,
+                t_s, truth_name(m.runs[s].id), m.code_phase_in_period(m.runs[s], si.code_chips), si.doppler_hz,
                 m.sc.if_hz * b.rx.t_rcv_rel_s - si.carrier_cycles, m.cn0_dbhz(s, si, t_s), si.elevation_rad * kRadToDeg,
                 si.azimuth_rad * kRadToDeg, si.pseudorange_m, si.range_m, si.range_rate_mps, si.iono_m, si.tropo_m,
                 si.sat_clock_m, on ? 1 : 0, si.iono_broadcast_m, si.tropo_model_m, si.orbit_m, si.sat_clock_error_m,
@@ -528,7 +652,7 @@ SynthesisSummary IfSynthesizer::run(const std::string& out_dir, const SynthesisO
         const SatelliteInstant& si = boundaries[0].sats[s];
         m.info[s].doppler_start_hz = si.doppler_hz;
         m.info[s].cn0_start_dbhz = m.cn0_dbhz(s, si, 0.0);
-        m.info[s].code_phase_start_chips = si.code_chips - std::floor(si.code_chips / 1023.0) * 1023.0;
+        m.info[s].code_phase_start_chips = m.code_phase_in_period(m.runs[s], si.code_chips);
       }
     }
     if (options.progress) options.progress(static_cast<double>(k0 + count) / static_cast<double>(m.epochs));

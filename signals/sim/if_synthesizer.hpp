@@ -1,6 +1,6 @@
 #pragma once
-// The GPS L1 C/A IF synthesizer: turns a Scenario into an IF sample file plus the
-// truth a receiver is scored against.
+// The GPS L1 C/A and Galileo E1 OS IF synthesizer: turns a Scenario into an IF sample file
+// plus the truth a receiver is scored against.
 //
 // Time is the receiver's sample clock: sample n is taken when the receiver clock
 // reads start_time + n / fs. The run is cut into 1 ms epochs; at every epoch
@@ -17,6 +17,7 @@
 
 #include "ins/trajectory.hpp"
 #include "signals/rinex_nav.hpp"
+#include "signals/satellite_id.hpp"
 #include "signals/sim/scenario.hpp"
 
 namespace deepnav {
@@ -28,7 +29,8 @@ struct SynthesizedSatellite {
   double azimuth_start_deg = 0.0;
   double doppler_start_hz = 0.0;
   double cn0_start_dbhz = 0.0;
-  double code_phase_start_chips = 0.0;
+  double code_phase_start_chips = 0.0;  ///< within the code period: 1023 chips (C/A) or 4092 (E1)
+  SatelliteId id{};                     ///< system and number (prn is the number)
 };
 
 struct SynthesisSummary {

@@ -7,6 +7,7 @@
 
 #include "ins/gps_time.hpp"
 #include "signals/ephemeris.hpp"
+#include "signals/galileo/galileo_ephemeris.hpp"
 
 namespace deepnav {
 
@@ -25,5 +26,10 @@ struct LineOfSight {
 /// at r_rx (ECEF) moving with v_rx (ECEF). Converges to well below a millimetre.
 LineOfSight line_of_sight(const Ephemeris& eph, const GpsTime& t_rx, const Eigen::Vector3d& r_rx_ecef_m,
                           const Eigen::Vector3d& v_rx_ecef_mps);
+/// The same for a Galileo satellite, whose broadcast model runs on GST: gst_minus_gpst_s (the
+/// GGTO) turns the GPS times into GST. transmit_time stays a GPS time; the satellite's clock
+/// in `satellite` is on GST.
+LineOfSight line_of_sight(const galileo::GalileoEphemeris& eph, double gst_minus_gpst_s, const GpsTime& t_rx,
+                          const Eigen::Vector3d& r_rx_ecef_m, const Eigen::Vector3d& v_rx_ecef_mps);
 
 }  // namespace deepnav

@@ -12,6 +12,15 @@ namespace {
 
 constexpr double kGridMargin_s = 60.0;  // receiver clock bias and drift move true time off the nominal span
 constexpr int kPrns = 32;
+constexpr int kGalileoPrns = 50;
+/// Galileo satellites draw from generators of their own: PRN key 100 + SVID.
+constexpr int kGalileoKeyOffset = 100;
+
+/// Index of a satellite's series: GPS PRNs first, then Galileo SVIDs; -1 for none.
+int series_index(const SatelliteId& id) {
+  if (id.system == GnssSystem::gps) return id.prn >= 1 && id.prn <= kPrns ? id.prn - 1 : -1;
+  return id.prn >= 1 && id.prn <= kGalileoPrns ? kPrns + id.prn - 1 : -1;
+}
 
 }  // namespace
 
@@ -27,14 +36,15 @@ OrbitClockError::OrbitClockError(const OrbitClockErrorSpec& spec, std::uint64_t 
   const double phi = std::exp(-kStep_s / spec_.correlation_time_s);
   const double drive = std::sqrt(1.0 - phi * phi);
   const std::array<double, 4> sigma{spec_.radial_m, spec_.along_m, spec_.cross_m, spec_.clock_m};
-  series_.resize(kPrns);
-  for (int prn = 1; prn <= kPrns; ++prn) {
+  series_.resize(kPrns + kGalileoPrns);
+  for (int index = 0; index < kPrns + kGalileoPrns; ++index) {
+    const int key = index < kPrns ? index + 1 : kGalileoKeyOffset + index - kPrns + 1;
     for (std::size_t c = 0; c < 4; ++c) {
       // One generator per satellite and component: a satellite's errors do not depend on
       // the others, and a longer run repeats a shorter one over their common span.
-      auto rng = error_rng(seed, ErrorSource::orbit_clock, prn, static_cast<int>(c));
+      auto rng = error_rng(seed, ErrorSource::orbit_clock, key, static_cast<int>(c));
       std::normal_distribution<double> normal(0.0, 1.0);
-      std::vector<double>& x = series_[static_cast<std::size_t>(prn - 1)][c];
+      std::vector<double>& x = series_[static_cast<std::size_t>(index)][c];
       x.resize(nodes_);
       double v = sigma[c] * normal(rng);  // stationary from the first node
       for (std::size_t i = 0; i < nodes_; ++i) {
@@ -46,8 +56,13 @@ OrbitClockError::OrbitClockError(const OrbitClockErrorSpec& spec, std::uint64_t 
 }
 
 OrbitClockErrorSample OrbitClockError::at(int prn, const GpsTime& t) const {
+  return at(SatelliteId{GnssSystem::gps, prn}, t);
+}
+
+OrbitClockErrorSample OrbitClockError::at(const SatelliteId& id, const GpsTime& t) const {
   OrbitClockErrorSample s;
-  if (!active() || prn < 1 || prn > kPrns) return s;
+  const int index = series_index(id);
+  if (!active() || index < 0) return s;
   const double x = std::clamp(t.seconds_since(grid_start_) / kStep_s, 0.0, static_cast<double>(nodes_ - 1));
   const auto i = std::min(static_cast<std::size_t>(x), nodes_ - 2);
   const double u = x - static_cast<double>(i);
@@ -57,7 +72,7 @@ OrbitClockErrorSample OrbitClockError::at(int prn, const GpsTime& t) const {
     const double p0 = p[i0], p1 = p[i], p2 = p[i + 1], p3 = p[i3];
     return p1 + 0.5 * u * (p2 - p0 + u * (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3 + u * (3.0 * (p1 - p2) + p3 - p0)));
   };
-  const auto& sat = series_[static_cast<std::size_t>(prn - 1)];
+  const auto& sat = series_[static_cast<std::size_t>(index)];
   s.rac_m = Eigen::Vector3d(eval(sat[0]), eval(sat[1]), eval(sat[2]));
   s.clock_m = eval(sat[3]);
   return s;

@@ -13,6 +13,7 @@
 #include <Eigen/Core>
 
 #include "ins/gps_time.hpp"
+#include "signals/satellite_id.hpp"
 
 namespace deepnav {
 
@@ -39,20 +40,25 @@ struct OrbitClockErrorSample {
 
 class OrbitClockError {
  public:
-  /// Draws PRNs 1..32 over [start - 60 s, start + duration + 60 s] (zero when !spec.any()).
+  /// Draws GPS PRNs 1..32 and Galileo SVIDs 1..50 over [start - 60 s, start + duration + 60 s]
+  /// (zero when !spec.any()); each from its own generator, so GPS satellites' errors are
+  /// the same with or without Galileo.
   OrbitClockError(const OrbitClockErrorSpec& spec, std::uint64_t seed, const GpsTime& start, double duration_s);
 
   const OrbitClockErrorSpec& spec() const { return spec_; }
   bool active() const { return spec_.any(); }
   /// The error of satellite `prn` at GPS time t (held at the ends of the span).
   OrbitClockErrorSample at(int prn, const GpsTime& t) const;
+  /// The error of satellite `id` (zero for a number outside the drawn ones).
+  OrbitClockErrorSample at(const SatelliteId& id, const GpsTime& t) const;
 
  private:
   static constexpr double kStep_s = 60.0;
   OrbitClockErrorSpec spec_;
   GpsTime grid_start_;
   std::size_t nodes_ = 0;
-  /// [prn - 1][component] -> series on the grid (components: radial, along, cross, clock).
+  /// [GPS prn - 1, then 32 + Galileo SVID - 1][component] -> series on the grid (components:
+  /// radial, along, cross, clock).
   std::vector<std::array<std::vector<double>, 4>> series_;
 };
 

@@ -4,24 +4,99 @@
 #include <cmath>
 
 #include "ins/frames.hpp"
+#include "signals/galileo/galileo_constants.hpp"
 #include "signals/sim/line_of_sight.hpp"
 
 namespace deepnav {
+namespace {
 
-std::vector<SelectedSatellite> select_satellites(const NavData& nav, const Trajectory& trajectory,
-                                                 const SelectionRequest& request) {
-  // Check points: start, every 60 s, end.
+/// Check points: start, every 60 s, end.
+std::vector<double> check_points(double duration_s) {
   std::vector<double> checks;
-  for (double t = 0.0; t < request.duration_s; t += 60.0) checks.push_back(t);
-  checks.push_back(request.duration_s);
+  for (double t = 0.0; t < duration_s; t += 60.0) checks.push_back(t);
+  checks.push_back(duration_s);
+  return checks;
+}
 
+void sort_and_cap(std::vector<SelectedSatellite>& chosen, int max_satellites) {
+  std::sort(chosen.begin(), chosen.end(),
+            [](const SelectedSatellite& a, const SelectedSatellite& b) { return a.elevation_rad > b.elevation_rad; });
+  if (static_cast<int>(chosen.size()) > max_satellites) chosen.resize(static_cast<std::size_t>(max_satellites));
+}
+
+bool wants(const SelectionRequest& request, GnssSystem system) {
+  return std::find(request.systems.begin(), request.systems.end(), system) != request.systems.end();
+}
+
+std::vector<SelectedSatellite> select_galileo(const NavData& nav, const Trajectory& trajectory,
+                                              const SelectionRequest& request) {
+  const std::vector<double> checks = check_points(request.duration_s);
+  const galileo::GstTime start = galileo::gst_from_gps_time(request.start, request.gst_minus_gpst_s);
+  std::vector<SelectedSatellite> chosen;
+  for (int svid = 1; svid <= galileo::kMaxPrn; ++svid) {
+    const galileo::GalileoEphemeris* eph = select_galileo_ephemeris(nav, svid, start);
+    if (eph == nullptr) continue;
+    SelectedSatellite sat;
+    sat.prn = svid;
+    sat.id = SatelliteId{GnssSystem::galileo, svid};
+    sat.galileo_ephemeris = eph;
+    sat.min_elevation_rad = 10.0;
+    for (double t : checks) {
+      const TrajectoryState state = trajectory.at(std::min(t, trajectory.duration_s()));
+      const LineOfSight los = line_of_sight(*eph, request.gst_minus_gpst_s, request.start.plus_seconds(t),
+                                            state.r_ecef_m, state.v_ecef_mps);
+      const LookAngles look = look_angles(state.r_ecef_m, los.r_sat_ecef_m);
+      if (t == 0.0) {
+        sat.elevation_rad = look.elevation_rad;
+        sat.azimuth_rad = look.azimuth_rad;
+      }
+      sat.min_elevation_rad = std::min(sat.min_elevation_rad, look.elevation_rad);
+    }
+    if (sat.min_elevation_rad >= request.elevation_mask_rad) chosen.push_back(sat);
+  }
+  sort_and_cap(chosen, request.max_satellites);
+  return chosen;
+}
+
+}  // namespace
+
+const galileo::GalileoEphemeris* select_galileo_ephemeris(const NavData& nav, int svid, const galileo::GstTime& t) {
+  constexpr double kValidity_s = 4.0 * 3600.0;
+  const galileo::GalileoEphemeris* best = nullptr;
+  double best_dt = 0.0;
+  bool best_future = false;
+  for (const galileo::GalileoEphemeris& eph : nav.galileo_ephemerides) {
+    if (eph.prn != svid || (eph.data_sources & 1) == 0 || !eph.healthy_on_e1b()) continue;
+    const double dt = t.seconds_since(galileo::GstTime{eph.week, eph.orbit.toe_s});
+    if (std::abs(dt) > kValidity_s) continue;
+    // The transmission time is a second of toe's week (RINEX may refer it to toe's week).
+    const bool future =
+        eph.transmission_time_known && seconds_of_week_difference(eph.transmission_time_s, eph.orbit.toe_s) > dt;
+    if (best == nullptr || (best_future && !future) || (future == best_future && std::abs(dt) < best_dt)) {
+      best = &eph;
+      best_dt = std::abs(dt);
+      best_future = future;
+    }
+  }
+  return best;
+}
+
+namespace {
+
+std::vector<SelectedSatellite> select_gps(const NavData& nav, const Trajectory& trajectory,
+                                          const SelectionRequest& request) {
+  const std::vector<double> checks = check_points(request.duration_s);
   std::vector<SelectedSatellite> chosen;
   for (int prn = 1; prn <= 32; ++prn) {
     const bool listed = std::find(request.prns.begin(), request.prns.end(), prn) != request.prns.end();
     if (!request.prns.empty() && !listed) continue;
     const Ephemeris* eph = nav.select(prn, request.start);
     if (eph == nullptr || !eph->healthy()) continue;
-    SelectedSatellite sat{prn, eph, 0.0, 0.0, 10.0};
+    SelectedSatellite sat;
+    sat.prn = prn;
+    sat.ephemeris = eph;
+    sat.id = SatelliteId{GnssSystem::gps, prn};
+    sat.min_elevation_rad = 10.0;
     for (double t : checks) {
       const TrajectoryState state = trajectory.at(std::min(t, trajectory.duration_s()));
       const LineOfSight los = line_of_sight(*eph, request.start.plus_seconds(t), state.r_ecef_m, state.v_ecef_mps);
@@ -35,10 +110,20 @@ std::vector<SelectedSatellite> select_satellites(const NavData& nav, const Traje
     const bool visible = listed ? sat.elevation_rad > 0.0 : sat.min_elevation_rad >= request.elevation_mask_rad;
     if (visible) chosen.push_back(sat);
   }
-  std::sort(chosen.begin(), chosen.end(),
-            [](const SelectedSatellite& a, const SelectedSatellite& b) { return a.elevation_rad > b.elevation_rad; });
-  if (static_cast<int>(chosen.size()) > request.max_satellites)
-    chosen.resize(static_cast<std::size_t>(request.max_satellites));
+  sort_and_cap(chosen, request.max_satellites);
+  return chosen;
+}
+
+}  // namespace
+
+std::vector<SelectedSatellite> select_satellites(const NavData& nav, const Trajectory& trajectory,
+                                                 const SelectionRequest& request) {
+  std::vector<SelectedSatellite> chosen;
+  if (wants(request, GnssSystem::gps)) chosen = select_gps(nav, trajectory, request);
+  if (wants(request, GnssSystem::galileo)) {
+    const auto galileo = select_galileo(nav, trajectory, request);
+    chosen.insert(chosen.end(), galileo.begin(), galileo.end());
+  }
   return chosen;
 }
 

@@ -1,13 +1,15 @@
 #pragma once
 // Which satellites a synthesized receiver sees: healthy ones with an ephemeris valid
 // at the start, above the elevation mask for the whole run (checked every minute and
-// at both ends), strongest (highest) first.
+// at both ends), strongest (highest) first: GPS satellites, then Galileo ones (each system
+// sorted and capped on its own, so adding Galileo leaves the GPS choice as it was).
 #include <vector>
 
 #include "ins/gps_time.hpp"
 #include "ins/trajectory.hpp"
 #include "signals/ephemeris.hpp"
 #include "signals/rinex_nav.hpp"
+#include "signals/satellite_id.hpp"
 
 namespace deepnav {
 
@@ -15,14 +17,18 @@ struct SelectionRequest {
   GpsTime start{};
   double duration_s = 0.0;
   double elevation_mask_rad = 0.0;
-  std::vector<int> prns;  ///< when not empty, only these PRNs are candidates
-  int max_satellites = 12;
+  std::vector<int> prns;    ///< when not empty, only these GPS PRNs are candidates
+  int max_satellites = 12;  ///< per system
+  std::vector<GnssSystem> systems{GnssSystem::gps};
+  double gst_minus_gpst_s = 0.0;  ///< GGTO, for Galileo orbits (on GST)
 };
 
 struct SelectedSatellite {
   int prn = 0;
-  const Ephemeris* ephemeris = nullptr;  ///< points into the NavData passed in
-  double elevation_rad = 0.0;            ///< at the start
+  const Ephemeris* ephemeris = nullptr;  ///< points into the NavData passed in (GPS)
+  SatelliteId id{};
+  const galileo::GalileoEphemeris* galileo_ephemeris = nullptr;  ///< points into the NavData (Galileo)
+  double elevation_rad = 0.0;                                    ///< at the start
   double azimuth_rad = 0.0;
   double min_elevation_rad = 0.0;  ///< lowest over the run's check points
 };
@@ -31,5 +37,12 @@ struct SelectedSatellite {
 /// (they must still be above the horizon at the start); the others must clear the mask.
 std::vector<SelectedSatellite> select_satellites(const NavData& nav, const Trajectory& trajectory,
                                                  const SelectionRequest& request);
+
+/// The Galileo record of `svid` a synthesized satellite broadcasts at GST t: from E1-B I/NAV
+/// (data sources bit 0), healthy on E1-B, toe within 4 hours of t (the ICD's validity of a
+/// batch), the toe closest to t. As NavData::select for GPS, a record whose known
+/// transmission time is later than t is used only when no other one qualifies (files cut
+/// at a time hold few records sent before it). nullptr when none qualifies.
+const galileo::GalileoEphemeris* select_galileo_ephemeris(const NavData& nav, int svid, const galileo::GstTime& t);
 
 }  // namespace deepnav

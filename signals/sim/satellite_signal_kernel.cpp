@@ -80,7 +80,60 @@ void fill_code(float* out, int n, double chip0, double step, const CaCodeChips& 
   }
 }
 
+/// out[k] = amplitude * levels[(acc + k inc) >> 32] for n samples that do not wrap the table.
+DEEPNAV_SIMD_CLONES
+void fill_scaled_run(float* __restrict out, int n, std::uint64_t acc, std::uint64_t inc, const float* __restrict levels,
+                     float amplitude) {
+  for (int k = 0; k < n; ++k) out[k] = amplitude * levels[(acc + static_cast<std::uint64_t>(k) * inc) >> 32];
+}
+
+/// Rotates kLanes phasors from the first sample's phase and mixes scratch onto the carrier.
+void mix_segment(float* i_out, float* q_out, int n, const SignalSegment& s, const float* scratch) {
+  const double two_pi = 2.0 * M_PI;
+  const double phase0 = s.carrier_phase_cycles - std::floor(s.carrier_phase_cycles);
+  const std::complex<double> step = std::polar(1.0, two_pi * s.carrier_step_cycles);
+  std::complex<double> z = std::polar(1.0, two_pi * phase0);
+  alignas(64) float re[kLanes], im[kLanes];
+  for (int l = 0; l < kLanes; ++l, z *= step) {
+    re[l] = static_cast<float>(z.real());
+    im[l] = static_cast<float>(z.imag());
+  }
+  const std::complex<double> w = std::polar(1.0, two_pi * kLanes * s.carrier_step_cycles);
+  mix_carrier(i_out, q_out, n, scratch, re, im, static_cast<float>(w.real()), static_cast<float>(w.imag()));
+}
+
 }  // namespace
+
+void add_e1_segment(float* __restrict i_out, float* __restrict q_out, int n, const SignalSegment& s,
+                    const float* waveform, float* __restrict scratch) {
+  if (n <= 0) return;
+  constexpr double kOne = 4294967296.0;  // 2^32
+  constexpr std::uint64_t kEntries = 4092ULL * kE1SubchipsPerChip;
+  constexpr std::uint64_t kPeriod = kEntries << 32;
+  const double first = s.code_phase_chips * kE1SubchipsPerChip;
+  const double step = s.code_step_chips * kE1SubchipsPerChip;
+  if (!(step * kOne >= 1.0 && step < static_cast<double>(kEntries)) ||
+      !(first >= 0.0 && first < static_cast<double>(kEntries))) {
+    char what[160];
+    std::snprintf(what, sizeof what,
+                  "signal kernel: E1 code phase %g chips advancing %g chips per sample is outside [0, 4092) chips "
+                  "and (0, 4092) chips per sample",
+                  s.code_phase_chips, s.code_step_chips);
+    throw std::invalid_argument(what);
+  }
+  std::uint64_t acc = static_cast<std::uint64_t>(first * kOne);
+  const std::uint64_t inc = static_cast<std::uint64_t>(step * kOne + 0.5);
+  int k = 0;
+  while (k < n) {
+    if (acc >= kPeriod) acc -= kPeriod;
+    const std::uint64_t left = (kPeriod - acc + inc - 1) / inc;
+    const int run = static_cast<int>(std::min<std::uint64_t>(left, static_cast<std::uint64_t>(n - k)));
+    fill_scaled_run(scratch + k, run, acc, inc, waveform, s.amplitude);
+    acc += static_cast<std::uint64_t>(run) * inc;
+    k += run;
+  }
+  mix_segment(i_out, q_out, n, s, scratch);
+}
 
 void add_satellite_segment(float* __restrict i_out, float* __restrict q_out, int n, const SignalSegment& s,
                            const CaCodeChips& code, float* __restrict scratch) {

@@ -1,5 +1,5 @@
 #pragma once
-// The synthesizer's hot loop: adds one satellite's C/A signal to a block of samples.
+// The synthesizer's hot loop: adds one satellite's C/A or E1 signal to a block of samples.
 // Within a segment code rate and carrier frequency are constant (the caller
 // recomputes them from exact geometry every millisecond), so the code index is a
 // fixed-point accumulator and the carrier a phasor rotated by a constant step.
@@ -21,5 +21,17 @@ struct SignalSegment {
 /// `scratch` must hold n floats. The code index wraps modulo 1023.
 void add_satellite_segment(float* i_out, float* q_out, int n, const SignalSegment& segment, const CaCodeChips& code,
                            float* scratch);
+
+/// Sub-chips per chip of a Galileo E1 waveform table: BOC(6,1) has 12 half cycles per chip,
+/// so the CBOC waveform is constant on each twelfth of a chip and a table of twelfths,
+/// read at the sample's sub-chip, samples it exactly.
+inline constexpr int kE1SubchipsPerChip = 12;
+
+/// The same for a Galileo E1 signal: the code phase counts chips of the 4092-chip code
+/// period (segment.code_phase_chips in [0, 4092)) and `waveform` holds its 4092 * 12 levels
+/// (the composite E1-B/E1-C waveform of the period's data symbol and secondary code chip).
+/// segment.amplitude multiplies every level.
+void add_e1_segment(float* i_out, float* q_out, int n, const SignalSegment& segment, const float* waveform,
+                    float* scratch);
 
 }  // namespace deepnav

@@ -9,6 +9,8 @@
 //   satellite L1 timing     t_sv  = t_tx + dts_L1         (dts_L1 = dts - TGD, IS-GPS-200 20.3.3.3.3.2)
 //   code pseudorange        P_code = rho + dR + c (b - dts_L1) - dC + I + T
 //   carrier pseudorange     P_carr = rho + dR + c (b - dts_L1) - dC - I + T   (ionospheric advance)
+// (Galileo: t_sv is the GST the satellite clock reads, dts_E1 its clock less BGD(E1,E5b) and
+// the GGTO added, so P_code holds c (b - dts_E1 - GGTO).)
 // where rho is the geometric range from the light-time equation with Sagnac to the
 // broadcast orbit, dR the broadcast orbit error along the line of sight, dC the broadcast
 // clock error (m), and I, T the true ionosphere and troposphere (ErrorWorld). The code
@@ -19,6 +21,7 @@
 #include "ins/gps_time.hpp"
 #include "ins/wgs84.hpp"
 #include "signals/ephemeris.hpp"
+#include "signals/galileo/galileo_ephemeris.hpp"
 #include "signals/iono_utc.hpp"
 #include "signals/sim/error_world.hpp"
 
@@ -47,7 +50,7 @@ struct SatelliteInstant {
   double pseudorange_m = 0.0;  ///< code pseudorange as the receiver would measure it
   double iono_m = 0.0;         ///< L1 group delay (the truth the signal carries)
   double tropo_m = 0.0;        ///< troposphere delay (the truth the signal carries)
-  double sat_clock_m = 0.0;    ///< c * dts_L1 from the broadcast clock
+  double sat_clock_m = 0.0;    ///< c * dts_L1 from the broadcast clock (Galileo: c (dts_E1 + GGTO))
   // What the receiver's models say and the error world adds (ErrorWorld):
   double iono_broadcast_m = 0.0;   ///< Klobuchar for this look (0 without broadcast parameters)
   double tropo_model_m = 0.0;      ///< the receiver's standard-atmosphere troposphere for this look
@@ -60,6 +63,14 @@ struct SatelliteInstant {
 /// the error world `world`; `iono` are the broadcast ionosphere parameters.
 SatelliteInstant evaluate_satellite(const Ephemeris& eph, const IonoParameters& iono, const ErrorWorld& world,
                                     const ReceiverInstant& rx, double if_hz);
+/// A Galileo satellite's E1 signal: the orbit and the clock (dts_E1 = e1_clock_correction_s)
+/// run on GST, gst_minus_gpst_s (the GGTO) apart from the GPS time of the receiver's clock.
+/// The code phase is the GST the satellite's clock reads at transmission, so the pseudorange
+/// and sat_clock_m carry c (dts_E1 + GGTO). `iono` (Klobuchar) is the basis of the true
+/// ionosphere as for GPS: E1 shares L1's frequency.
+SatelliteInstant evaluate_satellite(const galileo::GalileoEphemeris& eph, double gst_minus_gpst_s,
+                                    const IonoParameters& iono, const ErrorWorld& world, const ReceiverInstant& rx,
+                                    double if_hz);
 /// The same with the broadcast models as truth (error preset none).
 SatelliteInstant evaluate_satellite(const Ephemeris& eph, const IonoParameters& iono, AtmosphereSwitches atmosphere,
                                     const ReceiverInstant& rx, double if_hz);

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -108,6 +109,21 @@ class Field {
     } catch (const YAML::Exception&) {
       fail("expected true or false, got '" + node_.Scalar() + "'");
     }
+  }
+  /// A list of system names ("gps", "galileo"), each once, at least one.
+  std::vector<GnssSystem> system_list() const {
+    require();
+    if (!node_.IsSequence() || size() == 0) fail("expected a list of systems, e.g. [gps, galileo]");
+    std::vector<GnssSystem> systems;
+    for (std::size_t i = 0; i < size(); ++i) {
+      const Field item = at(i);
+      const auto system = parse_system_name(item.text());
+      if (!system) item.fail("unknown system '" + item.text() + "' (expected gps or galileo)");
+      if (std::find(systems.begin(), systems.end(), *system) != systems.end())
+        item.fail("system '" + item.text() + "' is listed twice");
+      systems.push_back(*system);
+    }
+    return systems;
   }
   std::vector<int> prn_list() const {
     require();
@@ -476,6 +492,7 @@ Scenario parse_scenario(const std::string& yaml_text, const std::string& origin,
                 "format",
                 "adc",
                 "nav_file",
+                "systems",
                 "trajectory",
                 "elevation_mask_deg",
                 "prns",
@@ -524,6 +541,7 @@ Scenario parse_scenario(const std::string& yaml_text, const std::string& origin,
     throw std::invalid_argument(origin + ": default navigation file '" + s.nav_file + "' " + *missing +
                                 " (set nav_file)");
   }
+  if (f.has("systems")) s.systems = f["systems"].system_list();
   if (f.has("trajectory")) s.trajectory = parse_trajectory(f["trajectory"], base_dir, search_root);
   if (f.has("elevation_mask_deg")) s.elevation_mask_rad = f["elevation_mask_deg"].number_in(-10, 90) * kDegToRad;
   if (f.has("prns")) s.prns = f["prns"].prn_list();
@@ -624,6 +642,12 @@ std::string scenario_to_yaml(const Scenario& s) {
       << s.adc.bits << YAML::Key << "agc" << YAML::Value << s.adc.agc << YAML::Key << "agc_time_constant_s"
       << YAML::Value << s.adc.agc_time_constant_s << YAML::EndMap;
   out << YAML::Key << "nav_file" << YAML::Value << s.nav_file;
+  // Written only when not the default, which keeps a GPS-only scenario's copy as it was.
+  if (s.systems != std::vector<GnssSystem>{GnssSystem::gps}) {
+    std::vector<std::string> names;
+    for (GnssSystem system : s.systems) names.emplace_back(system_name(system));
+    out << YAML::Key << "systems" << YAML::Value << YAML::Flow << names;
+  }
   out << YAML::Key << "trajectory" << YAML::Value << YAML::BeginMap;
   if (!s.trajectory.csv_path.empty()) {
     out << YAML::Key << "file" << YAML::Value << s.trajectory.csv_path;

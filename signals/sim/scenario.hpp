@@ -12,6 +12,7 @@
 #include "ins/gps_time.hpp"
 #include "ins/wgs84.hpp"
 #include "signals/sample_format.hpp"
+#include "signals/satellite_id.hpp"
 #include "signals/sim/error_presets.hpp"
 #include "signals/sim/jammer.hpp"
 
@@ -85,10 +86,12 @@ struct Scenario {
   SampleFormat format = SampleFormat::ibyte;
   AdcSpec adc{};
   std::string nav_file;  ///< RINEX navigation file (resolved path)
+  /// Systems whose satellites are synthesized (GPS L1 C/A, Galileo E1 OS); each once.
+  std::vector<GnssSystem> systems{GnssSystem::gps};
   TrajectorySpec trajectory{};
   double elevation_mask_rad = 5.0 * 3.14159265358979323846 / 180.0;
-  std::vector<int> prns;  ///< only these PRNs (empty: every healthy satellite above the mask)
-  int max_satellites = 12;
+  std::vector<int> prns;    ///< only these GPS PRNs (empty: every healthy satellite above the mask)
+  int max_satellites = 12;  ///< of each system
   Cn0Spec cn0{};
   ReceiverClockSpec clock{};
   bool ionosphere = true;   ///< false: no ionospheric delay in the signal at all

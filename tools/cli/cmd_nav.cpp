@@ -48,9 +48,12 @@ void add_nav_command(CommandParents& parents) {
   nav->require_subcommand(1);
   auto opts = std::make_shared<NavMergeOptions>();
   CLI::App* merge = nav->add_subcommand(
-      "merge", "Write one RINEX 3.04 mixed file from a GPS and a Galileo navigation file, moving the Galileo data by "
-               "whole weeks");
-  merge->add_option("--gps", opts->gps_path, "GPS navigation file (RINEX 2 or 3)")->required()->check(CLI::ExistingFile);
+      "merge",
+      "Write one RINEX 3.04 mixed file from a GPS and a Galileo navigation file, moving the Galileo data by "
+      "whole weeks");
+  merge->add_option("--gps", opts->gps_path, "GPS navigation file (RINEX 2 or 3)")
+      ->required()
+      ->check(CLI::ExistingFile);
   merge->add_option("--galileo", opts->galileo_path, "Galileo navigation file (RINEX 3)")
       ->required()
       ->check(CLI::ExistingFile);

@@ -28,17 +28,40 @@ struct SimOptions {
   std::string out_dir;
   unsigned threads = 0;
   double duration_s = -1.0;
+  std::string systems;  ///< "gps,galileo": replaces the scenario's systems when set
 };
+
+/// --systems: comma-separated system names, each once.
+std::vector<GnssSystem> parse_systems_option(const std::string& text) {
+  std::vector<GnssSystem> systems;
+  std::size_t begin = 0;
+  while (begin <= text.size()) {
+    const std::size_t end = std::min(text.find(',', begin), text.size());
+    const std::string name = text.substr(begin, end - begin);
+    const auto system = parse_system_name(name);
+    if (!system)
+      throw UserError(
+          fmt::format("--systems {}: unknown system '{}' (expected gps and/or galileo, comma-separated)", text, name));
+    if (std::find(systems.begin(), systems.end(), *system) != systems.end())
+      throw UserError(fmt::format("--systems {}: '{}' is listed twice", text, name));
+    systems.push_back(*system);
+    begin = end + 1;
+  }
+  return systems;
+}
 
 nlohmann::json summary_json(const Scenario& sc, const SynthesisSummary& s) {
   nlohmann::json sats = nlohmann::json::array();
   for (const auto& sat : s.satellites) {
-    sats.push_back({{"prn", sat.prn},
-                    {"elevation_deg", sat.elevation_start_deg},
-                    {"azimuth_deg", sat.azimuth_start_deg},
-                    {"doppler_hz", sat.doppler_start_hz},
-                    {"cn0_dbhz", sat.cn0_start_dbhz},
-                    {"code_phase_chips", sat.code_phase_start_chips}});
+    nlohmann::json entry = {{"prn", sat.prn},
+                            {"elevation_deg", sat.elevation_start_deg},
+                            {"azimuth_deg", sat.azimuth_start_deg},
+                            {"doppler_hz", sat.doppler_start_hz},
+                            {"cn0_dbhz", sat.cn0_start_dbhz},
+                            {"code_phase_chips", sat.code_phase_start_chips}};
+    // The system only where a second one can appear.
+    if (sc.systems != std::vector<GnssSystem>{GnssSystem::gps}) entry["id"] = sat.id.to_string();
+    sats.push_back(entry);
   }
   return {{"if_file", std::filesystem::path(s.if_path).filename().string()},
           {"metadata_file", std::filesystem::path(s.metadata_path).filename().string()},
@@ -62,11 +85,13 @@ void print_summary(const Scenario& sc, const SynthesisSummary& s) {
              s.if_path, s.samples, s.duration_s, to_string(sc.format), sc.sample_rate_hz, sc.if_hz, s.wall_s,
              s.duration_s / std::max(s.wall_s, 1e-9));
   fmt::print("truth: {}  satellites: {}\n", s.truth_path, s.sat_truth_path);
-  fmt::print("{:>4} {:>8} {:>8} {:>11} {:>9} {:>11}\n", "PRN", "el_deg", "az_deg", "doppler_hz", "cn0_dbhz",
-             "code_chips");
+  const bool gps_only = sc.systems == std::vector<GnssSystem>{GnssSystem::gps};
+  fmt::print("{:>4} {:>8} {:>8} {:>11} {:>9} {:>11}\n", gps_only ? "PRN" : "SAT", "el_deg", "az_deg", "doppler_hz",
+             "cn0_dbhz", "code_chips");
   for (const auto& sat : s.satellites) {
-    fmt::print("{:>4} {:>8.2f} {:>8.2f} {:>11.2f} {:>9.1f} {:>11.3f}\n", sat.prn, sat.elevation_start_deg,
-               sat.azimuth_start_deg, sat.doppler_start_hz, sat.cn0_start_dbhz, sat.code_phase_start_chips);
+    fmt::print("{:>4} {:>8.2f} {:>8.2f} {:>11.2f} {:>9.1f} {:>11.3f}\n",
+               gps_only ? std::to_string(sat.prn) : sat.id.to_string(), sat.elevation_start_deg, sat.azimuth_start_deg,
+               sat.doppler_start_hz, sat.cn0_start_dbhz, sat.code_phase_start_chips);
   }
 }
 
@@ -96,7 +121,10 @@ void run_sim(CLI::App& root, const SimOptions& o) {
   try {
     sc = load_scenario(o.scenario_path, DEEPNAV_SOURCE_DIR);
     if (o.duration_s > 0.0) sc.duration_s = o.duration_s;
+    if (!o.systems.empty()) sc.systems = parse_systems_option(o.systems);
     validate_scenario(sc);
+  } catch (const UserError&) {
+    throw;
   } catch (const std::exception& e) {
     throw UserError(e.what());
   }
@@ -141,7 +169,8 @@ void run_sim(CLI::App& root, const SimOptions& o) {
 
 void add_sim_command(CommandParents& parents) {
   auto opts = std::make_shared<SimOptions>();
-  CLI::App* cmd = parents.root.add_subcommand("sim", "Synthesize a GPS L1 C/A IF file and its truth from a scenario");
+  CLI::App* cmd = parents.root.add_subcommand(
+      "sim", "Synthesize a GPS L1 C/A (and Galileo E1) IF file and its truth from a scenario");
   cmd->add_option("--scenario", opts->scenario_path, "Scenario file (YAML or JSON; schema in docs/scenarios.md)")
       ->required()
       ->check(CLI::ExistingFile);
@@ -151,6 +180,9 @@ void add_sim_command(CommandParents& parents) {
       ->capture_default_str();
   cmd->add_option("--duration", opts->duration_s, "Override the scenario's duration (s)")
       ->check(finite_in(1e-3, 86400.0, "seconds"));
+  cmd->add_option("--systems", opts->systems,
+                  "Override the scenario's systems: gps, galileo or gps,galileo (Galileo needs a navigation file with "
+                  "Galileo records)");
   CLI::App* root = &parents.root;
   cmd->callback([opts, root] { run_sim(*root, *opts); });
 }
