@@ -43,9 +43,8 @@ inav::Word word6(const NavData& nav, int tow) {
   w.utc = nav.galileo_utc;
   // GST-UTC shares the leap second fields with GPS-UTC (RINEX's one LEAP SECONDS line).
   w.utc.delta_t_ls = nav.utc.delta_t_ls;
-  w.utc.delta_t_lsf = nav.leap_seconds_valid && (nav.utc.wn_lsf != 0 || nav.utc.delta_t_lsf != 0)
-                          ? nav.utc.delta_t_lsf
-                          : nav.utc.delta_t_ls;
+  w.utc.delta_t_lsf = nav.leap_seconds_valid && (nav.utc.wn_lsf != 0 || nav.utc.delta_t_lsf != 0) ? nav.utc.delta_t_lsf
+                                                                                                  : nav.utc.delta_t_ls;
   w.utc.wn_lsf = nav.utc.wn_lsf % 256;
   w.utc.dn = nav.utc.dn;
   w.utc.wnt = ((nav.galileo_utc.wnt % 256) + 256) % 256;
