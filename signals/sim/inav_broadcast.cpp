@@ -17,7 +17,13 @@ namespace inav = galileo::inav;
 constexpr std::int64_t kWeek_s = 604800;
 constexpr std::int64_t kSubframe_s = 30;
 constexpr std::int64_t kPeriodsPerSecond = 250;
-constexpr int kWordTypeForSlot[15] = {2, 4, 6, -1, -2, 0, 0, 0, 0, 0, 1, 3, 5, 0, 0};
+/// What a page slot of the nominal E1-B subframe carries.
+enum class Slot { ephemeris1, ephemeris2, ephemeris3, ephemeris4, iono_health, utc, almanac_7_9, almanac_8_10, spare };
+constexpr Slot kSubframeSlots[15] = {Slot::ephemeris2,   Slot::ephemeris4, Slot::utc,        Slot::almanac_7_9,
+                                     Slot::almanac_8_10, Slot::spare,      Slot::spare,      Slot::spare,
+                                     Slot::spare,        Slot::spare,      Slot::ephemeris1, Slot::ephemeris3,
+                                     Slot::iono_health,  Slot::spare,      Slot::spare};
+constexpr int kSpareTimeValid = 2;  ///< word 0's time field: binary 10, week and TOW valid
 
 /// The ephemeris with its angles in one turn, as the words' fields hold them.
 galileo::GalileoEphemeris wrapped_angles(galileo::GalileoEphemeris eph) {
@@ -69,24 +75,26 @@ inav::Word synthesized_inav_word(const NavData& nav, const galileo::GalileoEphem
   const std::int64_t subframe = floor_div(page_start_s, kSubframe_s);
   const int slot = static_cast<int>((page_start_s - subframe * kSubframe_s) / 2);
   const bool odd_subframe = subframe % 2 != 0;
-  switch (int type = kWordTypeForSlot[slot]) {
-    case 1:
-    case 2:
-    case 3:
-    case 4:
-      return inav::encode_ephemeris_word(type, wrapped_angles(eph));
-    case 5:
+  switch (const Slot what = kSubframeSlots[slot]) {
+    case Slot::ephemeris1:
+    case Slot::ephemeris2:
+    case Slot::ephemeris3:
+    case Slot::ephemeris4:
+      return inav::encode_ephemeris_word(1 + static_cast<int>(what) - static_cast<int>(Slot::ephemeris1),
+                                         wrapped_angles(eph));
+    case Slot::iono_health:
       return word5(nav, eph, week, tow);
-    case 6:
+    case Slot::utc:
       return word6(nav, tow);
-    case -2:
-      if (odd_subframe) return word10(nav);
+    case Slot::almanac_8_10:
+      // Word 10 for its GGTO; the almanac words themselves are not sent.
+      return odd_subframe ? word10(nav) : inav::encode_dummy_word();
+    case Slot::almanac_7_9:
       return inav::encode_dummy_word();
-    case -1:
-      return inav::encode_dummy_word();
-    default:
-      return inav::encode_spare_word(inav::SpareWord{2, week % 4096, tow});
+    case Slot::spare:
+      break;
   }
+  return inav::encode_spare_word(inav::SpareWord{kSpareTimeValid, week % 4096, tow});
 }
 
 InavSymbolTable::InavSymbolTable(const NavData& nav, const galileo::GalileoEphemeris& eph, std::int64_t first_period,

@@ -87,7 +87,10 @@ void fill_scaled_run(float* __restrict out, int n, std::uint64_t acc, std::uint6
   for (int k = 0; k < n; ++k) out[k] = amplitude * levels[(acc + static_cast<std::uint64_t>(k) * inc) >> 32];
 }
 
-/// Rotates kLanes phasors from the first sample's phase and mixes scratch onto the carrier.
+/// Mixes scratch onto the segment's carrier. Lane l starts at sample l and every lane steps
+/// kLanes samples at a time. The lane phasors come from two exact exponentials by
+/// double-precision products (error ~1e-15); float rotation over one millisecond (a few
+/// hundred steps) stays below 1e-5 rad.
 void mix_segment(float* i_out, float* q_out, int n, const SignalSegment& s, const float* scratch) {
   const double two_pi = 2.0 * M_PI;
   const double phase0 = s.carrier_phase_cycles - std::floor(s.carrier_phase_cycles);
@@ -139,21 +142,7 @@ void add_satellite_segment(float* __restrict i_out, float* __restrict q_out, int
                            const CaCodeChips& code, float* __restrict scratch) {
   if (n <= 0) return;
   fill_code(scratch, n, s.code_phase_chips, s.code_step_chips, code, s.amplitude);
-
-  // Lane l starts at sample l and every lane steps kLanes samples at a time. The lane
-  // phasors come from two exact exponentials by double-precision products (error
-  // ~1e-15); float rotation over one millisecond (a few hundred steps) stays below 1e-5 rad.
-  const double two_pi = 2.0 * M_PI;
-  const double phase0 = s.carrier_phase_cycles - std::floor(s.carrier_phase_cycles);
-  const std::complex<double> step = std::polar(1.0, two_pi * s.carrier_step_cycles);
-  std::complex<double> z = std::polar(1.0, two_pi * phase0);
-  alignas(64) float re[kLanes], im[kLanes];
-  for (int l = 0; l < kLanes; ++l, z *= step) {
-    re[l] = static_cast<float>(z.real());
-    im[l] = static_cast<float>(z.imag());
-  }
-  const std::complex<double> w = std::polar(1.0, two_pi * kLanes * s.carrier_step_cycles);
-  mix_carrier(i_out, q_out, n, scratch, re, im, static_cast<float>(w.real()), static_cast<float>(w.imag()));
+  mix_segment(i_out, q_out, n, s, scratch);
 }
 
 }  // namespace deepnav

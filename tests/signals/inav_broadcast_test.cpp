@@ -27,8 +27,7 @@ TEST(InavBroadcast, NominalSubframeLayout) {
   const int even_subframe[15] = {2, 4, 6, 63, 63, 0, 0, 0, 0, 0, 1, 3, 5, 0, 0};
   const int odd_subframe[15] = {2, 4, 6, 63, 10, 0, 0, 0, 0, 0, 1, 3, 5, 0, 0};
   for (int slot = 0; slot < 15; ++slot) {
-    EXPECT_EQ(inav::word_type(synthesized_inav_word(s.nav, *s.eph, s.second(592200.0 + 2 * slot))),
-              even_subframe[slot])
+    EXPECT_EQ(inav::word_type(synthesized_inav_word(s.nav, *s.eph, s.second(592200.0 + 2 * slot))), even_subframe[slot])
         << "slot " << slot;
     EXPECT_EQ(inav::word_type(synthesized_inav_word(s.nav, *s.eph, s.second(592230.0 + 2 * slot))), odd_subframe[slot])
         << "slot " << slot;
