@@ -271,19 +271,18 @@ struct IfSynthesizer::Impl {
     if (spec.model == Cn0Spec::Model::elevation) {
       cn0 = spec.horizon_dbhz + (spec.zenith_dbhz - spec.horizon_dbhz) * std::sin(std::max(0.0, s.elevation_rad));
     }
-    if (runs[sat].id.system == GnssSystem::gps) {
-      if (const auto it = spec.per_prn_dbhz.find(runs[sat].eph.prn); it != spec.per_prn_dbhz.end()) cn0 = it->second;
-    }
+    const auto& overrides = runs[sat].id.system == GnssSystem::gps ? spec.per_prn_dbhz : spec.galileo_per_svid_dbhz;
+    if (const auto it = overrides.find(runs[sat].id.prn); it != overrides.end()) cn0 = it->second;
     // The scenario's C/N0 is an isotropic antenna's; the antenna pattern comes on top.
     return cn0 + s.antenna_gain_db + ramp_offset_db(spec, t_s);
   }
 
-  /// An outage's PRN list names GPS satellites; one without a list blocks every satellite.
+  /// An outage without a satellite list blocks every satellite of every system.
   bool in_outage(const SatelliteId& id, double t_s) const {
     for (const auto& o : sc.outages) {
+      const std::vector<int>& listed = id.system == GnssSystem::gps ? o.prns : o.galileo_prns;
       if (t_s >= o.start_s && t_s < o.end_s &&
-          (o.prns.empty() ||
-           (id.system == GnssSystem::gps && std::find(o.prns.begin(), o.prns.end(), id.prn) != o.prns.end()))) {
+          (o.all_satellites() || std::find(listed.begin(), listed.end(), id.prn) != listed.end())) {
         return true;
       }
     }

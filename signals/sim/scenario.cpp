@@ -11,6 +11,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -125,6 +126,24 @@ class Field {
     }
     return systems;
   }
+  /// A list of satellites: GPS PRNs as numbers (7) or names (G07), Galileo ones as names
+  /// (E11), into `gps` and `galileo`.
+  void satellite_list(std::vector<int>& gps, std::vector<int>& galileo) const {
+    require();
+    if (!node_.IsSequence()) fail("expected a list of satellites (GPS PRNs such as 7 or G07, Galileo such as E11)");
+    for (std::size_t i = 0; i < size(); ++i) {
+      const Field item = at(i);
+      const std::string text = item.text();
+      if (!text.empty() && std::isdigit(static_cast<unsigned char>(text[0]))) {
+        gps.push_back(static_cast<int>(item.integer_in(1, 32)));
+        continue;
+      }
+      const auto id = parse_satellite_id(text);
+      if (!id || (id->system == GnssSystem::gps && id->prn > 32) || (id->system == GnssSystem::galileo && id->prn > 50))
+        item.fail("expected a GPS PRN 1..32 (7 or G07) or a Galileo satellite E01..E50, got '" + text + "'");
+      (id->system == GnssSystem::gps ? gps : galileo).push_back(id->prn);
+    }
+  }
   std::vector<int> prn_list() const {
     require();
     if (!node_.IsSequence()) fail("expected a list of PRNs");
@@ -215,9 +234,24 @@ Cn0Spec parse_cn0(const Field& f) {
   if (f.has("per_prn")) {
     const Field per = f["per_prn"];
     if (!per.is_map()) per.fail("expected a mapping PRN: dB-Hz");
-    for (int prn = 1; prn <= 32; ++prn)
-      if (per.has(std::to_string(prn))) spec.per_prn_dbhz[prn] = per[std::to_string(prn)].number_in(0, 80);
-    if (spec.per_prn_dbhz.size() != per.size()) per.fail("keys must be PRNs 1..32");
+    std::size_t known = 0;
+    for (int prn = 1; prn <= 32; ++prn) {
+      for (const std::string& key : {std::to_string(prn), SatelliteId{GnssSystem::gps, prn}.to_string()}) {
+        if (per.has(key)) {
+          spec.per_prn_dbhz[prn] = per[key].number_in(0, 80);
+          ++known;
+        }
+      }
+    }
+    for (int svid = 1; svid <= 50; ++svid) {
+      const std::string key = SatelliteId{GnssSystem::galileo, svid}.to_string();
+      if (per.has(key)) {
+        spec.galileo_per_svid_dbhz[svid] = per[key].number_in(0, 80);
+        ++known;
+      }
+    }
+    if (known != per.size() || spec.per_prn_dbhz.size() + spec.galileo_per_svid_dbhz.size() != per.size())
+      per.fail("keys must be GPS PRNs 1..32 (7 or G07) or Galileo satellites E01..E50, each once");
   }
   if (f.has("ramp")) {
     const Field r = f["ramp"];
@@ -301,7 +335,7 @@ std::vector<OutageSpec> parse_outages(const Field& f) {
     spec.start_s = o["start_s"].number_in(0, 1e7);
     spec.end_s = o["end_s"].number_in(0, 1e7);
     if (spec.end_s <= spec.start_s) o["end_s"].fail("must be after start_s");
-    if (o.has("prns")) spec.prns = o["prns"].prn_list();
+    if (o.has("prns")) o["prns"].satellite_list(spec.prns, spec.galileo_prns);
     out.push_back(spec);
   }
   return out;
@@ -666,9 +700,11 @@ std::string scenario_to_yaml(const Scenario& s) {
   out << YAML::Key << "dbhz" << YAML::Value << s.cn0.fixed_dbhz;
   out << YAML::Key << "zenith_dbhz" << YAML::Value << s.cn0.zenith_dbhz;
   out << YAML::Key << "horizon_dbhz" << YAML::Value << s.cn0.horizon_dbhz;
-  if (!s.cn0.per_prn_dbhz.empty()) {
+  if (!s.cn0.per_prn_dbhz.empty() || !s.cn0.galileo_per_svid_dbhz.empty()) {
     out << YAML::Key << "per_prn" << YAML::Value << YAML::Flow << YAML::BeginMap;
     for (const auto& [prn, v] : s.cn0.per_prn_dbhz) out << YAML::Key << std::to_string(prn) << YAML::Value << v;
+    for (const auto& [svid, v] : s.cn0.galileo_per_svid_dbhz)
+      out << YAML::Key << SatelliteId{GnssSystem::galileo, svid}.to_string() << YAML::Value << v;
     out << YAML::EndMap;
   }
   if (s.cn0.ramp_end_s > s.cn0.ramp_start_s)
@@ -746,7 +782,14 @@ std::string scenario_to_yaml(const Scenario& s) {
     for (const auto& o : s.outages) {
       out << YAML::Flow << YAML::BeginMap << YAML::Key << "start_s" << YAML::Value << o.start_s << YAML::Key << "end_s"
           << YAML::Value << o.end_s;
-      if (!o.prns.empty()) out << YAML::Key << "prns" << YAML::Value << YAML::Flow << o.prns;
+      if (!o.galileo_prns.empty()) {
+        out << YAML::Key << "prns" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+        for (int prn : o.prns) out << prn;
+        for (int svid : o.galileo_prns) out << SatelliteId{GnssSystem::galileo, svid}.to_string();
+        out << YAML::EndSeq;
+      } else if (!o.prns.empty()) {
+        out << YAML::Key << "prns" << YAML::Value << YAML::Flow << o.prns;
+      }
       out << YAML::EndMap;
     }
     out << YAML::EndSeq;

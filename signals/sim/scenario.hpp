@@ -29,9 +29,10 @@ struct TrajectorySpec {
 struct Cn0Spec {
   enum class Model { fixed, elevation } model = Model::fixed;
   double fixed_dbhz = 45.0;
-  double zenith_dbhz = 50.0;           ///< elevation model: C/N0 at 90 degrees
-  double horizon_dbhz = 38.0;          ///< elevation model: C/N0 at 0 degrees (linear in sin(elevation))
-  std::map<int, double> per_prn_dbhz;  ///< overrides for single PRNs
+  double zenith_dbhz = 50.0;                    ///< elevation model: C/N0 at 90 degrees
+  double horizon_dbhz = 38.0;                   ///< elevation model: C/N0 at 0 degrees (linear in sin(elevation))
+  std::map<int, double> per_prn_dbhz;           ///< overrides for single GPS PRNs (keys 7 or G07)
+  std::map<int, double> galileo_per_svid_dbhz;  ///< overrides for single Galileo satellites (keys E11)
   /// Optional linear ramp applied to every satellite: offset goes from 0 dB at
   /// ramp_start_s to ramp_delta_db at ramp_end_s and stays there (tracking-threshold runs).
   double ramp_start_s = 0.0, ramp_end_s = 0.0, ramp_delta_db = 0.0;
@@ -53,11 +54,14 @@ struct ReceiverClockSpec {
 /// false (spec unchanged) for any other name.
 bool set_oscillator_preset(ReceiverClockSpec& spec, const std::string& name);
 
-/// A time window in which the listed satellites (all when empty) transmit nothing.
+/// A time window in which the listed satellites (all of every system when both lists are
+/// empty) transmit nothing.
 struct OutageSpec {
   double start_s = 0.0;
   double end_s = 0.0;
-  std::vector<int> prns;
+  std::vector<int> prns;          ///< GPS PRNs (7 or G07 in the file)
+  std::vector<int> galileo_prns;  ///< Galileo SVIDs (E11 in the file)
+  bool all_satellites() const { return prns.empty() && galileo_prns.empty(); }
 };
 
 struct AdcSpec {

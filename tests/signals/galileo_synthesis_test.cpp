@@ -125,6 +125,54 @@ TEST(GalileoSynthesis, SystemsKeyIsParsedCheckedAndWrittenBack) {
   EXPECT_EQ(scenario_to_yaml(gps).find("systems"), std::string::npos);
 }
 
+TEST(GalileoSynthesis, PerSatelliteCn0AndOutagesNameGalileoSatellites) {
+  const std::string text =
+      "start_time: 2022-01-01T20:30:00\nduration_s: 0.5\nsample_rate_hz: 2046000\n"
+      "nav_file: data/gps_galileo_20220101.rnx\nsystems: [gps, galileo]\nelevation_mask_deg: 10\n"
+      "trajectory: {preset: static, start: {lat_deg: 37.5665, lon_deg: 126.9780, height_m: 40}}\n"
+      "cn0: {dbhz: 45, per_prn: {G02: 40, 5: 41, E03: 30}}\n"
+      "outages: [{start_s: 0.2, end_s: 0.3, prns: [20, E13]}]\nsat_truth_rate_hz: 10\n";
+  const Scenario sc = parse_scenario(text, "t.yaml", kRoot, kRoot);
+  EXPECT_EQ(sc.cn0.per_prn_dbhz.at(2), 40.0);
+  EXPECT_EQ(sc.cn0.per_prn_dbhz.at(5), 41.0);
+  EXPECT_EQ(sc.cn0.galileo_per_svid_dbhz.at(3), 30.0);
+  ASSERT_EQ(sc.outages.size(), 1u);
+  EXPECT_EQ(sc.outages[0].prns, std::vector<int>{20});
+  EXPECT_EQ(sc.outages[0].galileo_prns, std::vector<int>{13});
+  // Written back and read again: the same keys.
+  const Scenario again = parse_scenario(scenario_to_yaml(sc), "again.yaml", kRoot, kRoot);
+  EXPECT_EQ(again.cn0.galileo_per_svid_dbhz, sc.cn0.galileo_per_svid_dbhz);
+  EXPECT_EQ(again.outages[0].galileo_prns, sc.outages[0].galileo_prns);
+  EXPECT_EQ(again.outages[0].prns, sc.outages[0].prns);
+  EXPECT_THROW(parse_scenario(text + "prns: [E51]\n", "t.yaml", kRoot, kRoot), std::invalid_argument);
+
+  const auto dir = fresh_dir("overrides");
+  SynthesisOptions options;
+  options.threads = 1;
+  IfSynthesizer(sc, read_rinex_nav(sc.nav_file)).run(dir.string(), options);
+  std::ifstream in(dir / "sat_truth.csv");
+  std::string line;
+  std::getline(in, line);
+  int e03 = 0, e13_off = 0, g20_off = 0, e13_on = 0;
+  while (std::getline(in, line)) {
+    std::vector<std::string> f;
+    std::stringstream ss(line);
+    for (std::string cell; std::getline(ss, cell, ',');) f.push_back(cell);
+    const double t = std::stod(f[0]);
+    if (f[1] == "E03") {
+      EXPECT_NEAR(std::stod(f[5]), 30.0, 0.5);  // the override plus the antenna pattern (0 dB by default)
+      ++e03;
+    }
+    const bool in_window = t >= 0.2 - 1e-9 && t < 0.3 - 1e-9;
+    if (f[1] == "E13") (in_window ? e13_off : e13_on) += f[14] == (in_window ? "0" : "1");
+    if (f[1] == "G20" && in_window) g20_off += f[14] == "0";
+  }
+  EXPECT_EQ(e03, 5);
+  EXPECT_EQ(e13_off, 1);
+  EXPECT_EQ(g20_off, 1);
+  EXPECT_EQ(e13_on, 4);
+}
+
 /// A GPS-only scenario with the error world and multipath: the IF and truth files of a
 /// 0.3 s run, as the synthesizer wrote them before Galileo (FNV-1a 64 of each file).
 TEST(GalileoSynthesis, GpsOnlyScenarioBytesUnchanged) {

@@ -153,7 +153,7 @@ TEST(IfSynthesizer, SignalMatchesTruthCodePhaseDopplerAndPower) {
 
 TEST(IfSynthesizer, TruthPseudorangesAreConsistent) {
   Scenario sc = short_scenario(0.1, SampleFormat::ibyte, 2);
-  sc.outages.push_back(OutageSpec{0.05, 0.08, {}});
+  sc.outages.push_back(OutageSpec{0.05, 0.08, {}, {}});
   const NavData nav = read_rinex_nav(sc.nav_file);
   const auto dir = fresh_dir("consistency");
   SynthesisOptions opt;
