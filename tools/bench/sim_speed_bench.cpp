@@ -1,5 +1,7 @@
 #include "tools/bench/sim_speed_bench.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <filesystem>
 #include <thread>
@@ -18,6 +20,7 @@ void run_sim_speed_bench(const SimSpeedSettings& o) {
   Scenario sc = load_scenario(o.scenario, DEEPNAV_SOURCE_DIR);
   sc.duration_s = o.duration_s;
   sc.max_satellites = o.satellites;
+  if (!o.systems.empty()) sc.systems = o.systems;
   sc.elevation_mask_rad = 0.0;
   sc.format = parse_sample_format(o.format);
   sc.adc.bits = o.adc_bits;
@@ -47,6 +50,12 @@ void run_sim_speed_bench(const SimSpeedSettings& o) {
   report.add_note("format", std::string(to_string(sc.format)));
   report.add_note("adc_bits", sc.adc.bits);
   report.add_note("hardware_threads", all);
+  // Which systems only where Galileo is in, which keeps a GPS run's report as it was.
+  if (sc.systems != std::vector<GnssSystem>{GnssSystem::gps}) {
+    std::vector<std::string_view> names;
+    for (GnssSystem system : sc.systems) names.push_back(system_name(system));
+    report.add_note("systems", fmt::format("{}", fmt::join(names, ",")));
+  }
   report.emit(o.json_path);
 }
 

@@ -2,9 +2,12 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+
+#include "tools/cli/commands.hpp"
 
 namespace deepnav::cli {
 namespace {
@@ -28,5 +31,23 @@ CLI::Validator finite_check(double lo, double hi, bool lo_open, const std::strin
 
 CLI::Validator finite_in(double lo, double hi, const std::string& what) { return finite_check(lo, hi, false, what); }
 CLI::Validator finite_above(double lo, double hi, const std::string& what) { return finite_check(lo, hi, true, what); }
+
+std::vector<GnssSystem> parse_systems_option(const std::string& text) {
+  std::vector<GnssSystem> systems;
+  std::size_t begin = 0;
+  while (begin <= text.size()) {
+    const std::size_t end = std::min(text.find(',', begin), text.size());
+    const std::string name = text.substr(begin, end - begin);
+    const auto system = parse_system_name(name);
+    if (!system)
+      throw UserError(
+          fmt::format("--systems {}: unknown system '{}' (expected gps and/or galileo, comma-separated)", text, name));
+    if (std::find(systems.begin(), systems.end(), *system) != systems.end())
+      throw UserError(fmt::format("--systems {}: '{}' is listed twice", text, name));
+    systems.push_back(*system);
+    begin = end + 1;
+  }
+  return systems;
+}
 
 }  // namespace deepnav::cli

@@ -4,6 +4,9 @@
 #include <CLI/CLI.hpp>
 
 #include <string>
+#include <vector>
+
+#include "signals/satellite_id.hpp"
 
 namespace deepnav::cli {
 
@@ -11,5 +14,9 @@ namespace deepnav::cli {
 CLI::Validator finite_in(double lo, double hi, const std::string& what = "a number");
 /// A finite number greater than lo and at most hi.
 CLI::Validator finite_above(double lo, double hi, const std::string& what = "a number");
+
+/// --systems: comma-separated system names ("gps,galileo"), each once; a UserError naming
+/// the option otherwise.
+std::vector<GnssSystem> parse_systems_option(const std::string& text);
 
 }  // namespace deepnav::cli

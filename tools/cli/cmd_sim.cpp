@@ -31,25 +31,6 @@ struct SimOptions {
   std::string systems;  ///< "gps,galileo": replaces the scenario's systems when set
 };
 
-/// --systems: comma-separated system names, each once.
-std::vector<GnssSystem> parse_systems_option(const std::string& text) {
-  std::vector<GnssSystem> systems;
-  std::size_t begin = 0;
-  while (begin <= text.size()) {
-    const std::size_t end = std::min(text.find(',', begin), text.size());
-    const std::string name = text.substr(begin, end - begin);
-    const auto system = parse_system_name(name);
-    if (!system)
-      throw UserError(
-          fmt::format("--systems {}: unknown system '{}' (expected gps and/or galileo, comma-separated)", text, name));
-    if (std::find(systems.begin(), systems.end(), *system) != systems.end())
-      throw UserError(fmt::format("--systems {}: '{}' is listed twice", text, name));
-    systems.push_back(*system);
-    begin = end + 1;
-  }
-  return systems;
-}
-
 nlohmann::json summary_json(const Scenario& sc, const SynthesisSummary& s) {
   nlohmann::json sats = nlohmann::json::array();
   for (const auto& sat : s.satellites) {
