@@ -53,8 +53,8 @@ constexpr double kChip_m = gps::kSpeedOfLight_mps / gps::kCodeRate_cps;
 /// sat_truth.csv's multipath_m is the error of an ideal E-L DLL with this (the receiver's default) spacing.
 constexpr double kTruthDllSpacing_chips = 0.5;
 
-/// Whole milliseconds of a GST week start before the GPS week of the same number plus 1024
-/// weeks: GST and GPS time share weeks, 1024 apart.
+/// GST's start epoch in milliseconds of GPS time: the start of GPS week 1024 (GST and GPS time
+/// share seconds and week boundaries; their labels differ by 1024 weeks).
 constexpr std::int64_t kGstOriginMs = static_cast<std::int64_t>(galileo::kGstWeekOffsetFromGps) * kMsPerWeek;
 /// Milliseconds per E1 code period (and I/NAV symbol): 4.
 constexpr std::int64_t kE1PeriodMs = 4;
