@@ -188,6 +188,7 @@ struct IfSynthesizer::Impl {
     request.duration_s = sc.duration_s;
     request.elevation_mask_rad = sc.elevation_mask_rad;
     request.prns = sc.prns;
+    request.galileo_prns = sc.galileo_prns;
     request.max_satellites = sc.max_satellites;
     request.systems = sc.systems;
     request.gst_minus_gpst_s = gst_minus_gpst_s;

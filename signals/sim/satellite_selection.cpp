@@ -34,6 +34,9 @@ std::vector<SelectedSatellite> select_galileo(const NavData& nav, const Trajecto
   const galileo::GstTime start = galileo::gst_from_gps_time(request.start, request.gst_minus_gpst_s);
   std::vector<SelectedSatellite> chosen;
   for (int svid = 1; svid <= galileo::kMaxPrn; ++svid) {
+    const bool listed =
+        std::find(request.galileo_prns.begin(), request.galileo_prns.end(), svid) != request.galileo_prns.end();
+    if (!request.galileo_prns.empty() && !listed) continue;
     const galileo::GalileoEphemeris* eph = select_galileo_ephemeris(nav, svid, start);
     if (eph == nullptr) continue;
     SelectedSatellite sat;
@@ -52,7 +55,8 @@ std::vector<SelectedSatellite> select_galileo(const NavData& nav, const Trajecto
       }
       sat.min_elevation_rad = std::min(sat.min_elevation_rad, look.elevation_rad);
     }
-    if (sat.min_elevation_rad >= request.elevation_mask_rad) chosen.push_back(sat);
+    const bool visible = listed ? sat.elevation_rad > 0.0 : sat.min_elevation_rad >= request.elevation_mask_rad;
+    if (visible) chosen.push_back(sat);
   }
   sort_and_cap(chosen, request.max_satellites);
   return chosen;

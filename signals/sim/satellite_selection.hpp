@@ -17,8 +17,9 @@ struct SelectionRequest {
   GpsTime start{};
   double duration_s = 0.0;
   double elevation_mask_rad = 0.0;
-  std::vector<int> prns;    ///< when not empty, only these GPS PRNs are candidates
-  int max_satellites = 12;  ///< per system
+  std::vector<int> prns;          ///< when not empty, only these GPS PRNs are candidates
+  std::vector<int> galileo_prns;  ///< when not empty, only these Galileo SVIDs are candidates
+  int max_satellites = 12;        ///< per system
   std::vector<GnssSystem> systems{GnssSystem::gps};
   double gst_minus_gpst_s = 0.0;  ///< GGTO, for Galileo orbits (on GST)
 };

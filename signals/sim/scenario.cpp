@@ -144,13 +144,6 @@ class Field {
       (id->system == GnssSystem::gps ? gps : galileo).push_back(id->prn);
     }
   }
-  std::vector<int> prn_list() const {
-    require();
-    if (!node_.IsSequence()) fail("expected a list of PRNs");
-    std::vector<int> prns;
-    for (std::size_t i = 0; i < size(); ++i) prns.push_back(static_cast<int>(at(i).integer_in(1, 32)));
-    return prns;
-  }
 
  private:
   YAML::Node node_;
@@ -578,7 +571,7 @@ Scenario parse_scenario(const std::string& yaml_text, const std::string& origin,
   if (f.has("systems")) s.systems = f["systems"].system_list();
   if (f.has("trajectory")) s.trajectory = parse_trajectory(f["trajectory"], base_dir, search_root);
   if (f.has("elevation_mask_deg")) s.elevation_mask_rad = f["elevation_mask_deg"].number_in(-10, 90) * kDegToRad;
-  if (f.has("prns")) s.prns = f["prns"].prn_list();
+  if (f.has("prns")) f["prns"].satellite_list(s.prns, s.galileo_prns);
   if (f.has("max_satellites")) s.max_satellites = static_cast<int>(f["max_satellites"].integer_in(1, 32));
   if (f.has("cn0")) s.cn0 = parse_cn0(f["cn0"]);
   if (f.has("receiver_clock")) s.clock = parse_clock(f["receiver_clock"]);
@@ -693,7 +686,14 @@ std::string scenario_to_yaml(const Scenario& s) {
       << YAML::Key << "height_m" << YAML::Value << s.trajectory.start.height_m << YAML::EndMap;
   out << YAML::Key << "heading_deg" << YAML::Value << s.trajectory.heading_rad * r2d << YAML::EndMap;
   out << YAML::Key << "elevation_mask_deg" << YAML::Value << s.elevation_mask_rad * r2d;
-  if (!s.prns.empty()) out << YAML::Key << "prns" << YAML::Value << YAML::Flow << s.prns;
+  if (!s.galileo_prns.empty()) {
+    out << YAML::Key << "prns" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+    for (int prn : s.prns) out << prn;
+    for (int svid : s.galileo_prns) out << SatelliteId{GnssSystem::galileo, svid}.to_string();
+    out << YAML::EndSeq;
+  } else if (!s.prns.empty()) {
+    out << YAML::Key << "prns" << YAML::Value << YAML::Flow << s.prns;
+  }
   out << YAML::Key << "max_satellites" << YAML::Value << s.max_satellites;
   out << YAML::Key << "cn0" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "model" << YAML::Value << (s.cn0.model == Cn0Spec::Model::fixed ? "fixed" : "elevation");

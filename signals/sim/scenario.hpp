@@ -94,7 +94,10 @@ struct Scenario {
   std::vector<GnssSystem> systems{GnssSystem::gps};
   TrajectorySpec trajectory{};
   double elevation_mask_rad = 5.0 * 3.14159265358979323846 / 180.0;
-  std::vector<int> prns;    ///< only these GPS PRNs (empty: every healthy satellite above the mask)
+  /// Only these GPS PRNs (7 or G07 in the file) / Galileo SVIDs (E11), each list for its own
+  /// system (empty: every healthy satellite of that system above the mask).
+  std::vector<int> prns;
+  std::vector<int> galileo_prns;
   int max_satellites = 12;  ///< of each system
   Cn0Spec cn0{};
   ReceiverClockSpec clock{};

@@ -145,6 +145,17 @@ TEST(GalileoSynthesis, PerSatelliteCn0AndOutagesNameGalileoSatellites) {
   EXPECT_EQ(again.outages[0].galileo_prns, sc.outages[0].galileo_prns);
   EXPECT_EQ(again.outages[0].prns, sc.outages[0].prns);
   EXPECT_THROW(parse_scenario(text + "prns: [E51]\n", "t.yaml", kRoot, kRoot), std::invalid_argument);
+  {
+    // prns restricts each system it names.
+    const Scenario only = parse_scenario(text + "prns: [G02, 5, E03]\n", "t.yaml", kRoot, kRoot);
+    EXPECT_EQ(only.prns, (std::vector<int>{2, 5}));
+    EXPECT_EQ(only.galileo_prns, std::vector<int>{3});
+    EXPECT_EQ(parse_scenario(scenario_to_yaml(only), "again.yaml", kRoot, kRoot).galileo_prns, only.galileo_prns);
+    std::vector<std::string> names;
+    const IfSynthesizer synth(only, read_rinex_nav(only.nav_file));
+    for (const auto& sat : synth.satellites()) names.push_back(sat.id.to_string());
+    EXPECT_EQ(names, (std::vector<std::string>{"G02", "G05", "E03"}));
+  }
 
   const auto dir = fresh_dir("overrides");
   SynthesisOptions options;
