@@ -124,16 +124,16 @@ E1CodePhaseRefiner::E1CodePhaseRefiner(double sample_rate_hz, double if_hz) : fs
 
 E1CorrelationPower E1CodePhaseRefiner::correlate(std::span<const Sample> samples, int prn, double code_phase_chips,
                                                  double doppler_hz) const {
-  const E1Correlator corr{samples, sample_mean(samples), galileo::e1b_code_chips(prn), galileo::e1c_code_chips(prn),
-                          fs_hz_, if_hz_};
+  const E1Correlator corr{
+      samples, sample_mean(samples), galileo::e1b_code_chips(prn), galileo::e1c_code_chips(prn), fs_hz_, if_hz_};
   return corr.power(code_phase_chips, doppler_hz);
 }
 
 E1RefinedSignal E1CodePhaseRefiner::refine(std::span<const Sample> samples, int prn, double code_phase_chips,
                                            double doppler_hz, double doppler_bin_hz) const {
   if (samples.empty()) throw std::invalid_argument("E1 code phase refinement: no samples");
-  const E1Correlator corr{samples, sample_mean(samples), galileo::e1b_code_chips(prn), galileo::e1c_code_chips(prn),
-                          fs_hz_, if_hz_};
+  const E1Correlator corr{
+      samples, sample_mean(samples), galileo::e1b_code_chips(prn), galileo::e1c_code_chips(prn), fs_hz_, if_hz_};
   E1RefinedSignal out;
   out.doppler_hz = fine_doppler(corr, code_phase_chips, doppler_hz, doppler_bin_hz);
 

@@ -27,7 +27,7 @@ namespace deepnav {
 
 /// Correlation powers of one code phase and Doppler over a span of samples.
 struct E1CorrelationPower {
-  double all_periods = 0.0;  ///< sum of |B|^2 + |C|^2 over every (partial) code period
+  double all_periods = 0.0;   ///< sum of |B|^2 + |C|^2 over every (partial) code period
   double full_periods = 0.0;  ///< the same over whole code periods only
   int full_period_count = 0;
 };
@@ -35,7 +35,7 @@ struct E1CorrelationPower {
 struct E1RefinedSignal {
   double code_phase_chips = 0.0;  ///< at the first sample, in [0, 4092)
   double doppler_hz = 0.0;
-  E1CorrelationPower power;      ///< at the refined code phase and Doppler
+  E1CorrelationPower power;          ///< at the refined code phase and Doppler
   bool moved_off_side_lobe = false;  ///< the coarse cell was half a chip from the main peak
 };
 

@@ -27,6 +27,9 @@ using acquisition_kernels::smooth_fft_size;
 using galileo::kE1CodeLength_chips;
 using galileo::kE1CodeRate_cps;
 
+/// The most memory the search's per-block spectra may take (the rest is a few rows per PRN).
+constexpr double kMaxSpectraBytes = 1024.0 * 1048576.0;
+
 /// Cells within this many chips (modulo a code period) of the peak are left out of the noise floor:
 /// the BOC(1,1) correlation is zero from one chip on.
 constexpr double kPeakExclusion_chips = 1.5;
@@ -72,11 +75,20 @@ struct GalileoAcquisition::Impl {
   std::vector<int> stretch_source;
   E1CodePhaseRefiner refiner;
 
-  explicit Impl(GalileoAcquisitionConfig c) : cfg(validated(std::move(c))), in(1), out(1), refiner(cfg.sample_rate_hz, cfg.if_hz) {
+  explicit Impl(GalileoAcquisitionConfig c)
+      : cfg(validated(std::move(c))), in(1), out(1), refiner(cfg.sample_rate_hz, cfg.if_hz) {
     const double t_coh = galileo::kE1CodePeriod_s;
     n = static_cast<int>(std::floor(cfg.sample_rate_hz * t_coh));
     nf = smooth_fft_size(n);
     samples_per_period = cfg.sample_rate_hz * t_coh;
+    // Every block's spectrum is held (complex floats) while the PRNs are searched.
+    const double spectra_bytes = static_cast<double>(cfg.noncoherent) * nf * sizeof(std::complex<float>);
+    if (spectra_bytes > kMaxSpectraBytes)
+      throw std::invalid_argument(
+          fmt::format("Galileo acquisition: noncoherent {} blocks of 4 ms at {} Hz would hold {:.0f} MiB of spectra, "
+                      "at most {:.0f} "
+                      "MiB: fewer blocks",
+                      cfg.noncoherent, cfg.sample_rate_hz, spectra_bytes / 1048576.0, kMaxSpectraBytes / 1048576.0));
     stretch_source.resize(static_cast<std::size_t>(nf));
     for (int j = 0; j < nf; ++j)
       stretch_source[static_cast<std::size_t>(j)] =
@@ -103,11 +115,12 @@ struct GalileoAcquisition::Impl {
           "+-2 MHz)",
           cfg.sample_rate_hz, kGalileoMinSampleRate_hz, kMaxAcquisitionSampleRate_hz));
     if (!std::isfinite(cfg.if_hz) || std::abs(cfg.if_hz) >= cfg.sample_rate_hz / 2)
-      throw std::invalid_argument(fmt::format("Galileo acquisition: IF {} Hz must be below half the sample rate ({} Hz)",
-                                              cfg.if_hz, cfg.sample_rate_hz / 2));
+      throw std::invalid_argument(
+          fmt::format("Galileo acquisition: IF {} Hz must be below half the sample rate ({} Hz)", cfg.if_hz,
+                      cfg.sample_rate_hz / 2));
     if (cfg.noncoherent < 1 || cfg.noncoherent > kMaxNoncoherent)
-      throw std::invalid_argument(fmt::format(
-          "Galileo acquisition: noncoherent {} must be 1..{} (4 ms blocks)", cfg.noncoherent, kMaxNoncoherent));
+      throw std::invalid_argument(fmt::format("Galileo acquisition: noncoherent {} must be 1..{} (4 ms blocks)",
+                                              cfg.noncoherent, kMaxNoncoherent));
     if (!(cfg.doppler_step_hz > 0.0 && cfg.doppler_step_hz <= 250.0))
       throw std::invalid_argument(fmt::format(
           "Galileo acquisition: doppler_step {} Hz must be in (0, 250] Hz (a 4 ms block loses 3.9 dB half a 250 Hz "
@@ -116,9 +129,9 @@ struct GalileoAcquisition::Impl {
     if (!(cfg.doppler_max_hz >= 0.0 && cfg.doppler_max_hz <= 50000.0))
       throw std::invalid_argument("Galileo acquisition: doppler_max must be in [0, 50000] Hz");
     if (std::floor(cfg.doppler_max_hz / cfg.doppler_step_hz + 1e-9) > 5000.0)
-      throw std::invalid_argument(fmt::format(
-          "Galileo acquisition: a Doppler step of {} Hz over +-{} Hz is more than 10001 bins", cfg.doppler_step_hz,
-          cfg.doppler_max_hz));
+      throw std::invalid_argument(
+          fmt::format("Galileo acquisition: a Doppler step of {} Hz over +-{} Hz is more than 10001 bins",
+                      cfg.doppler_step_hz, cfg.doppler_max_hz));
     if (!(cfg.pfa > 0.0 && cfg.pfa < 1.0))
       throw std::invalid_argument(fmt::format("Galileo acquisition: pfa {} must be in (0, 1)", cfg.pfa));
     if (cfg.prns.empty())
@@ -174,8 +187,8 @@ struct GalileoAcquisition::Impl {
     const int blocks =
         static_cast<int>(std::min<std::int64_t>(cfg.noncoherent, static_cast<std::int64_t>(x.size()) / n));
     if (blocks < 1)
-      throw std::invalid_argument(fmt::format(
-          "Galileo acquisition: need at least {} samples (one 4 ms code period), got {}", n, x.size()));
+      throw std::invalid_argument(
+          fmt::format("Galileo acquisition: need at least {} samples (one 4 ms code period), got {}", n, x.size()));
     const std::vector<int>& prns = cfg.prns;
     scratch.resize(static_cast<std::size_t>(n));
     block_spectra.resize(static_cast<std::size_t>(blocks));
@@ -244,9 +257,9 @@ struct GalileoAcquisition::Impl {
     r.detected = r.statistic > threshold;
     // The grid's lag (in units of n / nf samples) as a delay, and the code phase it implies.
     const double coarse_delay = std::fmod(s.peak_lag * static_cast<double>(n) / nf, samples_per_period);
-    const double coarse_phase = std::fmod(
-        kE1CodeLength_chips - coarse_delay * kE1CodeRate_cps / cfg.sample_rate_hz + kE1CodeLength_chips,
-        static_cast<double>(kE1CodeLength_chips));
+    const double coarse_phase =
+        std::fmod(kE1CodeLength_chips - coarse_delay * kE1CodeRate_cps / cfg.sample_rate_hz + kE1CodeLength_chips,
+                  static_cast<double>(kE1CodeLength_chips));
     const double t_coh = galileo::kE1CodePeriod_s;
     if (!r.detected) {
       r.doppler_hz = dopplers[s.peak_bin];
@@ -258,8 +271,7 @@ struct GalileoAcquisition::Impl {
       r.cn0_dbhz = snr > 0.0 ? 10.0 * std::log10(2.0 * snr / t_coh) : 0.0;
       return r;
     }
-    const E1RefinedSignal refined =
-        refiner.refine(x, prn, coarse_phase, dopplers[s.peak_bin], cfg.doppler_step_hz);
+    const E1RefinedSignal refined = refiner.refine(x, prn, coarse_phase, dopplers[s.peak_bin], cfg.doppler_step_hz);
     r.doppler_hz = refined.doppler_hz;
     r.code_phase_chips = refined.code_phase_chips;
     r.delay_samples = delay_from_code_phase(refined.code_phase_chips);
@@ -270,9 +282,8 @@ struct GalileoAcquisition::Impl {
     // hold no whole one).
     const double noise = cell_mean / terms * n / (static_cast<double>(nf) * nf * nf);
     const bool whole = refined.power.full_period_count > 0;
-    const double per_component =
-        whole ? refined.power.full_periods / (2.0 * refined.power.full_period_count)
-              : refined.power.all_periods / (2.0 * static_cast<double>(x.size()) / n);
+    const double per_component = whole ? refined.power.full_periods / (2.0 * refined.power.full_period_count)
+                                       : refined.power.all_periods / (2.0 * static_cast<double>(x.size()) / n);
     const double snr = (per_component - noise) / noise;
     r.cn0_dbhz = snr > 0.0 ? 10.0 * std::log10(2.0 * snr / t_coh) : 0.0;
     return r;

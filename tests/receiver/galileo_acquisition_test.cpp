@@ -8,6 +8,7 @@
 #include <random>
 #include <set>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "receiver/acquisition/e1_code_phase_refinement.hpp"
@@ -69,7 +70,8 @@ std::vector<Sample> e1_signal(const std::vector<E1Truth>& sats, double fs, doubl
   const float scale = 64.0f / sigma;  // noise at 1/64 of its RMS resolution, like a 12-bit front end
   std::vector<Sample> out(n);
   for (std::size_t k = 0; k < n; ++k)
-    out[k] = {static_cast<std::int16_t>(std::lround(i[k] * scale)), static_cast<std::int16_t>(std::lround(q[k] * scale))};
+    out[k] = {static_cast<std::int16_t>(std::lround(i[k] * scale)),
+              static_cast<std::int16_t>(std::lround(q[k] * scale))};
   return out;
 }
 
@@ -87,14 +89,14 @@ void expect_found(const std::vector<GalileoAcquisitionResult>& results, const st
   for (const auto& t : truths) present.insert(t.prn);
   for (const auto& r : results) {
     EXPECT_EQ(r.satellite.system, GnssSystem::galileo);
-    const auto t = std::find_if(truths.begin(), truths.end(), [&](const E1Truth& e) { return e.prn == r.satellite.prn; });
+    const auto t =
+        std::find_if(truths.begin(), truths.end(), [&](const E1Truth& e) { return e.prn == r.satellite.prn; });
     if (t == truths.end()) {
       EXPECT_FALSE(r.detected) << r.satellite.to_string() << " is absent (statistic " << r.statistic << ", threshold "
                                << r.threshold << ")";
       continue;
     }
-    ASSERT_TRUE(r.detected) << r.satellite.to_string() << " statistic " << r.statistic << " threshold "
-                            << r.threshold;
+    ASSERT_TRUE(r.detected) << r.satellite.to_string() << " statistic " << r.statistic << " threshold " << r.threshold;
     EXPECT_LE(chip_error(r.code_phase_chips, t->code_phase_chips), 0.25)
         << r.satellite.to_string() << " code phase " << r.code_phase_chips << " truth " << t->code_phase_chips;
     EXPECT_LE(std::abs(r.doppler_hz - t->doppler_hz), cfg.doppler_step_hz / 2)
@@ -171,7 +173,8 @@ TEST(GalileoAcquisition, MainPeakReportedWhenSideLobesSitOnTheGrid) {
     GalileoAcquisition acq(cfg);
     const auto results = acq.search(e1_signal(truths, fs, 0.0, false, 40, 100 + static_cast<int>(fraction * 100)));
     for (const auto& r : results) {
-      const auto& t = *std::find_if(truths.begin(), truths.end(), [&](const E1Truth& e) { return e.prn == r.satellite.prn; });
+      const auto& t =
+          *std::find_if(truths.begin(), truths.end(), [&](const E1Truth& e) { return e.prn == r.satellite.prn; });
       ASSERT_TRUE(r.detected) << r.satellite.to_string() << " fraction " << fraction;
       EXPECT_LE(chip_error(r.code_phase_chips, t.code_phase_chips), 0.1)
           << r.satellite.to_string() << " fraction " << fraction << ": " << r.code_phase_chips << " vs "
@@ -207,6 +210,14 @@ TEST(GalileoAcquisition, BadSettingsAndTooFewSamplesAreRefused) {
   auto cfg = config(4e6, 0.0, {1});
   cfg.doppler_step_hz = 500.0;
   EXPECT_THROW(GalileoAcquisition{cfg}, std::invalid_argument);
+  auto memory = config(200e6, 0.0, {1});
+  memory.noncoherent = 1000;  // 1000 spectra of 800000 points: 6 GB
+  try {
+    GalileoAcquisition too_much(memory);
+    ADD_FAILURE() << "6 GB of spectra accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("MiB of spectra"), std::string::npos) << e.what();
+  }
   GalileoAcquisition acq(config(4e6, 0.0, {1}));
   const std::vector<Sample> short_block(15999, Sample{1, -1});
   EXPECT_THROW(acq.search(short_block), std::invalid_argument);
