@@ -10,10 +10,12 @@
 // sum over blocks of |B|^2 + |C|^2, 2K terms for K blocks, and under noise alone is
 // Gamma(2K, 1) distributed after normalisation; the threshold follows as for GPS with 2K.
 // A block is not aligned with the code epochs: where a symbol or secondary chip changes sign
-// inside it, that component's correlation loses the part after the change (none at all for
-// an epoch at the block's start, all of it for one at its middle with a change of sign), on
-// average up to about 2.4 dB for an epoch mid-block; the refinement below sums epoch to epoch
-// and loses nothing.
+// inside it, that component's correlation loses twice the part after the change (all of it
+// for an epoch mid-block). E1-B's symbol changes half the time and CS25 12 times in 25, so
+// the expected power is about 0.5 of the aligned one for an epoch mid-block (-3 dB) and 2/3
+// (-1.7 dB) averaged over where the epoch falls; the refinement below sums epoch to epoch and
+// loses nothing. (Two-period blocks against a zero-padded replica would avoid the loss at
+// twice the transform length.)
 //
 // Doppler bins: 125 Hz (1 / (2 T) for T = 4 ms: at most 0.9 dB lost half a bin off) over the
 // same range as GPS. Per bin the forward FFT of each block serves all PRNs; each PRN then
