@@ -61,11 +61,12 @@ class E1Signal {
       const std::int64_t k0 = sample_ + static_cast<std::int64_t>(m * per_ms);
       const double t0 = static_cast<double>(k0) / s_.fs_hz, t1 = t0 + 1e-3;
       const double p0 = carrier_cycles(t0), dp = (carrier_cycles(t1) - p0) / static_cast<double>(per_ms);
+      // Code phase linear within the millisecond (the Doppler rate's part is below 1e-9 chip).
+      const double c0 = code_chips(t0), dc = (code_chips(t1) - c0) / static_cast<double>(per_ms);
       std::complex<double> phasor = std::polar(a, 2.0 * M_PI * (p0 - std::floor(p0)));
       const std::complex<double> rotation = std::polar(1.0, 2.0 * M_PI * dp);
       for (std::size_t j = 0; j < per_ms; ++j) {
-        const double t = static_cast<double>(k0 + static_cast<std::int64_t>(j)) / s_.fs_hz;
-        const double v = composite(code_chips(t));
+        const double v = composite(c0 + static_cast<double>(j) * dc);
         i_[m * per_ms + j] = static_cast<float>(v * phasor.real());
         q_[m * per_ms + j] = static_cast<float>(v * phasor.imag());
         phasor *= rotation;

@@ -10,25 +10,30 @@ namespace {
 constexpr int kRun = 1024;  // samples between exact restarts of the carrier phasor
 constexpr int kLength = galileo::kE1CodeLength_chips;
 
-/// Code position of a tap: chip index in [0, 4092) and the BOC(1,1) half (+1 first half).
+/// Code position of a tap: whole chip in [0, 4092) and the fraction of it, advanced by carries
+/// rather than floor() per sample; the BOC(1,1) subcarrier is +1 in a chip's first half.
 struct TapCursor {
-  double phase;  // chips, kept in [0, 4092)
+  int chip = 0;
+  double fraction = 0.0;
+  void set(double chips) {
+    double w = std::fmod(chips, static_cast<double>(kLength));
+    if (w < 0.0) w += kLength;
+    const double f = std::floor(w);
+    chip = static_cast<int>(f) % kLength;
+    fraction = w - f;
+  }
   double level(const galileo::E1CodeChips& code) const {
-    const double f = std::floor(phase);
-    const double sc = phase - f < 0.5 ? 1.0 : -1.0;
-    return sc * code[static_cast<std::size_t>(f)];
+    const double c = code[static_cast<std::size_t>(chip)];
+    return fraction < 0.5 ? c : -c;
   }
   void advance(double step) {
-    phase += step;
-    if (phase >= kLength) phase -= kLength;
+    fraction += step;
+    if (fraction >= 1.0) {  // steps are at most one chip
+      fraction -= 1.0;
+      if (++chip == kLength) chip = 0;
+    }
   }
 };
-
-double wrapped(double chips) {
-  double w = std::fmod(chips, static_cast<double>(kLength));
-  if (w < 0.0) w += kLength;
-  return w >= kLength ? 0.0 : w;
-}
 
 }  // namespace
 
@@ -44,7 +49,7 @@ E1CorrelatorSums correlate_portable(const Sample* x, int n, const E1CorrelatorSp
     std::complex<double> wipe = std::polar(1.0, -2.0 * M_PI * (phase0 - std::floor(phase0)));
     const double code0 = s.code_phase_chips + first * s.code_step_chips;
     TapCursor tap[5];
-    for (int t = 0; t < 5; ++t) tap[t].phase = wrapped(code0 + offsets[t]);
+    for (int t = 0; t < 5; ++t) tap[t].set(code0 + offsets[t]);
     for (int k = first; k < end; ++k) {
       const std::complex<double> v = std::complex<double>(x[k].real(), x[k].imag()) * wipe;
       wipe *= rotation;
