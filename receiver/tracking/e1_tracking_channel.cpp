@@ -172,7 +172,9 @@ std::optional<E1CorrelatorEpoch> E1TrackingChannel::finish_code_period() {
     symbols_.push_back(E1bSymbol{polarity * sums.data_prompt.real(), first, period, secondary_.has_value()});
   }
   double pilot_sign = 1.0;
-  if (state_ == E1ChannelState::secondary_sync && whole) {
+  // The search runs on phase-locked prompts only: with a frequency error left the sign of the
+  // wiped sum, which fixes the carrier phase from then on, would be a guess.
+  if (state_ == E1ChannelState::secondary_sync && whole && lock_.pll_locked()) {
     if (const auto found = sync_.add(period, sums.prompt)) {
       secondary_ = found;
       if (found->prompt_sign < 0) {
@@ -181,7 +183,6 @@ std::optional<E1CorrelatorEpoch> E1TrackingChannel::finish_code_period() {
         carrier_phase_cycles_ += 0.5;
         pilot_sign = -1.0;
       }
-      coherent_periods_ = cfg_.coherent_ms_after_sync / kPeriodMs;
       state_ = E1ChannelState::tracking;
     }
   }
@@ -223,6 +224,15 @@ void E1TrackingChannel::monitor(E1CorrelatorEpoch& e) {
   tracked_s_ += e.integration_s;
   lock_.add(e.prompt, e.noise, e.integration_s, e.noise_samples / cfg_.sample_rate_hz);
   if (state_ == E1ChannelState::pull_in && tracked_s_ >= cfg_.pull_in_s) state_ = E1ChannelState::secondary_sync;
+  if (state_ == E1ChannelState::secondary_sync && tracked_s_ >= cfg_.pull_in_s + cfg_.secondary_timeout_s)
+    state_ = E1ChannelState::lost;
+  // Longer integrations only with the phase locked: a frequency error the 4 ms loop still has
+  // would alias in them (20 ms integrations see only +-25 Hz). The lock window starts afresh
+  // with the new length, and so does the weak-signal timer.
+  if (state_ == E1ChannelState::tracking && coherent_periods_ == 1 && lock_.pll_locked()) {
+    coherent_periods_ = cfg_.coherent_ms_after_sync / kPeriodMs;
+    low_since_s_ = -1.0;
+  }
   if (cfg_.very_spacing_chips > 0.0) {
     const double jump = guard_.add(e.very_early, e.prompt, e.very_late);
     if (jump != 0.0) {

@@ -8,7 +8,8 @@
 //
 // States: pull_in (FLL-assisted Costas loop, pull_in_s), secondary_sync (Costas loop while the
 // CS25 phase is searched), tracking (secondary code wiped: the pilot has no sign ambiguity and
-// a pure PLL runs on coherent_ms_after_sync integrations), lost. At synchronisation the channel
+// a pure PLL runs, on 4 ms integrations until the phase lock flag is up, then on
+// coherent_ms_after_sync integrations), lost. At synchronisation the channel
 // turns its carrier phase by half a cycle where the Costas loop sat on the negative side, so
 // from then on the wiped pilot prompt is positive real, and the E1-B symbols' sign is absolute:
 // the ICD's composite signal sends E1-C in antiphase with E1-B, so a data symbol of logic 0
@@ -45,6 +46,9 @@ struct E1TrackingConfig {
   int coherent_ms_after_sync = 20;
   double pull_in_s = 0.3;  ///< FLL-assisted pull-in before the secondary code search
   int secondary_window_periods = 50;
+  /// No CS25 phase this long after pull-in (a Costas loop held on a false frequency, or no
+  /// E1-C there): loss of lock, for the owner to search again.
+  double secondary_timeout_s = 2.0;
   int side_peak_threshold = 20;  ///< net integrations for a bump jump
   int side_peak_max_jumps = 2;   ///< jumps before the channel declares loss
   double lost_cn0_dbhz = 25.0;   ///< below this (E1 total) for lost_after_s: loss of lock

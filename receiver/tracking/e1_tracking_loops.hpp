@@ -31,7 +31,7 @@ double boc11_dll_code_error_chips(const std::complex<double>& early, const std::
 struct E1LoopSettings {
   int pll_order = 2;  ///< 2 or 3
   /// 4 ms Costas phase with FLL assistance, before the secondary code is wiped.
-  LoopBandwidths pull_in{15.0, 10.0, 1.0, 0.08};
+  LoopBandwidths pull_in{15.0, 10.0, 1.0, 0.2};
   /// Pure PLL on the wiped pilot (no FLL).
   LoopBandwidths tracking{10.0, 0.0, 0.5, 0.0};
 };

@@ -27,6 +27,7 @@ struct E1SignalSpec {
   std::uint64_t seed = 5;
   /// E1-B symbol level (+1 / -1) of code period k (4 ms each); empty: all +1.
   std::function<int(std::int64_t)> symbol;
+  bool secondary_code = true;  ///< false: E1-C without CS25 (a signal no channel should sync to)
 };
 
 class E1Signal {
@@ -96,7 +97,8 @@ class E1Signal {
       symbol_ = s_.symbol ? s_.symbol(p) : 1;
     }
     const int symbol = symbol_;
-    const int secondary = galileo::e1c_secondary_chips()[static_cast<std::size_t>(((p % 25) + 25) % 25)];
+    const int secondary =
+        s_.secondary_code ? galileo::e1c_secondary_chips()[static_cast<std::size_t>(((p % 25) + 25) % 25)] : 1;
     return galileo::e1_composite(code_b_[chip] * symbol, code_c_[chip] * secondary, chips);
   }
 

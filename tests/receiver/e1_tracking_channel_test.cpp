@@ -193,6 +193,21 @@ TEST(E1TrackingChannel, DeclaresLossWhenNoJumpIsAllowed) {
   EXPECT_EQ(channel.side_peak_jumps(), 1);
 }
 
+TEST(E1TrackingChannel, DeclaresLossWhenNoSecondaryCodeIsFound) {
+  // A pilot without CS25: the channel locks its carrier but never finds a phase, and gives up.
+  E1SignalSpec spec;
+  spec.secondary_code = false;
+  E1Signal signal(spec);
+  E1TrackingConfig cfg = config_for(signal);
+  cfg.secondary_timeout_s = 0.5;
+  E1TrackingChannel channel(cfg, start_near(signal, 0.0, 5.0));
+  E1LoopController loops(spec.doppler0_hz + 5.0);
+  const RunResult r = track(signal, channel, loops, 1.0);
+  EXPECT_EQ(channel.state(), E1ChannelState::lost);
+  EXPECT_FALSE(channel.secondary_phase().has_value());
+  EXPECT_NEAR(r.epochs.back().first_sample + r.epochs.back().samples, 0.8 * spec.fs_hz, 0.01 * spec.fs_hz);
+}
+
 TEST(E1TrackingChannel, DeclaresLossOnNoise) {
   E1SignalSpec spec;
   spec.cn0_dbhz = -20.0;  // nothing there
