@@ -65,6 +65,12 @@ void InavNavigation::add(const InavPage& page) {
   }
 }
 
+std::optional<galileo::GalileoEphemeris> InavNavigation::ephemeris() const {
+  auto eph = assembler_.ephemeris();
+  if (eph && svid_ && eph->prn != *svid_) return std::nullopt;
+  return eph;
+}
+
 std::optional<double> InavNavigation::tow_at_code_period(std::int64_t code_period) const {
   if (!mark_) return std::nullopt;
   const double tow = mark_->tow_s + static_cast<double>(code_period - mark_->code_period) * galileo::kE1CodePeriod_s;

@@ -33,12 +33,15 @@ struct InavTimeMark {
 
 class InavNavigation {
  public:
+  /// `svid`: the satellite the channel tracks; an ephemeris whose word 4 names another one
+  /// (a channel caught on another satellite's signal) is withheld. nullopt: not checked.
+  explicit InavNavigation(std::optional<int> svid = std::nullopt) : svid_(svid) {}
   /// A CRC-checked page. Words that do not decode (a field out of its range) are counted and
   /// ignored.
   void add(const InavPage& page);
 
-  /// The ephemeris once words 1-4 of one IODnav and a word 5 are in.
-  std::optional<galileo::GalileoEphemeris> ephemeris() const { return assembler_.ephemeris(); }
+  /// The ephemeris once words 1-4 of one IODnav and a word 5 are in (and of the right SVID).
+  std::optional<galileo::GalileoEphemeris> ephemeris() const;
   std::optional<galileo::GgtoParameters> ggto() const { return ggto_; }
   std::optional<UtcParameters> utc() const { return utc_; }
   /// The latest time mark (from the latest word 0, 5 or 6).
@@ -52,6 +55,7 @@ class InavNavigation {
  private:
   void mark(const InavPage& page, int tow_s, std::optional<int> week);
 
+  std::optional<int> svid_;
   galileo::inav::EphemerisAssembler assembler_;
   std::optional<galileo::GgtoParameters> ggto_;
   std::optional<UtcParameters> utc_;
@@ -63,6 +67,8 @@ class InavNavigation {
 /// The whole chain for one channel: symbols in, page sync, page decoding, navigation.
 class InavDecoder {
  public:
+  /// `svid` as for InavNavigation.
+  explicit InavDecoder(std::optional<int> svid = std::nullopt) : navigation_(svid) {}
   /// One E1-B symbol (consecutive code periods).
   void add(const E1bSymbol& symbol);
   void add(const std::vector<E1bSymbol>& symbols) {

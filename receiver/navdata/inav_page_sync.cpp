@@ -9,19 +9,18 @@ using galileo::inav::kPagePartTotalSymbols;
 using galileo::inav::kSyncPattern;
 using galileo::inav::kSyncSymbols;
 constexpr int kMaxMissedInRow = 3;
+constexpr int kToleratedWhenLocked = 1;  // symbol errors in a pattern where one is expected
 constexpr auto kPart = static_cast<std::size_t>(kPagePartTotalSymbols);
 
 }  // namespace
 
-int InavPageSynchronizer::pattern_at(std::size_t index) const {
-  bool upright = true, inverted = true;
+int InavPageSynchronizer::pattern_at(std::size_t index, int tolerated) const {
+  int differences = 0;  // from the upright pattern; the inverted one differs in the others
   for (std::size_t k = 0; k < static_cast<std::size_t>(kSyncSymbols); ++k) {
     const bool zero = buffer_[index + k].soft > 0.0;  // logic 0 is a positive level
-    const bool expect_zero = kSyncPattern[k] == 0;
-    upright = upright && zero == expect_zero;
-    inverted = inverted && zero != expect_zero;
+    if (zero != (kSyncPattern[k] == 0)) ++differences;
   }
-  return upright ? 1 : inverted ? -1 : 0;
+  return differences <= tolerated ? 1 : kSyncSymbols - differences <= tolerated ? -1 : 0;
 }
 
 void InavPageSynchronizer::unlock() {
@@ -38,8 +37,8 @@ void InavPageSynchronizer::add(const E1bSymbol& symbol, std::vector<InavPagePart
   if (!locked_) {
     // Search: a pattern at the front confirmed by the same polarity one part later.
     if (buffer_.size() < kPart + kSyncSymbols) return;
-    const int first = pattern_at(0);
-    if (first != 0 && pattern_at(kPart) == first) {
+    const int first = pattern_at(0, 0);
+    if (first != 0 && pattern_at(kPart, 0) == first) {
       locked_ = true;
       polarity_ = first;
       missed_in_row_ = 0;
@@ -49,7 +48,7 @@ void InavPageSynchronizer::add(const E1bSymbol& symbol, std::vector<InavPagePart
     }
   }
   if (buffer_.size() < kPart) return;
-  const int seen = pattern_at(0);
+  const int seen = pattern_at(0, kToleratedWhenLocked);
   if (seen == 0) {
     ++missed_total_;
     if (++missed_in_row_ >= kMaxMissedInRow) {

@@ -3,11 +3,13 @@
 // page part is the 10-symbol pattern 0101100000 and 240 FEC symbols (signals/galileo/
 // inav_page.hpp). Until the channel's carrier phase is tied to the pilot the symbols' sign is
 // the Costas loop's guess, so the pattern is searched in either polarity; a match confirmed
-// by a second one a part (250 symbols) later fixes the part boundaries and the polarity.
+// by a second one a part (250 symbols) later fixes the part boundaries and the polarity (both
+// exact: one symbol error allowed in each would make a random lock 121 times likelier).
 // Locked, each part is handed on with its symbols turned to the true polarity (logic 0
-// positive). A pattern seen inverted at a part boundary (a half-cycle slip, or the channel's
-// polarity becoming absolute) switches the polarity; three boundaries in a row without the
-// pattern, or a break in the symbol stream, start the search again.
+// positive); at the boundaries the pattern may then have one symbol wrong. A pattern seen
+// inverted at a part boundary (a half-cycle slip, or the channel's polarity becoming
+// absolute) switches the polarity; three boundaries in a row without the pattern, or a break
+// in the symbol stream, start the search again.
 #include <cstdint>
 #include <deque>
 #include <vector>
@@ -35,8 +37,9 @@ class InavPageSynchronizer {
   int missed_patterns() const { return missed_total_; }
 
  private:
-  /// +1 / -1 when the 10 symbols from `index` are the pattern in that polarity, else 0.
-  int pattern_at(std::size_t index) const;
+  /// +1 / -1 when the 10 symbols from `index` are the pattern in that polarity with at most
+  /// `tolerated` symbols wrong, else 0.
+  int pattern_at(std::size_t index, int tolerated) const;
   void unlock();
 
   std::deque<E1bSymbol> buffer_;

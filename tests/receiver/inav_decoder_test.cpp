@@ -116,6 +116,17 @@ TEST(InavDecoder, CorruptedPagesAreCountedAndNeverUsed) {
   testing::expect_same_ephemeris(*decoder.navigation().ephemeris(), testing::inav_test_expected_ephemeris());
 }
 
+TEST(InavDecoder, WithholdsAnEphemerisOfAnotherSatellite) {
+  const std::vector<int> levels = inav_test_symbols({1, 2, 3, 4, 5});
+  InavDecoder mine(testing::kInavTestSvid), other(testing::kInavTestSvid + 1);
+  const std::vector<E1bSymbol> symbols = noisy_symbols(levels, 1.0, 0.2, 20, 5);
+  mine.add(symbols);
+  other.add(symbols);
+  EXPECT_TRUE(mine.navigation().ephemeris().has_value());
+  EXPECT_EQ(other.pages().counts().pages, 5);
+  EXPECT_FALSE(other.navigation().ephemeris().has_value());
+}
+
 TEST(InavDecoder, FindsNoPagesInNoise) {
   std::mt19937_64 rng(8);
   std::normal_distribution<double> noise(0.0, 1.0);
@@ -145,7 +156,8 @@ TEST(InavDecoder, DecodesTheEphemerisFromATrackedE1Channel) {
   start.doppler_hz = spec.doppler0_hz + 20.0;
   E1TrackingChannel channel(cfg, start);
   E1LoopController loops(start.doppler_hz);
-  InavDecoder decoder;
+  ASSERT_EQ(spec.prn, testing::kInavTestSvid);
+  InavDecoder decoder(spec.prn);
   const int blocks = (static_cast<int>(levels.size()) - kFirstSymbol) * 4 / 10 + 5;
   for (int b = 0; b < blocks; ++b) {
     channel.process(signal.next(10), [&](const E1CorrelatorEpoch& e) {

@@ -1,6 +1,6 @@
 #pragma once
 // An I/NAV message for the decoder tests: one satellite's ephemeris (E01's broadcast batch of
-// 2022-02-19 22:00, values within rounding of the fields' LSBs), word 5, word 6, word 10 and
+// 2022-02-19 22:00, values within rounding of the fields' LSBs, sent here as E11), word 5, word 6, word 10 and
 // spare words with the time, encoded into E1-B symbol levels page by page with the signal
 // layer's own encoders (signals/galileo/inav_words, inav_page, inav_fec).
 #include <cstdint>
@@ -16,9 +16,11 @@ namespace deepnav::testing {
 
 namespace inav = galileo::inav;
 
+constexpr int kInavTestSvid = 11;
+
 inline galileo::GalileoEphemeris inav_test_ephemeris() {
   galileo::GalileoEphemeris eph;
-  eph.prn = 1;
+  eph.prn = kInavTestSvid;
   eph.week = 1173;
   eph.iod_nav = 100;
   eph.toc_s = 597600.0;
