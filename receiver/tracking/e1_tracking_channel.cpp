@@ -12,6 +12,7 @@ namespace {
 
 constexpr double kPeriod = galileo::kE1CodeLength_chips;
 constexpr int kPeriodMs = 4;
+constexpr double kMinSampleRate_hz = 2.1e6;
 
 /// An untracked PRN's pilot code for the noise reference: the next PRN.
 int noise_reference_prn_e1(int prn) { return prn % galileo::kMaxPrn + 1; }
@@ -50,8 +51,10 @@ E1TrackingChannel::E1TrackingChannel(const E1TrackingConfig& config, const E1Cha
   if (start.satellite.system != GnssSystem::galileo)
     throw std::invalid_argument("E1 tracking: satellite " + start.satellite.to_string() +
                                 " is not a Galileo satellite");
-  if (!(cfg_.sample_rate_hz >= galileo::kE1CodeRate_cps))
-    throw std::invalid_argument("E1 tracking: sample_rate_hz must be at least 1.023e6");
+  if (!(cfg_.sample_rate_hz >= kMinSampleRate_hz))
+    throw std::invalid_argument("E1 tracking: sample_rate_hz must be at least 2.1e6 (a sample per BOC(1,1) half chip)");
+  if (!(cfg_.pull_in_s >= 0.0) || !(cfg_.secondary_timeout_s > 0.0) || !(cfg_.lost_after_s > 0.0))
+    throw std::invalid_argument("E1 tracking: pull_in_s must be >= 0, secondary_timeout_s and lost_after_s > 0");
   if (cfg_.coherent_ms_after_sync < kPeriodMs || cfg_.coherent_ms_after_sync > 100 ||
       cfg_.coherent_ms_after_sync % kPeriodMs != 0)
     throw std::invalid_argument("E1 tracking: coherent_ms_after_sync must be a multiple of 4 in 4..100, got " +

@@ -36,7 +36,9 @@
 namespace deepnav {
 
 struct E1TrackingConfig {
-  double sample_rate_hz = 4.092e6;  ///< at least 1.023 Msps; 4 Msps or more resolves BOC(1,1)
+  /// At least 2.1 Msps: a sample per BOC(1,1) half chip, with Doppler to spare (4 Msps or more
+  /// resolves the correlation peak's shape).
+  double sample_rate_hz = 4.092e6;
   double if_hz = 0.0;
   /// Early-late spacing: narrow, well inside the BOC(1,1) main peak's linear part (+-1/3 chip).
   double spacing_chips = 0.2;
@@ -50,7 +52,7 @@ struct E1TrackingConfig {
   /// E1-C there): loss of lock, for the owner to search again.
   double secondary_timeout_s = 2.0;
   int side_peak_threshold = 20;  ///< net integrations for a bump jump
-  int side_peak_max_jumps = 2;   ///< jumps before the channel declares loss
+  int side_peak_max_jumps = 2;   ///< jumps allowed; one more declares loss
   double lost_cn0_dbhz = 25.0;   ///< below this (E1 total) for lost_after_s: loss of lock
   double lost_after_s = 1.0;
   LockThresholds lock{1.5, 1.25, 29.0, 26.0, 5, 0.2};  ///< C/N0 thresholds on the E1 total

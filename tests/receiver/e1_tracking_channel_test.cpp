@@ -336,6 +336,9 @@ TEST(E1TrackingChannel, BadSettingsAreRejected) {
   cfg.spacing_chips = 0.8;
   EXPECT_THROW(E1TrackingChannel(cfg, start), std::invalid_argument);
   cfg = {};
+  cfg.sample_rate_hz = 2.0e6;
+  EXPECT_THROW(E1TrackingChannel(cfg, start), std::invalid_argument);
+  cfg = {};
   start.satellite = SatelliteId{GnssSystem::gps, 11};
   EXPECT_THROW(E1TrackingChannel(cfg, start), std::invalid_argument);
   start.satellite = SatelliteId{GnssSystem::galileo, 51};
