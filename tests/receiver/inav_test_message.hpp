@@ -1,0 +1,142 @@
+#pragma once
+// An I/NAV message for the decoder tests: one satellite's ephemeris (E01's broadcast batch of
+// 2022-02-19 22:00, values within rounding of the fields' LSBs, sent here as E11), word 5, word 6, word 10 and
+// spare words with the time, encoded into E1-B symbol levels page by page with the signal
+// layer's own encoders (signals/galileo/inav_words, inav_page, inav_fec).
+#include <cstdint>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "signals/galileo/galileo_ephemeris.hpp"
+#include "signals/galileo/inav_page.hpp"
+#include "signals/galileo/inav_words.hpp"
+
+namespace deepnav::testing {
+
+namespace inav = galileo::inav;
+
+constexpr int kInavTestSvid = 11;
+
+inline galileo::GalileoEphemeris inav_test_ephemeris() {
+  galileo::GalileoEphemeris eph;
+  eph.prn = kInavTestSvid;
+  eph.week = 1173;
+  eph.iod_nav = 100;
+  eph.toc_s = 597600.0;
+  eph.af0_s = -5.823274259456E-04;
+  eph.af1_sps = -7.318590178329E-12;
+  KeplerElements& o = eph.orbit;
+  o.toe_s = 597600.0;
+  o.crs_m = 3.634375000000E+01;
+  o.delta_n_radps = 3.581577758518E-09;
+  o.m0_rad = 3.119252175591E+00;
+  o.cuc_rad = 1.583248376846E-06;
+  o.e = 2.864745911211E-04;
+  o.cus_rad = 2.972781658173E-06;
+  o.sqrt_a = 5.440600259781E+03;
+  o.cic_rad = -5.029141902924E-08;
+  o.omega0_rad = 2.132966860803E+00;
+  o.cis_rad = -8.381903171539E-08;
+  o.i0_rad = 9.742233313979E-01;
+  o.crc_m = 2.851250000000E+02;
+  o.omega_rad = 3.812866368617E-01;
+  o.omega_dot_radps = -6.031679815103E-09;
+  o.idot_radps = 1.446488823494E-10;
+  eph.sisa_index = 107;
+  return eph;
+}
+
+/// GST time of week at the start of the message's first page.
+constexpr int kInavTestTow0 = 597590;
+
+/// Word 5 of the message, sent as page `page` (its TOW is that page's start).
+inline inav::IonoDelayHealthWord inav_test_word5(int page) {
+  inav::IonoDelayHealthWord w;
+  w.iono = {81.25, -2.4609375E-01, 3.753662109375E-03, {false, true, false, false, true}, true};
+  w.bgd_e1e5a_s = 2.328306436539E-10;
+  w.bgd_e1e5b_s = -4.656612873077E-10;
+  w.week = 1173;
+  w.tow_s = kInavTestTow0 + 2 * page;
+  return w;
+}
+
+inline UtcParameters inav_test_utc() {
+  return {-9.3132257462E-10, 8.881784197E-16, 0, 1173 % 256, 18, 137, 7, 18, true};
+}
+inline galileo::GgtoParameters inav_test_ggto() { return {5.908e-09, 3.552713679E-15, 86400, 1173 % 64, true}; }
+
+/// The word of I/NAV type `type` (0-6, 10) as page `page` of the message.
+inline inav::Word inav_test_word(int type, int page) {
+  const galileo::GalileoEphemeris eph = inav_test_ephemeris();
+  switch (type) {
+    case 0:
+      return inav::encode_spare_word({2, 1173, kInavTestTow0 + 2 * page});
+    case 5:
+      return inav::encode_iono_delay_health_word(inav_test_word5(page));
+    case 6:
+      return inav::encode_utc_word({inav_test_utc(), kInavTestTow0 + 2 * page});
+    case 10: {
+      inav::AlmanacBatch batch;
+      batch.ggto = inav_test_ggto();
+      return inav::encode_almanac_word(10, batch);
+    }
+    default:
+      return inav::encode_ephemeris_word(type, eph);
+  }
+}
+
+/// Symbol levels (+1 logic 0, -1 logic 1) of pages carrying `types` in order, page k starting
+/// at symbol 500 k.
+inline std::vector<int> inav_test_symbols(const std::vector<int>& types) {
+  std::vector<int> levels;
+  for (std::size_t k = 0; k < types.size(); ++k) {
+    inav::NominalPage page;
+    page.word = inav_test_word(types[k], static_cast<int>(k));
+    for (const inav::PagePartTransmission& part : inav::encode_page(page))
+      for (std::uint8_t s : part) levels.push_back(s ? -1 : 1);
+  }
+  return levels;
+}
+
+/// The ephemeris the words of the message carry (as the words' fields round them).
+inline galileo::GalileoEphemeris inav_test_expected_ephemeris() {
+  inav::EphemerisAssembler a;
+  for (int type = 1; type <= 5; ++type) a.add(inav_test_word(type, type));
+  return *a.ephemeris();
+}
+
+inline void expect_same_ephemeris(const galileo::GalileoEphemeris& a, const galileo::GalileoEphemeris& b) {
+  EXPECT_EQ(a.prn, b.prn);
+  EXPECT_EQ(a.week, b.week);
+  EXPECT_EQ(a.iod_nav, b.iod_nav);
+  EXPECT_EQ(a.toc_s, b.toc_s);
+  EXPECT_EQ(a.af0_s, b.af0_s);
+  EXPECT_EQ(a.af1_sps, b.af1_sps);
+  EXPECT_EQ(a.af2_sps2, b.af2_sps2);
+  EXPECT_EQ(a.bgd_e1e5a_s, b.bgd_e1e5a_s);
+  EXPECT_EQ(a.bgd_e1e5b_s, b.bgd_e1e5b_s);
+  EXPECT_EQ(a.sisa_index, b.sisa_index);
+  EXPECT_EQ(a.e1b.health, b.e1b.health);
+  EXPECT_EQ(a.e1b.data_invalid, b.e1b.data_invalid);
+  EXPECT_EQ(a.e5b.health, b.e5b.health);
+  const KeplerElements &x = a.orbit, &y = b.orbit;
+  EXPECT_EQ(x.toe_s, y.toe_s);
+  EXPECT_EQ(x.sqrt_a, y.sqrt_a);
+  EXPECT_EQ(x.e, y.e);
+  EXPECT_EQ(x.m0_rad, y.m0_rad);
+  EXPECT_EQ(x.delta_n_radps, y.delta_n_radps);
+  EXPECT_EQ(x.omega0_rad, y.omega0_rad);
+  EXPECT_EQ(x.omega_dot_radps, y.omega_dot_radps);
+  EXPECT_EQ(x.i0_rad, y.i0_rad);
+  EXPECT_EQ(x.idot_radps, y.idot_radps);
+  EXPECT_EQ(x.omega_rad, y.omega_rad);
+  EXPECT_EQ(x.cuc_rad, y.cuc_rad);
+  EXPECT_EQ(x.cus_rad, y.cus_rad);
+  EXPECT_EQ(x.crc_m, y.crc_m);
+  EXPECT_EQ(x.crs_m, y.crs_m);
+  EXPECT_EQ(x.cic_rad, y.cic_rad);
+  EXPECT_EQ(x.cis_rad, y.cis_rad);
+}
+
+}  // namespace deepnav::testing
