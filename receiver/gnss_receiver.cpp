@@ -216,8 +216,9 @@ struct GnssReceiver::Impl {
       return;
     }
     const std::map<int, Ephemeris> decoded = navigation.decoded();
-    const bool cold =
-        std::all_of(fix.used_prns.begin(), fix.used_prns.end(), [&](int prn) { return decoded.count(prn) > 0; });
+    const bool cold = std::all_of(fix.used_satellites.begin(), fix.used_satellites.end(), [&](const SatelliteId& s) {
+      return s.system == GnssSystem::gps && decoded.count(s.prn) > 0;
+    });
     first_fix = FirstFixOrigin{cold ? "cold" : "ephemerides given", ephemerides_complete_s};
   }
 

@@ -84,7 +84,13 @@ TEST(RinexObsReader, ReadsGpsL1AndCountsTheRest) {
   const ObservationReport& r = f.report;
   EXPECT_EQ(r.epochs, 2);
   EXPECT_DOUBLE_EQ(r.nominal_interval_s, 0.25);
-  EXPECT_EQ(r.skipped_satellite_records.at("E"), 1);
+  // Galileo E1 (C1C L1C D1C S1C declared for E) is read beside GPS.
+  EXPECT_TRUE(r.skipped_satellite_records.empty());
+  EXPECT_EQ(r.galileo_satellite_records, 1);
+  ASSERT_EQ(e.galileo.size(), 1u);
+  EXPECT_EQ(e.galileo[0].prn, 7);
+  EXPECT_DOUBLE_EQ(*e.galileo[0].pseudorange_m, 23205808.406);
+  EXPECT_DOUBLE_EQ(*e.galileo[0].doppler_hz, -585.078);
   EXPECT_EQ(r.skipped_gps_values.at("C2L"), 1);
   EXPECT_EQ(r.missing_doppler, 1);
   EXPECT_EQ(r.missing_phase, 1);
@@ -328,7 +334,7 @@ TEST(RinexObsReader, AnEpochWrittenTwiceIsSkippedAndCounted) {
   EXPECT_EQ(f.report.repeated_epochs, 3);
   EXPECT_EQ(f.report.first_repeated_epoch_line, 11);
   EXPECT_EQ(f.report.gps_satellite_records, 2);  // the repeats' records not counted again
-  EXPECT_EQ(f.report.skipped_satellite_records.at("E"), 1);
+  EXPECT_EQ(f.report.galileo_satellite_records, 1);
   ASSERT_EQ(f.report.warnings.size(), 1u);
   EXPECT_EQ(f.report.warnings[0], "test.obs:11: 3 epoch(s) repeat the epoch before them record for record: skipped");
   // The same time with other records is no repeat: an error.
