@@ -42,7 +42,8 @@ std::vector<ReceiverEpoch> receiver_epochs(const std::vector<GnssSystem>& system
     e.t_rx = s.t_rx.plus_seconds(k);
     std::vector<PseudorangeObservation> obs;
     for (const GnssSystem system : systems) {
-      const auto more = system == GnssSystem::gps ? s.gps_obs(*e.t_rx, noise_m, rng) : s.galileo_obs(*e.t_rx, noise_m, rng);
+      const auto more =
+          system == GnssSystem::gps ? s.gps_obs(*e.t_rx, noise_m, rng) : s.galileo_obs(*e.t_rx, noise_m, rng);
       obs.insert(obs.end(), more.begin(), more.end());
     }
     for (const PseudorangeObservation& o : obs) {
@@ -312,9 +313,8 @@ TEST(GnssRtklibCrossCheck, MixedFixAgreesWithRnx2rtkp) {
     ASSERT_TRUE(p.valid) << p.reason;
     EXPECT_GT(p.used_count(GnssSystem::galileo), 3);
     // RTKLIB tags its solution with the receiver time less its clock estimate.
-    const auto it = std::find_if(rtklib.begin(), rtklib.end(), [&](const auto& kv) {
-      return std::abs(kv.first - e.t.sow) < 0.01;
-    });
+    const auto it =
+        std::find_if(rtklib.begin(), rtklib.end(), [&](const auto& kv) { return std::abs(kv.first - e.t.sow) < 0.01; });
     ASSERT_NE(it, rtklib.end()) << "no RTKLIB solution at " << e.t.sow << "; see " << (dir / "mixed.pos.log");
     // RTKLIB used the Galileo satellites too (exact ranges would fix GPS alone as well).
     EXPECT_EQ(rtklib_satellites.at(it->first), static_cast<int>(p.used_satellites.size()));

@@ -83,8 +83,9 @@ TEST(GnssPvt, BothSystemsFixBetterThanGpsAlone) {
   // The errors scale as the PDOPs do (to the sampling spread of 300 epochs).
   EXPECT_LT(rms_both, 0.9 * rms_gps) << rms_both << " m against " << rms_gps << " m";
   EXPECT_NEAR(rms_both / rms_gps, pdop_both / pdop_gps, 0.1);
-  std::printf("3D rms error over %d epochs, 1 m noise: GPS+Galileo %.2f m (PDOP %.2f), GPS %.2f m (PDOP %.2f)\n",
-              kEpochs, rms_both, pdop_both, rms_gps, pdop_gps);
+  std::printf(
+      "3D rms error over %d epochs, 1 m noise: %zu GPS + %zu Galileo %.2f m (PDOP %.2f), GPS %.2f m (PDOP %.2f)\n",
+      kEpochs, s.gps.size(), s.galileo.size(), rms_both, pdop_both, rms_gps, pdop_gps);
 }
 
 TEST(GnssPvt, GalileoAloneFixesWithFourSatellites) {

@@ -35,7 +35,7 @@ struct GnssScene {
   std::map<int, Ephemeris> gps;
   std::map<int, galileo::GalileoEphemeris> galileo;
   GpsTime t_rx{2190, 604200.0};  ///< 2022-01-01 23:50 GPS time (receiver clock)
-  /// Helsinki: seven Galileo satellites above 10 degrees with a batch sent before the epoch.
+  /// Helsinki: six Galileo satellites above 10 degrees with a batch sent before the epoch.
   wgs84::Llh llh{60.1699 * kSceneDeg, 24.9384 * kSceneDeg, 20.0};
   Eigen::Vector3d r_ecef_m = wgs84::llh_to_ecef(llh);
   double clock_bias_s = 1e-4;
@@ -59,8 +59,7 @@ struct GnssScene {
       const double age = t_gst.seconds_since(galileo::GstTime{e.week, e.orbit.toe_s});
       if (age <= 0.0 || age > 3 * 3600.0) continue;
       const auto it = galileo.find(e.prn);
-      if (it != galileo.end() &&
-          t_gst.seconds_since(galileo::GstTime{it->second.week, it->second.orbit.toe_s}) <= age)
+      if (it != galileo.end() && t_gst.seconds_since(galileo::GstTime{it->second.week, it->second.orbit.toe_s}) <= age)
         continue;
       galileo[e.prn] = e;
     }
@@ -107,13 +106,11 @@ struct GnssScene {
     std::normal_distribution<double> n(0.0, 1.0);
     constexpr double c = gps::kSpeedOfLight_mps;
     const double offset_m = system == GnssSystem::galileo ? galileo_offset_m : 0.0;
-    const auto clock_at = [&](double dt) {
-      return c * (clock_bias_s + clock_drift_sps * dt) + offset_m;
-    };
+    const auto clock_at = [&](double dt) { return c * (clock_bias_s + clock_drift_sps * dt) + offset_m; };
     for (const auto& [prn, e] : ephs) {
       const double pr = pseudorange_m(e, t, clock_at(0.0));
-      const double rate = pseudorange_m(e, t.plus_seconds(0.5), clock_at(0.5)) -
-                          pseudorange_m(e, t.plus_seconds(-0.5), clock_at(-0.5));
+      const double rate =
+          pseudorange_m(e, t.plus_seconds(0.5), clock_at(0.5)) - pseudorange_m(e, t.plus_seconds(-0.5), clock_at(-0.5));
       PseudorangeObservation o;
       o.prn = prn;
       o.system = system;
