@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cstdio>
 #include <random>
+#include <tuple>
+#include <utility>
 
 #include "receiver/pvt/pvt_solver.hpp"
 #include "tests/receiver/gnss_scene.hpp"
@@ -192,6 +194,32 @@ TEST(GnssPvt, RaimDegreesOfFreedomCountTheOffsetState) {
   EXPECT_EQ(q.raim, RaimStatus::passed);
   EXPECT_GT(q.raim_threshold, 0.0);
   EXPECT_LT((q.r_ecef_m - s.r_ecef_m).norm(), 0.01);
+}
+
+TEST(GnssPvt, ASystemWhollyBelowTheMaskLeavesTheOtherSystemsFix) {
+  const GnssScene& s = scene();
+  std::mt19937_64 rng(8);
+  std::vector<PseudorangeObservation> obs = s.gps_obs(s.t_rx, 0.0, rng);
+  // The lowest Galileo satellite, and a mask just above it.
+  double lowest = 90.0;
+  int lowest_prn = 0;
+  for (const auto& [prn, e] : s.galileo) {
+    const double el = s.elevation_deg(GnssScene::state(e, s.t_rx).r_ecef_m);
+    if (el < lowest) std::tie(lowest, lowest_prn) = std::pair(el, prn);
+  }
+  for (const auto& o : s.galileo_obs(s.t_rx, 0.0, rng))
+    if (o.prn == lowest_prn) obs.push_back(o);
+  PvtConfig config;
+  config.elevation_mask_rad = (lowest + 0.5) * test::kSceneDeg;
+  PvtSolver solver(config, AtmosphereModels{IonosphereModel::none, TroposphereModel::none});
+  const PvtSolution p = solver.solve(s.t_rx, obs, s.gps, s.galileo, s.gps_nav.iono);
+  ASSERT_TRUE(p.valid) << p.reason;
+  ASSERT_GE(p.used_count(GnssSystem::gps), 5);
+  EXPECT_EQ(p.used_count(GnssSystem::galileo), 0);
+  EXPECT_FALSE(p.system_offset_m.has_value());
+  EXPECT_EQ(p.clock_system, GnssSystem::gps);
+  EXPECT_LT((p.r_ecef_m - s.r_ecef_m).norm(), 1e-3);
+  EXPECT_NEAR(p.clock_bias_m, c * s.clock_bias_s, 1e-3);
 }
 
 TEST(GnssPvt, AGalileoObservationWithoutEphemerisIsLeftOut) {
