@@ -286,7 +286,7 @@ TEST(GnssRtklibCrossCheck, MixedFixAgreesWithRnx2rtkp) {
   std::ofstream(dir / "opts.conf") << "pos1-posmode=single\npos1-frequency=l1\npos1-elmask=5\npos1-ionoopt=off\n"
                                       "pos1-tropopt=off\npos1-tidecorr=off\npos1-sateph=brdc\npos1-navsys=9\n"
                                       "out-solformat=xyz\nout-outhead=on\nout-timesys=gpst\nout-timeform=tow\n"
-                                      "out-timendec=3\n";
+                                      "out-timendec=3\nout-outstat=residual\n";
   const std::string cmd = fmt::format(
       "cd '{}' && rnx2rtkp -k opts.conf -sys G,E -o mixed.pos mixed.obs mixed.nav > mixed.pos.log 2>&1", dir.string());
   ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
@@ -302,6 +302,15 @@ TEST(GnssRtklibCrossCheck, MixedFixAgreesWithRnx2rtkp) {
       rtklib[tow] = {x, y, z};
       rtklib_satellites[tow] = ns;
     }
+  }
+  // $CLK,week,tow,status,receiver,GPS clock,GLONASS,Galileo,BeiDou offsets (ns).
+  std::map<double, std::pair<double, double>> rtklib_clocks_ns;
+  std::ifstream stat(dir / "mixed.pos.stat");
+  for (std::string line; std::getline(stat, line);) {
+    std::vector<std::string> f;
+    std::stringstream ss(line);
+    for (std::string item; std::getline(ss, item, ',');) f.push_back(item);
+    if (f.size() >= 9 && f[0] == "$CLK") rtklib_clocks_ns[std::stod(f[2])] = {std::stod(f[5]), std::stod(f[7])};
   }
   // Our fix of the same file read back.
   std::ifstream obs_in(dir / "mixed.obs");
@@ -321,6 +330,11 @@ TEST(GnssRtklibCrossCheck, MixedFixAgreesWithRnx2rtkp) {
     // Measured: a millimetre apart; a model difference of a decimetre would show.
     const double apart = (it->second - p.r_ecef_m).norm();
     EXPECT_LT(apart, 0.05) << "RTKLIB " << it->second.transpose() << " ours " << p.r_ecef_m.transpose();
+    // Its receiver clock and Galileo offset are ours too.
+    ASSERT_EQ(rtklib_clocks_ns.count(it->first), 1u) << "no $CLK record at " << it->first;
+    const auto [gps_ns, galileo_ns] = rtklib_clocks_ns.at(it->first);
+    EXPECT_NEAR(gps_ns * 1e-9 * gps::kSpeedOfLight_mps, p.clock_bias_m, 0.05);
+    EXPECT_NEAR(galileo_ns * 1e-9 * gps::kSpeedOfLight_mps, p.system_offset_m.value_or(0.0), 0.05);
     std::printf("tow %.0f: RTKLIB and deepnav GPS+Galileo fixes %.3f m apart (deepnav %.2f m from truth)\n", e.t.sow,
                 apart, (p.r_ecef_m - scene().r_ecef_m).norm());
   }
