@@ -273,7 +273,9 @@ struct AidedReceiver::Impl : ChannelAiding {
     double doppler_offset_s = 0.0;
     int dopplers = 0;
     for (const ChannelObservation& o : ep.observations) {
-      if (std::find(ep.pvt.used_prns.begin(), ep.pvt.used_prns.end(), o.prn) == ep.pvt.used_prns.end()) continue;
+      const SatelliteId sat{GnssSystem::gps, o.prn};
+      if (std::find(ep.pvt.used_satellites.begin(), ep.pvt.used_satellites.end(), sat) == ep.pvt.used_satellites.end())
+        continue;
       doppler_offset_s += o.doppler_offset_s;
       ++dopplers;
     }
@@ -457,7 +459,7 @@ struct AidedReceiver::Impl : ChannelAiding {
         out.filter_satellites = last_tight_satellites;
         break;
       case NavMode::loose:
-        out.filter_satellites = ep.pvt.valid ? static_cast<int>(ep.pvt.used_prns.size()) : 0;
+        out.filter_satellites = ep.pvt.valid ? static_cast<int>(ep.pvt.used_satellites.size()) : 0;
         break;
       default:
         out.filter_satellites = 0;

@@ -11,16 +11,18 @@ namespace deepnav::aiding {
 std::vector<RangeResidual> fix_residuals(const PvtSolution& fix, const std::map<int, double>& cn0_dbhz) {
   std::vector<RangeResidual> out;
   if (!fix.valid) return out;
-  for (int prn : fix.used_prns) {
-    const auto el = fix.elevation_rad.find(prn), az = fix.azimuth_rad.find(prn), res = fix.residuals_m.find(prn);
+  for (const SatelliteId& sat : fix.used_satellites) {
+    const auto el = fix.elevation_rad.find(sat), az = fix.azimuth_rad.find(sat), res = fix.residuals_m.find(sat);
     if (el == fix.elevation_rad.end() || az == fix.azimuth_rad.end() || res == fix.residuals_m.end()) continue;
     const double ce = std::cos(el->second);
     RangeResidual r;
     r.los = Eigen::Vector3d(ce * std::sin(az->second), ce * std::cos(az->second), std::sin(el->second));  // ENU
     r.elevation_rad = el->second;
-    if (const auto c = cn0_dbhz.find(prn); c != cn0_dbhz.end()) r.cn0_dbhz = c->second;
+    // C/N0 is keyed by GPS PRN (the tracked channels'); other systems keep the default.
+    if (const auto c = cn0_dbhz.find(sat.prn); sat.system == GnssSystem::gps && c != cn0_dbhz.end())
+      r.cn0_dbhz = c->second;
     r.residual_m = res->second;
-    if (const auto i = fix.ionosphere_m.find(prn); i != fix.ionosphere_m.end()) r.ionosphere_model_m = i->second;
+    if (const auto i = fix.ionosphere_m.find(sat); i != fix.ionosphere_m.end()) r.ionosphere_model_m = i->second;
     out.push_back(r);
   }
   return out;

@@ -30,7 +30,7 @@ int gnss_measurements(const AidedEpoch& a) {
     case NavMode::coast:
       return 0;
     default:
-      return a.receiver.pvt.valid ? static_cast<int>(a.receiver.pvt.used_prns.size()) : 0;
+      return a.receiver.pvt.valid ? static_cast<int>(a.receiver.pvt.used_satellites.size()) : 0;
   }
 }
 
@@ -66,13 +66,14 @@ void NavigationSession::hand_out(const ReceiverEpoch& ep, const AidedEpoch* a) {
   const bool from_filter = a && a->valid;
   const PvtSolution filtered = from_filter ? aided_solution(*a) : PvtSolution{};
   const UtcParameters utc = receiver().utc();
-  const NavigationEpoch e{ep,
-                          from_filter ? filtered : ep.pvt,
-                          from_filter,
-                          a ? to_string(a->mode) : "scalar",
-                          a ? a->filter_satellites : static_cast<int>(ep.pvt.used_prns.size()),
-                          a ? gnss_measurements(*a) : (ep.pvt.valid ? static_cast<int>(ep.pvt.used_prns.size()) : 0),
-                          utc.valid ? utc.delta_t_ls : 18};
+  const NavigationEpoch e{
+      ep,
+      from_filter ? filtered : ep.pvt,
+      from_filter,
+      a ? to_string(a->mode) : "scalar",
+      a ? a->filter_satellites : static_cast<int>(ep.pvt.used_satellites.size()),
+      a ? gnss_measurements(*a) : (ep.pvt.valid ? static_cast<int>(ep.pvt.used_satellites.size()) : 0),
+      utc.valid ? utc.delta_t_ls : 18};
   products_.on_epoch(e);
 }
 

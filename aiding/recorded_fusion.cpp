@@ -218,8 +218,9 @@ class FusionRun {
     re.pvt = solver_.solve(e.t, pvt_obs, fe.ephemerides, iono_);
     if (re.pvt.valid) ++report_.fixes;
     fe.trace.pvt_valid = re.pvt.valid;
-    fe.trace.pvt_satellites = static_cast<int>(re.pvt.used_prns.size());
-    for (const auto& [prn, el] : re.pvt.elevation_rad) satellite_trace(fe.trace, prn).elevation_deg = el * 180.0 / M_PI;
+    fe.trace.pvt_satellites = static_cast<int>(re.pvt.used_satellites.size());
+    for (const auto& [sat, el] : re.pvt.elevation_rad)
+      if (sat.system == GnssSystem::gps) satellite_trace(fe.trace, sat.prn).elevation_deg = el * 180.0 / M_PI;
     return fe;
   }
 
@@ -273,7 +274,7 @@ class FusionRun {
     const double vv = fe.dopplers ? pvt.dops.vdop * cfg_.doppler_sigma_mps : 100.0;
     const LooseFix fix{fe.t, pvt, cfg_.doppler_time_offset_s, Eigen::Vector3d(vh, vh, vv)};
     count_rows(fe, loose_update(*nav_filter_, fix, cfg_.coupling.pvt_position_sigma_scale_m));
-    return static_cast<int>(pvt.used_prns.size());
+    return static_cast<int>(pvt.used_satellites.size());
   }
 
   int tight(FusionEpoch& fe) {
@@ -362,7 +363,7 @@ class FusionRun {
     }
     const std::string mode_name = from_filter ? to_string(cfg_.mode) : "scalar";
     report_.seconds_in_mode[mode_name] += interval_s_;
-    const int pvt_satellites = static_cast<int>(re.pvt.used_prns.size());
+    const int pvt_satellites = static_cast<int>(re.pvt.used_satellites.size());
     const int measurements = from_filter && cfg_.mode == NavMode::tight ? filter_satellites : pvt_satellites;
     const NavigationEpoch ne{
         re, solution, from_filter, mode_name, from_filter ? filter_satellites : pvt_satellites, measurements, leap_};

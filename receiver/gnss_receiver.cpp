@@ -216,8 +216,9 @@ struct GnssReceiver::Impl {
       return;
     }
     const std::map<int, Ephemeris> decoded = navigation.decoded();
-    const bool cold =
-        std::all_of(fix.used_prns.begin(), fix.used_prns.end(), [&](int prn) { return decoded.count(prn) > 0; });
+    const bool cold = std::all_of(fix.used_satellites.begin(), fix.used_satellites.end(), [&](const SatelliteId& s) {
+      return s.system == GnssSystem::gps && decoded.count(s.prn) > 0;
+    });
     first_fix = FirstFixOrigin{cold ? "cold" : "ephemerides given", ephemerides_complete_s};
   }
 
@@ -383,7 +384,10 @@ struct GnssReceiver::Impl {
     for (std::size_t k = 0; k < sent.size(); ++k) {
       const ChannelObservation o = sent[k]->observe(*ep.t_rx, transmit_sow[k], s, fs, gap_since_epoch);
       ep.observations.push_back(o);
-      if (navigation.ephemeris(o.prn)) ranging.push_back({o.prn, o.pseudorange_m, o.doppler_hz, o.cn0_dbhz});
+      // The navigation data holds GPS ephemerides: a channel of another system ranges once
+      // its ephemerides are kept there too.
+      if (o.system == GnssSystem::gps && navigation.ephemeris(o.prn))
+        ranging.push_back({o.prn, o.pseudorange_m, o.doppler_hz, o.cn0_dbhz, o.system});
     }
     ep.pvt = pvt.solve(*ep.t_rx, ranging, navigation.in_use(), navigation.iono());
     note_first_fix(ep.pvt, false);

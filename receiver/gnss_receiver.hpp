@@ -80,10 +80,18 @@ struct ReceiverEpoch {
   bool coarse_time = false;
 };
 
-/// Each observed satellite's C/N0 (dB-Hz) at the epoch, by PRN.
+/// Each observed GPS satellite's C/N0 (dB-Hz) at the epoch, by PRN.
 inline std::map<int, double> cn0_by_prn(const ReceiverEpoch& epoch) {
   std::map<int, double> cn0;
-  for (const ChannelObservation& o : epoch.observations) cn0[o.prn] = o.cn0_dbhz;
+  for (const ChannelObservation& o : epoch.observations)
+    if (o.system == GnssSystem::gps) cn0[o.prn] = o.cn0_dbhz;
+  return cn0;
+}
+
+/// Each observed satellite's C/N0 (dB-Hz) at the epoch, GPS and Galileo.
+inline std::map<SatelliteId, double> cn0_by_satellite(const ReceiverEpoch& epoch) {
+  std::map<SatelliteId, double> cn0;
+  for (const ChannelObservation& o : epoch.observations) cn0[o.satellite()] = o.cn0_dbhz;
   return cn0;
 }
 

@@ -20,6 +20,7 @@
 #include "receiver/tracking/tracking_channel.hpp"
 #include "receiver/tracking/tracking_loops.hpp"
 #include "signals/ephemeris.hpp"
+#include "signals/satellite_id.hpp"
 
 namespace deepnav {
 
@@ -39,6 +40,9 @@ struct ChannelObservation {
   /// The Doppler's time minus the epoch's: it is a mean over the last kDopplerWindow_s of
   /// tracking, so it refers to the middle of that window (about -55 ms).
   double doppler_offset_s = 0.0;
+  GnssSystem system = GnssSystem::gps;  ///< whose satellite `prn` numbers
+
+  SatelliteId satellite() const { return {system, prn}; }
 };
 
 struct ChannelSnapshot {

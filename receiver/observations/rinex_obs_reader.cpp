@@ -77,9 +77,10 @@ auto with_context(const LineReader& reader, const std::string& context, F&& pars
   }
 }
 
-/// The observation types of the GPS system and where the L1 C/A ones are.
+/// The observation types of one system and where the L1 C/A (GPS) or E1 pilot (Galileo,
+/// the same C1C L1C D1C S1C codes) ones are.
 struct GpsTypes {
-  std::vector<std::string> all;  ///< every GPS observation type, in file order
+  std::vector<std::string> all;  ///< every observation type of the system, in file order
   int pseudorange = -1, phase = -1, doppler = -1, cn0 = -1;
 };
 
@@ -92,6 +93,11 @@ struct Header {
   /// SYS / SCALE FACTOR of the GPS types (RINEX 3): stored values are divided by it.
   std::map<std::string, double> gps_scale;
   std::optional<double> gps_scale_all;  ///< one factor for every GPS type
+  GpsTypes galileo;                     ///< RINEX 3 only
+  std::map<std::string, double> galileo_scale;
+  std::optional<double> galileo_scale_all;
+  /// Galileo satellites are read (RINEX 3 with an E1 C1C pseudorange type); else skipped.
+  bool reads_galileo() const { return !v2 && galileo.pseudorange >= 0; }
   std::optional<double> interval_s;
   int interval_line = 0;
   std::optional<Eigen::Vector3d> approx_position;
@@ -144,9 +150,14 @@ class HeaderRecords {
     if (scale_remaining_ > 0)
       reader_.fail(fmt::format("{} ends with {} scale factor types still announced", where, scale_remaining_));
     locate_l1(h_.gps, h_.v2);
+    if (h_.v2) h_.galileo = {};
+    locate_l1(h_.galileo, h_.v2);
     const char* record = h_.v2 ? "# / TYPES OF OBSERV" : "SYS / # / OBS TYPES";
+    // A Galileo-only file reads without GPS types.
+    if (h_.gps.all.empty() && h_.reads_galileo()) return;
     if (h_.gps.all.empty())
-      reader_.fail(fmt::format("no GPS observation types in {} ({}): nothing to read", where, record));
+      reader_.fail(fmt::format("no GPS observation types (nor Galileo ones with C1C) in {} ({}): nothing to read",
+                               where, record));
     if (h_.gps.pseudorange < 0)
       reader_.fail(fmt::format("the GPS observation types of {} have no L1 C/A pseudorange ({}); they are: {}", where,
                                h_.v2 ? "C1" : "C1C", fmt::join(h_.gps.all, " ")));
@@ -164,7 +175,9 @@ class HeaderRecords {
       remaining_ = with_context(reader_, fmt::format("SYS / # / OBS TYPES of '{}': number of types (columns 4-6)", sys),
                                 [&] { return parse_int(column(line, 3, 3), "number of types", 1, 999); });
       h_.type_counts[sys] = remaining_;
-      if (sys == 'G') h_.gps.all.clear();  // a new list replaces the one before
+      // A new list replaces the one before.
+      if (sys == 'G') h_.gps.all.clear();
+      if (sys == 'E') h_.galileo.all.clear();
       ++type_records_;
     }
     for (int k = 0; k < 13 && remaining_ > 0; ++k, --remaining_) {
@@ -175,6 +188,7 @@ class HeaderRecords {
                         "code such as C1C",
                         sys, k + 1, 8 + 4 * k, 10 + 4 * k, code));
       if (sys == 'G') h_.gps.all.push_back(code);
+      if (sys == 'E') h_.galileo.all.push_back(code);
     }
     continuing_ = remaining_ > 0 ? sys : 0;
   }
@@ -221,6 +235,7 @@ class HeaderRecords {
               : with_context(reader_, fmt::format("SYS / SCALE FACTOR of '{}': number of types (columns 9-10)", sys),
                              [&] { return parse_int(count, "number of types", 0, 99); });
       if (sys == 'G' && scale_remaining_ == 0) h_.gps_scale_all = scale_;
+      if (sys == 'E' && scale_remaining_ == 0) h_.galileo_scale_all = scale_;
     }
     for (int k = 0; k < 12 && scale_remaining_ > 0; ++k, --scale_remaining_) {
       const std::string code(trim(column(line, 11 + 4 * static_cast<std::size_t>(k), 3)));
@@ -229,6 +244,7 @@ class HeaderRecords {
             "SYS / SCALE FACTOR of '{}': type {} (columns {}-{}) is '{}', expected a 3-character code such as L1C", sys,
             k + 1, 12 + 4 * k, 14 + 4 * k, code));
       if (sys == 'G') h_.gps_scale[code] = scale_;
+      if (sys == 'E') h_.galileo_scale[code] = scale_;
     }
     scale_continuing_ = scale_remaining_ > 0 ? sys : 0;
   }
@@ -384,38 +400,43 @@ struct Parser {
     return gps_time_from_calendar(c);
   }
 
-  /// What a GPS type's stored values are divided by (SYS / SCALE FACTOR; 1 without one).
-  double scale_of(const std::string& type) const {
-    const auto it = h.gps_scale.find(type);
-    return it != h.gps_scale.end() ? it->second : h.gps_scale_all.value_or(1.0);
+  /// What a type's stored values are divided by (SYS / SCALE FACTOR; 1 without one).
+  double scale_of(char sys, const std::string& type) const {
+    const auto& scale = sys == 'E' ? h.galileo_scale : h.gps_scale;
+    const auto it = scale.find(type);
+    return it != scale.end() ? it->second : (sys == 'E' ? h.galileo_scale_all : h.gps_scale_all).value_or(1.0);
   }
 
   /// Reads one satellite's observations from `text` (all its fields in one string) and
-  /// files it: GPS L1 C/A kept, the rest counted.
+  /// files it: GPS L1 C/A and Galileo E1 kept, the rest counted.
   void take_satellite(std::string_view sat, const std::string& text, int line_no, ObservationEpoch& epoch, bool keep) {
     const char sys = system_letter(sat[0]);
-    if (sys != 'G') {
+    const bool galileo = sys == 'E' && h.reads_galileo();
+    if (sys != 'G' && !galileo) {
       if (keep) ++out.report.skipped_satellite_records[std::string(1, sys)];
       return;
     }
-    const int prn = with_context(reader, fmt::format("satellite '{}' number", sat),
-                                 [&] { return parse_int(sat.substr(1), "PRN", 1, 32); });
+    const int prn = with_context(reader, fmt::format("satellite '{}' number", sat), [&] {
+      return galileo ? parse_int(sat.substr(1), "SVID", 1, 36) : parse_int(sat.substr(1), "PRN", 1, 32);
+    });
+    const GpsTypes& types = galileo ? h.galileo : h.gps;
     GpsL1Observation o;
     o.prn = prn;
     bool lost = false;
-    for (std::size_t k = 0; k < h.gps.all.size(); ++k) {
+    for (std::size_t k = 0; k < types.all.size(); ++k) {
       const std::string what =
-          fmt::format("G{:02d} {} (line {} columns {}-{})", prn, h.gps.all[k], line_no,
+          fmt::format("{}{:02d} {} (line {} columns {}-{})", sys, prn, types.all[k], line_no,
                       (v2 ? 1 + 16 * (k % 5) : 4 + 16 * k), (v2 ? 14 + 16 * (k % 5) : 17 + 16 * k));
       Field f = parse_field(reader, text, 16 * k, what);
-      if (f.value) *f.value /= scale_of(h.gps.all[k]);
+      if (f.value) *f.value /= scale_of(sys, types.all[k]);
       const int i = static_cast<int>(k);
-      if (i == h.gps.pseudorange) o.pseudorange_m = f.value;
-      else if (i == h.gps.phase) o.carrier_phase_cycles = f.value;
-      else if (i == h.gps.doppler) o.doppler_hz = f.value;
-      else if (i == h.gps.cn0) o.cn0_dbhz = f.value;
+      if (i == types.pseudorange) o.pseudorange_m = f.value;
+      else if (i == types.phase) o.carrier_phase_cycles = f.value;
+      else if (i == types.doppler) o.doppler_hz = f.value;
+      else if (i == types.cn0) o.cn0_dbhz = f.value;
       else {
-        if (f.value && keep) ++out.report.skipped_gps_values[h.gps.all[k]];
+        if (f.value && keep)
+          ++(galileo ? out.report.skipped_galileo_values : out.report.skipped_gps_values)[types.all[k]];
         continue;
       }
       if (f.value && (f.lli & 1)) lost = true;
@@ -424,13 +445,13 @@ struct Parser {
     if (!o.pseudorange_m && !o.carrier_phase_cycles && !o.doppler_hz) return;  // no L1 C/A signal (only other bands)
     o.loss_of_lock = lost || epoch.flag == 1;
     ObservationReport& r = out.report;
-    ++r.gps_satellite_records;
+    ++(galileo ? r.galileo_satellite_records : r.gps_satellite_records);
     r.missing_pseudorange += !o.pseudorange_m;
     r.missing_phase += !o.carrier_phase_cycles;
     r.missing_doppler += !o.doppler_hz;
     r.missing_cn0 += !o.cn0_dbhz;
     r.loss_of_lock += o.loss_of_lock;
-    epoch.gps.push_back(o);
+    (galileo ? epoch.galileo : epoch.gps).push_back(o);
   }
 
   /// The satellite records of an epoch (flag 0, 1 or 6). RINEX 3: one line per satellite

@@ -1,8 +1,10 @@
 #pragma once
 // Reader of RINEX observation files, versions 2.10/2.11 and 3.00-3.05, for GPS L1 C/A:
-// C1C L1C D1C S1C (RINEX 3) or C1 L1 D1 S1 (RINEX 2), as the RINEX writer of
-// receiver/products/ writes them. Everything else (other systems, other GPS signals) is
-// skipped and counted in the report.
+// C1C L1C D1C S1C (RINEX 3) or C1 L1 D1 S1 (RINEX 2), and for Galileo E1 in RINEX 3 files
+// (C1C L1C D1C S1C of the E1-C pilot, as the RINEX writer of receiver/products/ writes
+// them; a file whose Galileo types lack C1C has its Galileo satellites skipped). Everything
+// else (other systems, other signals) is skipped and counted in the report. Clock jumps
+// are looked for in the GPS pseudoranges only.
 //
 // What recordings contain, and what the reader does with it:
 //  - the time system of the epochs (TIME OF FIRST OBS, columns 49-51; blank: the file's
@@ -44,7 +46,8 @@
 
 namespace deepnav {
 
-/// One GPS satellite's L1 C/A observables at an epoch (a missing one is nullopt).
+/// One GPS satellite's L1 C/A observables at an epoch (a missing one is nullopt); also a
+/// Galileo satellite's E1 ones (the same frequency and observables; prn is the SVID).
 struct GpsL1Observation {
   int prn = 0;
   std::optional<double> pseudorange_m;
@@ -59,7 +62,8 @@ struct ObservationEpoch {
   int line = 0;  ///< line of the epoch record in the file
   int flag = 0;  ///< 0 OK, 1 power failure before this epoch
   std::optional<double> receiver_clock_offset_s;
-  std::vector<GpsL1Observation> gps;  ///< satellites with any L1 C/A observable
+  std::vector<GpsL1Observation> gps;      ///< satellites with any L1 C/A observable
+  std::vector<GpsL1Observation> galileo;  ///< Galileo satellites with any E1 observable
   /// The receiver clock was re-set since the previous epoch: every pseudorange moved by
   /// this much more than the Dopplers say (m; 0 when it was not). clock_jump_m / c is the
   /// step of the clock bias.
@@ -89,7 +93,9 @@ struct ObservationReport {
   std::optional<Eigen::Vector3d> approx_position_ecef_m;
   std::map<std::string, int> skipped_satellite_records;  ///< by system ("E", "R", "S", "C", "J", "I")
   std::map<std::string, int> skipped_gps_values;         ///< GPS observables of other signals, by type
+  std::map<std::string, int> skipped_galileo_values;     ///< Galileo observables of other signals, by type
   int gps_satellite_records = 0;                         ///< GPS satellite records with an L1 C/A observable
+  int galileo_satellite_records = 0;                     ///< Galileo satellite records with an E1 observable
   int missing_pseudorange = 0, missing_doppler = 0, missing_phase = 0, missing_cn0 = 0;
   int loss_of_lock = 0;
   int power_failure_epochs = 0;      ///< flag 1

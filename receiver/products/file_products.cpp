@@ -30,9 +30,10 @@ void PvtCsvSink::on_epoch(const NavigationEpoch& e) {
   if (!p.valid) return;
   const Eigen::Vector3d v_ned = C_e_n(p.llh.lat_rad, p.llh.lon_rad) * p.v_ecef_mps;
   std::string excluded;
-  for (int prn : p.excluded_prns) {
+  // GPS satellites by number (as ever), others by their RINEX name (E11).
+  for (const SatelliteId& sat : p.excluded_satellites) {
     if (!excluded.empty()) excluded += ' ';
-    excluded += std::to_string(prn);
+    excluded += sat.system == GnssSystem::gps ? std::to_string(sat.prn) : sat.to_string();
   }
   file_.write(fmt::format(
       "{:.3f},{},{:.6f},1,{:.4f},{:.4f},{:.4f},{:.9f},{:.9f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{},{:.2f},{:.2f}"
@@ -40,7 +41,8 @@ void PvtCsvSink::on_epoch(const NavigationEpoch& e) {
       "{:.2f},{},{},{}\n",
       e.receiver.t_s, p.t.week, p.t.sow, p.r_ecef_m.x(), p.r_ecef_m.y(), p.r_ecef_m.z(), p.llh.lat_rad * kRadToDeg,
       p.llh.lon_rad * kRadToDeg, p.llh.height_m, v_ned.x(), v_ned.y(), v_ned.z(), p.clock_bias_m, p.clock_drift_mps,
-      p.used_prns.size(), p.dops.gdop, p.dops.pdop, p.dops.hdop, p.dops.vdop, excluded, e.mode, e.filter_satellites));
+      p.used_satellites.size(), p.dops.gdop, p.dops.pdop, p.dops.hdop, p.dops.vdop, excluded, e.mode,
+      e.filter_satellites));
 }
 
 TrackingCsvSink::TrackingCsvSink(const std::string& path) : FileSink(path) {
@@ -58,7 +60,7 @@ void TrackingCsvSink::on_correlation(const CorrelatorEpoch& e, const ChannelSnap
 
 void NmeaSink::on_epoch(const NavigationEpoch& e) {
   if (!e.solution.valid) return;
-  file_.write(nmea_sentences(e.solution, cn0_by_prn(e.receiver), e.leap_seconds, e.mode == "coast"));
+  file_.write(nmea_sentences(e.solution, cn0_by_satellite(e.receiver), e.leap_seconds, e.mode == "coast"));
 }
 
 TrackSink::TrackSink(const std::string& kml_path, const std::string& gpx_path, const std::string& name)
@@ -85,14 +87,15 @@ void TrackSink::abandon() noexcept {
   gpx_.fail();
 }
 
-RinexObsSink::RinexObsSink(const std::string& path, double interval_s) : file_(path) {
+RinexObsSink::RinexObsSink(const std::string& path, double interval_s, std::vector<GnssSystem> systems) : file_(path) {
   header_.interval_s = interval_s;
+  header_.systems = std::move(systems);
 }
 
 void RinexObsSink::write_header(const Eigen::Vector3d& approx_position_ecef_m) {
   header_.approx_position_ecef_m = approx_position_ecef_m;
   file_.write(rinex3_observation_header(header_, first_observation_));
-  for (const ReceiverEpoch& held : held_) file_.write(rinex3_observation_epoch(held));
+  for (const ReceiverEpoch& held : held_) file_.write(rinex3_observation_epoch(held, header_.systems));
   held_.clear();
   held_.shrink_to_fit();
   header_written_ = true;
@@ -100,7 +103,7 @@ void RinexObsSink::write_header(const Eigen::Vector3d& approx_position_ecef_m) {
 
 void RinexObsSink::on_epoch(const NavigationEpoch& e) {
   if (!first_observation_ && e.receiver.t_rx) first_observation_ = e.receiver.t_rx;
-  if (header_written_) return file_.write(rinex3_observation_epoch(e.receiver));
+  if (header_written_) return file_.write(rinex3_observation_epoch(e.receiver, header_.systems));
   held_.push_back(e.receiver);
   if (e.solution.valid) write_header(e.solution.r_ecef_m);
 }
@@ -122,13 +125,14 @@ std::vector<std::string> file_product_names() {
 }
 
 std::vector<std::unique_ptr<ProductSink>> file_products(const std::string& out_dir, const std::string& track_name,
-                                                        double observation_interval_s) {
+                                                        double observation_interval_s,
+                                                        const std::vector<GnssSystem>& systems) {
   const auto path = [&](const char* name) { return (std::filesystem::path(out_dir) / name).string(); };
   std::vector<std::unique_ptr<ProductSink>> sinks;
   sinks.push_back(std::make_unique<PvtCsvSink>(path("pvt.csv")));
   sinks.push_back(std::make_unique<TrackingCsvSink>(path("tracking.csv")));
   sinks.push_back(std::make_unique<RinexNavSink>(path("nav.rnx")));
-  sinks.push_back(std::make_unique<RinexObsSink>(path("obs.rnx"), observation_interval_s));
+  sinks.push_back(std::make_unique<RinexObsSink>(path("obs.rnx"), observation_interval_s, systems));
   sinks.push_back(std::make_unique<NmeaSink>(path("fixes.nmea")));
   sinks.push_back(std::make_unique<TrackSink>(path("track.kml"), path("track.gpx"), track_name));
   return sinks;

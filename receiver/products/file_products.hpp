@@ -62,7 +62,8 @@ class TrackSink : public ProductSink {
 
 class RinexObsSink : public ProductSink {
  public:
-  RinexObsSink(const std::string& path, double interval_s);
+  /// `systems`: those the receiver tracks (the file declares them all from its header on).
+  RinexObsSink(const std::string& path, double interval_s, std::vector<GnssSystem> systems = {GnssSystem::gps});
   void on_epoch(const NavigationEpoch& e) override;
   void finish(const NavData&) override;
   void abandon() noexcept override { file_.fail(); }
@@ -86,8 +87,10 @@ class RinexNavSink : public FileSink {
 /// The files of file_products(), in its order.
 std::vector<std::string> file_product_names();
 
-/// All of the above in `out_dir`, named as listed.
+/// All of the above in `out_dir`, named as listed; `systems`: those the receiver tracks
+/// (what obs.rnx declares).
 std::vector<std::unique_ptr<ProductSink>> file_products(const std::string& out_dir, const std::string& track_name,
-                                                        double observation_interval_s);
+                                                        double observation_interval_s,
+                                                        const std::vector<GnssSystem>& systems = {GnssSystem::gps});
 
 }  // namespace deepnav

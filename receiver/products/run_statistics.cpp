@@ -39,7 +39,7 @@ void RunStatistics::on_epoch(const NavigationEpoch& e) {
   ++fixes_;
   if (!first_fix_s_) first_fix_s_ = e.receiver.t_s;
   pdop_.values.push_back(p.dops.pdop);
-  satellites_.values.push_back(static_cast<double>(p.used_prns.size()));
+  satellites_.values.push_back(static_cast<double>(p.used_satellites.size()));
   if (!truth_) return;
   if (const auto t = truth_->at(e.receiver.t_s)) {
     const Eigen::Vector3d d = C_e_n(p.llh.lat_rad, p.llh.lon_rad) * (p.r_ecef_m - t->r_ecef_m);

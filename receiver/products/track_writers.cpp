@@ -36,7 +36,7 @@ std::string gpx_point(const PvtSolution& f, int leap_seconds) {
       "<trkpt lat=\"{:.9f}\" lon=\"{:.9f}\"><ele>{:.3f}</ele><time>{:04d}-{:02d}-{:02d}T{:02d}:{:02d}:{:06.3f}Z</time>"
       "<sat>{}</sat><pdop>{:.2f}</pdop></trkpt>\n",
       f.llh.lat_rad * kRadToDeg, f.llh.lon_rad * kRadToDeg, f.llh.height_m, t.year, t.month, t.day, t.hour, t.minute,
-      t.second, f.used_prns.size(), f.dops.pdop);
+      t.second, f.used_satellites.size(), f.dops.pdop);
 }
 
 std::string gpx_footer() { return "</trkseg>\n</trk>\n</gpx>\n"; }

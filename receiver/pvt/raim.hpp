@@ -3,10 +3,11 @@
 // fault detection test and the identification statistic of fault detection and exclusion
 // (FDE), after Brown (1992) and Walter & Enge (1995).
 //
-// Detection: with n satellites and the 4 unknowns (position, clock), the weighted sum of
-// squared residuals r' W r is chi-square with n - 4 degrees of freedom when every
-// pseudorange error is zero-mean Gaussian with the modelled sigma; a fault is declared
-// when it exceeds the quantile at the configured false-alarm probability. Needs n >= 5.
+// Detection: with n satellites and m unknowns (position and one clock: 4; position, the GPS
+// clock and the Galileo offset of a two-system fix: 5), the weighted sum of squared
+// residuals r' W r is chi-square with n - m degrees of freedom when every pseudorange
+// error is zero-mean Gaussian with the modelled sigma; a fault is declared when it exceeds
+// the quantile at the configured false-alarm probability. Needs n >= m + 1.
 //
 // Identification: the post-fit residual covariance is C_r = (I - H (H'WH)^-1 H'W) W^-1,
 // so the standardised residual of satellite i is r_i / sqrt(C_r,ii). Under a single fault
@@ -21,7 +22,7 @@ namespace deepnav {
 double chi_square_threshold(int dof, double false_alarm_probability);
 
 struct ResidualTest {
-  int dof = 0;                   ///< n - 4
+  int dof = 0;                   ///< n - m
   double statistic = 0.0;        ///< r' W r (dimensionless)
   double threshold = 0.0;        ///< chi-square quantile at the false-alarm probability
   bool fault_detected = false;   ///< statistic > threshold
@@ -30,8 +31,8 @@ struct ResidualTest {
   Eigen::Index worst_row = -1;
 };
 
-/// The test for design matrix `H` (n x 4: line-of-sight rows and the clock column),
-/// weights `w` = 1 / sigma^2 (1/m^2) and post-fit residuals `r` (m). Needs n >= 5 rows.
+/// The test for design matrix `H` (n x m: line-of-sight rows and the clock columns, m 4 or
+/// 5), weights `w` = 1 / sigma^2 (1/m^2) and post-fit residuals `r` (m). Needs n >= m + 1.
 ResidualTest residual_test(const Eigen::MatrixXd& H, const Eigen::VectorXd& w, const Eigen::VectorXd& r,
                            double false_alarm_probability);
 

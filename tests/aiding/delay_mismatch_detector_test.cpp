@@ -98,11 +98,12 @@ TEST(DelayMismatchDetector, NeedsItsFixesAndSixSatellites) {
 TEST(DelayMismatchDetector, FixResidualsCarryTheFixsLookAngles) {
   PvtSolution fix;
   fix.valid = true;
-  fix.used_prns = {3, 7};
-  fix.elevation_rad = {{3, 0.5}, {7, 1.0}};
-  fix.azimuth_rad = {{3, 0.0}, {7, M_PI / 2}};
-  fix.residuals_m = {{3, 1.5}, {7, -0.5}};
-  fix.ionosphere_m = {{3, 7.0}};
+  const SatelliteId g3{GnssSystem::gps, 3}, g7{GnssSystem::gps, 7};
+  fix.used_satellites = {g3, g7};
+  fix.elevation_rad = {{g3, 0.5}, {g7, 1.0}};
+  fix.azimuth_rad = {{g3, 0.0}, {g7, M_PI / 2}};
+  fix.residuals_m = {{g3, 1.5}, {g7, -0.5}};
+  fix.ionosphere_m = {{g3, 7.0}};
   const auto rows = fix_residuals(fix, {{3, 40.0}});
   ASSERT_EQ(rows.size(), 2u);
   EXPECT_NEAR(rows[0].los.y(), std::cos(0.5), 1e-12);  // north at azimuth 0

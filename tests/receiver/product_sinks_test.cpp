@@ -34,7 +34,7 @@ ReceiverEpoch epoch_at(double t_s, bool with_fix) {
     e.pvt.t = *e.t_rx;
     e.pvt.llh = {37.5 * M_PI / 180, 127.0 * M_PI / 180, 50.0 + t_s};
     e.pvt.r_ecef_m = wgs84::llh_to_ecef(e.pvt.llh);
-    e.pvt.used_prns = {7, 10, 12, 23};
+    for (int prn : {7, 10, 12, 23}) e.pvt.used_satellites.push_back({GnssSystem::gps, prn});
   }
   return e;
 }

@@ -15,10 +15,11 @@ PvtSolution sample_fix() {
   p.t = GpsTime{2190, 525618.0};
   p.llh = {37.5665 * M_PI / 180, 126.978 * M_PI / 180, 40.25};
   p.r_ecef_m = wgs84::llh_to_ecef(p.llh);
-  p.used_prns = {10, 23, 24, 12, 25};
-  for (int prn : p.used_prns) {
-    p.elevation_rad[prn] = 0.5;
-    p.azimuth_rad[prn] = 1.0;
+  for (int prn : {10, 23, 24, 12, 25}) {
+    const SatelliteId sat{GnssSystem::gps, prn};
+    p.used_satellites.push_back(sat);
+    p.elevation_rad[sat] = 0.5;
+    p.azimuth_rad[sat] = 1.0;
   }
   p.dops = {2.0, 1.8, 1.0, 1.5, 0.9};
   return p;
@@ -26,7 +27,7 @@ PvtSolution sample_fix() {
 
 TEST(Nmea, ChecksumAndFields) {
   EXPECT_EQ(nmea_checksum("GPGGA,123519,4807.038,N,01131.000,E,1,08,0.9,545.4,M,46.9,M,,"), "*47");
-  const std::string s = nmea_sentences(sample_fix(), {{10, 45.2}}, 18);
+  const std::string s = nmea_sentences(sample_fix(), {{{GnssSystem::gps, 10}, 45.2}}, 18);
   // 2022-01-01 02:00:18 GPS = 02:00:00 UTC.
   EXPECT_NE(s.find("$GPGGA,020000.00,3733.99000,N,12658.68000,E,1,05,1.0,40.25,M"), std::string::npos) << s;
   EXPECT_NE(s.find("$GPRMC,020000.00,A,"), std::string::npos);
@@ -46,8 +47,8 @@ TEST(Nmea, ChecksumAndFields) {
 }
 
 TEST(Nmea, AnInsCarriedSolutionIsWrittenAsDeadReckoning) {
-  const std::string gnss = nmea_sentences(sample_fix(), {{10, 45.2}}, 18);
-  const std::string coast = nmea_sentences(sample_fix(), {{10, 45.2}}, 18, true);
+  const std::string gnss = nmea_sentences(sample_fix(), {{{GnssSystem::gps, 10}, 45.2}}, 18);
+  const std::string coast = nmea_sentences(sample_fix(), {{{GnssSystem::gps, 10}, 45.2}}, 18, true);
   EXPECT_NE(coast.find("$GPGGA,020000.00,3733.99000,N,12658.68000,E,6,05,"), std::string::npos) << coast;
   EXPECT_NE(coast.find(",010122,,,E*"), std::string::npos) << coast;
   EXPECT_NE(gnss.find(",010122,,,A*"), std::string::npos) << gnss;

@@ -15,6 +15,13 @@ namespace {
 
 constexpr double kDeg = M_PI / 180.0;
 
+/// The numbers of a list of GPS satellites.
+std::vector<int> prns(const std::vector<SatelliteId>& satellites) {
+  std::vector<int> out;
+  for (const SatelliteId& s : satellites) out.push_back(s.prn);
+  return out;
+}
+
 struct Scene {
   NavData nav;
   std::map<int, Ephemeris> ephs;
@@ -63,7 +70,7 @@ TEST(PvtSolver, ExactPseudorangesGiveTheTruePositionClockAndVelocity) {
     // The Doppler model leaves out the atmosphere rates (mm/s).
     EXPECT_LT((p.v_ecef_mps - s.v_true).norm(), 0.01);
     EXPECT_NEAR(p.clock_drift_mps, gps::kSpeedOfLight_mps * 5e-7, 0.01);
-    EXPECT_TRUE(p.excluded_prns.empty());
+    EXPECT_TRUE(prns(p.excluded_satellites).empty());
     EXPECT_GT(p.dops.pdop, 1.0);
     EXPECT_LT(p.dops.pdop, 5.0);
   }
@@ -85,8 +92,8 @@ TEST(PvtSolver, AFaultySatelliteIsExcluded) {
   PvtSolver solver;
   const PvtSolution p = solver.solve(GpsTime{2190, 525600.0}, s.obs, s.ephs, s.nav.iono);
   ASSERT_TRUE(p.valid);
-  ASSERT_EQ(p.excluded_prns.size(), 1u);
-  EXPECT_EQ(p.excluded_prns[0], faulty);
+  ASSERT_EQ(prns(p.excluded_satellites).size(), 1u);
+  EXPECT_EQ(prns(p.excluded_satellites)[0], faulty);
   EXPECT_LT((p.r_ecef_m - s.r_true).norm(), 5.0);
 }
 
@@ -153,7 +160,7 @@ TEST(PvtSolverRaim, NoFaultIsRarelyExcludedAtTheConfiguredFalseAlarmRate) {
     const GpsTime t = s.t0.plus_seconds(k);
     const PvtSolution p = solver.solve(t, s.observe(t, rng), s.ephs, s.nav.iono);
     ASSERT_TRUE(p.valid || p.raim == RaimStatus::failed) << p.reason;
-    excluded_epochs += !p.excluded_prns.empty();
+    excluded_epochs += !prns(p.excluded_satellites).empty();
     failed += p.raim == RaimStatus::failed;
     if (p.valid) {
       EXPECT_LT(s.error_3d_m(p), 10.0) << k;
@@ -187,19 +194,20 @@ TEST(PvtSolverRaim, AStepFaultIsExcludedAtItsFirstEpoch) {
     const PvtSolution p = fde.solve(t, obs, s.ephs, s.nav.iono);
     const PvtSolution q = detection_only.solve(t, obs, s.ephs, s.nav.iono);
     if (k < kStep) {
-      excluded_before_step += !p.excluded_prns.empty();
+      excluded_before_step += !prns(p.excluded_satellites).empty();
       continue;
     }
     ASSERT_TRUE(p.valid) << k << ": " << p.reason;
     if (k == kStep) {  // per-epoch RAIM: at once
       EXPECT_EQ(p.raim, RaimStatus::excluded);
-      EXPECT_EQ(p.excluded_prns, std::vector<int>{faulty});
+      EXPECT_EQ(prns(p.excluded_satellites), std::vector<int>{faulty});
     }
-    excluded_after_step += contains(p.excluded_prns, faulty);
-    other_exclusions += static_cast<int>(p.excluded_prns.size()) - contains(p.excluded_prns, faulty);
-    EXPECT_FALSE(contains(p.used_prns, faulty));
+    excluded_after_step += contains(prns(p.excluded_satellites), faulty);
+    other_exclusions +=
+        static_cast<int>(prns(p.excluded_satellites).size()) - contains(prns(p.excluded_satellites), faulty);
+    EXPECT_FALSE(contains(prns(p.used_satellites), faulty));
     // Excluding the one faulty satellite leaves exactly the fault-free fix of the others.
-    if (p.excluded_prns.size() == 1) {
+    if (prns(p.excluded_satellites).size() == 1) {
       EXPECT_LT((p.r_ecef_m - reference.r_ecef_m).norm(), 1e-3) << k;
     }
     worst_fde_m = std::max(worst_fde_m, s.error_3d_m(p));
@@ -248,8 +256,8 @@ TEST(PvtSolverRaim, TwoFaultsAreBothExcluded) {
     const PvtSolution p = solver.solve(t, obs, s.ephs, s.nav.iono);
     ASSERT_TRUE(p.valid) << k << ": " << p.reason;
     EXPECT_EQ(p.raim, RaimStatus::excluded);
-    EXPECT_EQ(p.excluded_prns.size(), 2u) << k;
-    both += contains(p.excluded_prns, a) && contains(p.excluded_prns, b);
+    EXPECT_EQ(prns(p.excluded_satellites).size(), 2u) << k;
+    both += contains(prns(p.excluded_satellites), a) && contains(prns(p.excluded_satellites), b);
     EXPECT_LT((p.r_ecef_m - reference.r_ecef_m).norm(), 1e-3) << k;
     worst_m = std::max(worst_m, s.error_3d_m(p));
     sum2 += std::pow(s.error_3d_m(p), 2);
@@ -274,7 +282,7 @@ TEST(PvtSolverRaim, AFaultThatCannotBeExcludedWithholdsTheFix) {
   const PvtSolution p = solver.solve(s.t0, obs, s.ephs, s.nav.iono);
   EXPECT_FALSE(p.valid);
   EXPECT_EQ(p.raim, RaimStatus::failed);
-  EXPECT_TRUE(p.excluded_prns.empty());
+  EXPECT_TRUE(prns(p.excluded_satellites).empty());
   EXPECT_NE(p.reason.find("RAIM: fault detected"), std::string::npos) << p.reason;
   EXPECT_NE(p.reason.find("too few satellites"), std::string::npos) << p.reason;
   EXPECT_GT(p.raim_statistic, p.raim_threshold);

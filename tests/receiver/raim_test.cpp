@@ -67,5 +67,40 @@ TEST(Raim, TheFaultySatelliteHasTheLargestStandardisedResidual) {
   EXPECT_THROW(residual_test(H.topRows(4), w.head(4), w.head(4), 1e-3), std::invalid_argument);
 }
 
+TEST(Raim, AnInterSystemOffsetColumnCostsADegreeOfFreedom) {
+  // The same geometry with its last three rows from a second system: a column of ones for
+  // the offset of that system's clock.
+  const Eigen::MatrixXd H4 = geometry();
+  Eigen::MatrixXd H(8, 5);
+  H << H4, Eigen::VectorXd::Zero(8);
+  H.bottomRows(3).col(4).setOnes();
+  const Eigen::VectorXd w = Eigen::VectorXd::Ones(8);
+  const Eigen::MatrixXd P = H * (H.transpose() * H).inverse() * H.transpose();
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> n(0.0, 1.0);
+  Eigen::VectorXd sum2 = Eigen::VectorXd::Zero(8);
+  int detections = 0;
+  constexpr int kRuns = 20000;
+  for (int k = 0; k < kRuns; ++k) {
+    Eigen::VectorXd e(8);
+    for (int i = 0; i < 8; ++i) e(i) = n(rng);
+    const ResidualTest t = residual_test(H, w, e - P * e, 1e-2);
+    EXPECT_EQ(t.dof, 3);
+    sum2 += t.standardised.cwiseAbs2();
+    detections += t.fault_detected;
+  }
+  for (int i = 0; i < 8; ++i) EXPECT_NEAR(sum2(i) / kRuns, 1.0, 0.05) << i;
+  EXPECT_NEAR(detections / double(kRuns), 1e-2, 3e-3);
+  // A fault on a satellite of the second system is found as on one of the first.
+  for (int faulty : {1, 6}) {
+    Eigen::VectorXd e = Eigen::VectorXd::Zero(8);
+    e(faulty) = 30.0;
+    const ResidualTest t = residual_test(H, w, e - P * e, 1e-3);
+    EXPECT_TRUE(t.fault_detected) << faulty;
+    EXPECT_EQ(t.worst_row, faulty);
+  }
+  EXPECT_THROW(residual_test(H.topRows(5), w.head(5), w.head(5), 1e-3), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace deepnav

@@ -84,7 +84,13 @@ TEST(RinexObsReader, ReadsGpsL1AndCountsTheRest) {
   const ObservationReport& r = f.report;
   EXPECT_EQ(r.epochs, 2);
   EXPECT_DOUBLE_EQ(r.nominal_interval_s, 0.25);
-  EXPECT_EQ(r.skipped_satellite_records.at("E"), 1);
+  // Galileo E1 (C1C L1C D1C S1C declared for E) is read beside GPS.
+  EXPECT_TRUE(r.skipped_satellite_records.empty());
+  EXPECT_EQ(r.galileo_satellite_records, 1);
+  ASSERT_EQ(e.galileo.size(), 1u);
+  EXPECT_EQ(e.galileo[0].prn, 7);
+  EXPECT_DOUBLE_EQ(*e.galileo[0].pseudorange_m, 23205808.406);
+  EXPECT_DOUBLE_EQ(*e.galileo[0].doppler_hz, -585.078);
   EXPECT_EQ(r.skipped_gps_values.at("C2L"), 1);
   EXPECT_EQ(r.missing_doppler, 1);
   EXPECT_EQ(r.missing_phase, 1);
@@ -320,6 +326,37 @@ TEST(RinexObsReader, ScaleFactorOfTheHeaderDividesTheStoredValues) {
             "test.obs:7: SYS / SCALE FACTOR of 'G': factor 20 (columns 3-6) is not 1, 10, 100 or 1000");
 }
 
+TEST(RinexObsReader, ReadsAGalileoOnlyFileWithItsScaleFactorsAndNamesBadFields) {
+  std::string h =
+      pad(fmt::format("{:>9}{:11}{:<20}{:<20}", "3.04", "", "OBSERVATION DATA", "E: GALILEO"), "RINEX VERSION / TYPE");
+  h += pad("E    5 C1C L1C D1C S1C C5Q", "SYS / # / OBS TYPES");
+  h += pad("E   10   1 S1C", "SYS / SCALE FACTOR");
+  h += pad("", "END OF HEADER");
+  const std::string e11 = "E11" + obs(2.3e7) + obs(1.2e8) + obs(-585.0) + obs(480.0) + obs(2.3e7 + 3.0) + "\n";
+  const ObservationFile f = parse(h + epoch3(0.0, 1) + e11);
+  ASSERT_EQ(f.epochs.size(), 1u);
+  EXPECT_TRUE(f.epochs[0].gps.empty());
+  ASSERT_EQ(f.epochs[0].galileo.size(), 1u);
+  const GpsL1Observation& o = f.epochs[0].galileo[0];
+  EXPECT_EQ(o.prn, 11);
+  EXPECT_DOUBLE_EQ(*o.pseudorange_m, 2.3e7);
+  EXPECT_DOUBLE_EQ(*o.cn0_dbhz, 48.0);  // stored times 10
+  EXPECT_EQ(f.report.galileo_satellite_records, 1);
+  EXPECT_EQ(f.report.skipped_galileo_values.at("C5Q"), 1);
+  EXPECT_EQ(f.report.time_system, "GAL");
+  // A malformed Galileo field is named by satellite, type, line and columns.
+  const std::string bad = "E11" + obs(2.3e7) + "   12x45.000   " + obs(-585.0) + obs(480.0) + "\n";
+  EXPECT_EQ(error_of(h + epoch3(0.0, 1) + bad).rfind("test.obs:6: E11 L1C (line 6 columns 20-33)", 0), 0u)
+      << error_of(h + epoch3(0.0, 1) + bad);
+  // SVIDs beyond 36 are no Galileo satellites.
+  EXPECT_NE(error_of(h + epoch3(0.0, 1) + "E37" + e11.substr(3)).find("SVID"), std::string::npos);
+  // Galileo types without C1C: nothing to read in a file without GPS.
+  std::string no_c1c = h;
+  no_c1c.replace(no_c1c.find("E    5 C1C L1C D1C S1C C5Q"), 26, "E    1 C5Q                ");
+  no_c1c.replace(no_c1c.find("E   10   1 S1C"), 14, "E   10   1 C5Q");
+  EXPECT_NE(error_of(no_c1c + epoch3(0.0, 1) + "E11" + obs(2.3e7) + "\n").find("nothing to read"), std::string::npos);
+}
+
 TEST(RinexObsReader, AnEpochWrittenTwiceIsSkippedAndCounted) {
   const std::string e0 = epoch3(0.0, 2) + sat3("G01", 2.1e7, 1.0, 0.0, 45.0) + sat3("E07", 2.3e7, 1.0, 0.0, 45.0);
   const std::string e1 = epoch3(0.25, 1) + sat3("G01", 2.1e7, 1.0, 0.0, 45.0);
@@ -328,7 +365,7 @@ TEST(RinexObsReader, AnEpochWrittenTwiceIsSkippedAndCounted) {
   EXPECT_EQ(f.report.repeated_epochs, 3);
   EXPECT_EQ(f.report.first_repeated_epoch_line, 11);
   EXPECT_EQ(f.report.gps_satellite_records, 2);  // the repeats' records not counted again
-  EXPECT_EQ(f.report.skipped_satellite_records.at("E"), 1);
+  EXPECT_EQ(f.report.galileo_satellite_records, 1);
   ASSERT_EQ(f.report.warnings.size(), 1u);
   EXPECT_EQ(f.report.warnings[0], "test.obs:11: 3 epoch(s) repeat the epoch before them record for record: skipped");
   // The same time with other records is no repeat: an error.

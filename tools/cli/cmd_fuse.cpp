@@ -6,6 +6,7 @@
 
 #include <csignal>
 #include <filesystem>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "aiding/recorded_fusion.hpp"
@@ -100,11 +101,19 @@ void require_file(const std::string& path, const char* option) {
   if (!std::filesystem::is_regular_file(path)) throw UserError(fmt::format("{}: no such file '{}'", option, path));
 }
 
+/// The satellite records fuse leaves out: those the reader skipped and the Galileo E1 ones it
+/// read (fuse navigates with GPS L1 C/A only).
+std::map<std::string, int> records_left_out(const ObservationReport& r) {
+  std::map<std::string, int> out = r.skipped_satellite_records;
+  if (r.galileo_satellite_records > 0) out["E"] += r.galileo_satellite_records;
+  return out;
+}
+
 /// An observation file without a GPS L1 C/A observable gives fuse nothing to navigate with.
 void require_gps(const std::string& path, const ObservationReport& r) {
   if (r.gps_satellite_records > 0) return;
   std::string others;
-  for (const auto& [system, records] : r.skipped_satellite_records)
+  for (const auto& [system, records] : records_left_out(r))
     others += fmt::format("{}{} {}", others.empty() ? "" : ", ", system, records);
   throw UserError(fmt::format(
       "--obs {}: no GPS L1 C/A observation in its {} epochs ({}): fuse navigates with GPS L1 C/A only", path, r.epochs,
@@ -263,7 +272,7 @@ void run_fuse(CLI::App& root, FuseOptions o) {
         {"header_interval_s", r.header_interval_s ? nlohmann::json(*r.header_interval_s) : nlohmann::json(nullptr)},
         {"repeated_epochs", r.repeated_epochs},
         {"gps_l1_records", r.gps_satellite_records},
-        {"skipped_satellite_records", r.skipped_satellite_records},
+        {"skipped_satellite_records", records_left_out(r)},
         {"skipped_gps_values", r.skipped_gps_values},
         {"missing_pseudorange", r.missing_pseudorange},
         {"missing_doppler", r.missing_doppler},

@@ -104,9 +104,9 @@ void write_tracks(const SnapOptions& o, const std::vector<SnapEntry>& entries, c
   for (const SnapEntry& e : entries) {
     if (!e.result.fix.valid) continue;
     std::map<int, Ephemeris> ephemerides;
-    std::map<int, double> cn0;
+    std::map<SatelliteId, double> cn0;
     for (const SnapshotSignal& s : e.result.signals) {
-      cn0[s.prn] = s.cn0_dbhz;
+      cn0[{GnssSystem::gps, s.prn}] = s.cn0_dbhz;
       if (const Ephemeris* eph = nav.select(s.prn, e.result.fix.receive_time)) ephemerides[s.prn] = *eph;
     }
     fixes.push_back(pvt_solution_of(e.result.fix, ephemerides));
