@@ -9,6 +9,9 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string>
+
+#include <unistd.h>
 
 #include "signals/galileo/e1_codes.hpp"
 #include "signals/galileo/e1_modulation.hpp"
@@ -25,8 +28,10 @@ namespace {
 namespace inav = galileo::inav;
 const std::string kRoot = DEEPNAV_SOURCE_DIR;
 
+/// A folder of this process's own: ctest runs each test as its own process, in parallel.
 std::filesystem::path fresh_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("deepnav_galsynth_" + name);
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("deepnav_galsynth_" + name + "_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   return dir;
 }
