@@ -281,20 +281,8 @@ struct Acquisition::Impl {
     const double threshold = acquisition_threshold(blocks, cells, cfg.pfa);
     std::vector<AcquisitionResult> results;
     for (std::size_t p = 0; p < prns.size(); ++p) results.push_back(evaluate(x, means, prns[p], grids[p], threshold));
-    reject_cross_correlations(results);
+    acquisition_kernels::reject_cross_correlations(results, cfg.cross_correlation_margin_db);
     return results;
-  }
-
-  void reject_cross_correlations(std::vector<AcquisitionResult>& results) const {
-    double strongest = -1e9;
-    for (const auto& r : results)
-      if (r.detected) strongest = std::max(strongest, r.cn0_dbhz);
-    for (auto& r : results) {
-      if (r.detected && r.cn0_dbhz < strongest - cfg.cross_correlation_margin_db) {
-        r.detected = false;
-        r.cross_correlation_suspect = true;
-      }
-    }
   }
 
   /// Mean grid cell more than 1.5 chips (in code phase modulo 1 ms) from the peak's lag.

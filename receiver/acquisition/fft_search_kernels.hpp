@@ -5,10 +5,12 @@
 // choice of a fast transform size.
 #include <fftw3.h>
 
+#include <algorithm>
 #include <complex>
 #include <cstddef>
 #include <new>
 #include <utility>
+#include <vector>
 
 namespace deepnav::acquisition_kernels {
 
@@ -59,6 +61,22 @@ inline int smooth_fft_size(int n) {
     for (int f : {2, 3, 5, 7})
       while (r % f == 0) r /= f;
     if (r == 1) return m;
+  }
+}
+
+/// Cross-correlation guard shared by the GPS and Galileo searches: a detection weaker than the
+/// strongest one by more than `margin_db` is taken for another satellite's code leaking through
+/// (the codes' cross-correlation sits about 20 dB down), and is withdrawn and marked.
+template <class Result>
+void reject_cross_correlations(std::vector<Result>& results, double margin_db) {
+  double strongest = -1e9;
+  for (const Result& r : results)
+    if (r.detected) strongest = std::max(strongest, r.cn0_dbhz);
+  for (Result& r : results) {
+    if (r.detected && r.cn0_dbhz < strongest - margin_db) {
+      r.detected = false;
+      r.cross_correlation_suspect = true;
+    }
   }
 }
 

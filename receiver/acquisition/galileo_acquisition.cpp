@@ -222,7 +222,7 @@ struct GalileoAcquisition::Impl {
     std::vector<GalileoAcquisitionResult> results;
     for (std::size_t p = 0; p < prns.size(); ++p)
       results.push_back(evaluate(searched, prns[p], summaries[p], terms, threshold));
-    reject_cross_correlations(results);
+    acquisition_kernels::reject_cross_correlations(results, cfg.cross_correlation_margin_db);
     return results;
   }
 
@@ -287,18 +287,6 @@ struct GalileoAcquisition::Impl {
     const double snr = (per_component - noise) / noise;
     r.cn0_dbhz = snr > 0.0 ? 10.0 * std::log10(2.0 * snr / t_coh) : 0.0;
     return r;
-  }
-
-  void reject_cross_correlations(std::vector<GalileoAcquisitionResult>& results) const {
-    double strongest = -1e9;
-    for (const auto& r : results)
-      if (r.detected) strongest = std::max(strongest, r.cn0_dbhz);
-    for (auto& r : results) {
-      if (r.detected && r.cn0_dbhz < strongest - cfg.cross_correlation_margin_db) {
-        r.detected = false;
-        r.cross_correlation_suspect = true;
-      }
-    }
   }
 };
 
