@@ -50,8 +50,12 @@ std::vector<Sample> e1_signal(const std::vector<E1Truth>& sats, double fs, doubl
     std::vector<int> symbols(static_cast<std::size_t>(ms / 4 + 2));
     for (int& symbol : symbols) symbol = uniform(rng) < 0.5 ? 1 : -1;
     const auto secondary_offset = static_cast<std::size_t>(uniform(rng) * galileo::kE1cSecondaryLength_chips);
+    // Into [0, one code): a truth given as a negative phase (a delay of more than a period)
+    // would otherwise index period -1; the tests compare code phases modulo the code.
+    const double start_chips =
+        s.code_phase_chips - kE1CodeLength_chips * std::floor(s.code_phase_chips / kE1CodeLength_chips);
     for (std::size_t k = 0; k < n; ++k) {
-      const double phase = s.code_phase_chips + static_cast<double>(k) * chips_per_sample;
+      const double phase = start_chips + static_cast<double>(k) * chips_per_sample;
       const auto period = static_cast<std::size_t>(std::floor(phase / kE1CodeLength_chips));
       const auto chip = static_cast<std::size_t>(std::floor(phase)) - period * kE1CodeLength_chips;
       const int e1b = code_b[chip] * symbols[period];
