@@ -28,9 +28,28 @@ bool wants(const SelectionRequest& request, GnssSystem system) {
   return std::find(request.systems.begin(), request.systems.end(), system) != request.systems.end();
 }
 
+/// Sets the satellite's look angles at the start and its lowest elevation over the check
+/// points; `r_sat_ecef_at(t, state)` is its position t seconds after the start, seen from the
+/// trajectory's state then. Whether it is chosen: a listed satellite when above the horizon at
+/// the start, any other when above the mask throughout.
+template <class SatellitePosition>
+bool sweep_elevation(SelectedSatellite& sat, const Trajectory& trajectory, const SelectionRequest& request, bool listed,
+                     const SatellitePosition& r_sat_ecef_at) {
+  sat.min_elevation_rad = 10.0;
+  for (double t : check_points(request.duration_s)) {
+    const TrajectoryState state = trajectory.at(std::min(t, trajectory.duration_s()));
+    const LookAngles look = look_angles(state.r_ecef_m, r_sat_ecef_at(t, state));
+    if (t == 0.0) {
+      sat.elevation_rad = look.elevation_rad;
+      sat.azimuth_rad = look.azimuth_rad;
+    }
+    sat.min_elevation_rad = std::min(sat.min_elevation_rad, look.elevation_rad);
+  }
+  return listed ? sat.elevation_rad > 0.0 : sat.min_elevation_rad >= request.elevation_mask_rad;
+}
+
 std::vector<SelectedSatellite> select_galileo(const NavData& nav, const Trajectory& trajectory,
                                               const SelectionRequest& request) {
-  const std::vector<double> checks = check_points(request.duration_s);
   const galileo::GstTime start = galileo::gst_from_gps_time(request.start, request.gst_minus_gpst_s);
   std::vector<SelectedSatellite> chosen;
   for (int svid = 1; svid <= galileo::kMaxPrn; ++svid) {
@@ -43,20 +62,12 @@ std::vector<SelectedSatellite> select_galileo(const NavData& nav, const Trajecto
     sat.prn = svid;
     sat.id = SatelliteId{GnssSystem::galileo, svid};
     sat.galileo_ephemeris = eph;
-    sat.min_elevation_rad = 10.0;
-    for (double t : checks) {
-      const TrajectoryState state = trajectory.at(std::min(t, trajectory.duration_s()));
-      const LineOfSight los = line_of_sight(*eph, request.gst_minus_gpst_s, request.start.plus_seconds(t),
-                                            state.r_ecef_m, state.v_ecef_mps);
-      const LookAngles look = look_angles(state.r_ecef_m, los.r_sat_ecef_m);
-      if (t == 0.0) {
-        sat.elevation_rad = look.elevation_rad;
-        sat.azimuth_rad = look.azimuth_rad;
-      }
-      sat.min_elevation_rad = std::min(sat.min_elevation_rad, look.elevation_rad);
-    }
-    const bool visible = listed ? sat.elevation_rad > 0.0 : sat.min_elevation_rad >= request.elevation_mask_rad;
-    if (visible) chosen.push_back(sat);
+    const auto r_sat_ecef_at = [&](double t, const TrajectoryState& state) {
+      return line_of_sight(*eph, request.gst_minus_gpst_s, request.start.plus_seconds(t), state.r_ecef_m,
+                           state.v_ecef_mps)
+          .r_sat_ecef_m;
+    };
+    if (sweep_elevation(sat, trajectory, request, listed, r_sat_ecef_at)) chosen.push_back(sat);
   }
   sort_and_cap(chosen, request.max_satellites);
   return chosen;
@@ -89,7 +100,6 @@ namespace {
 
 std::vector<SelectedSatellite> select_gps(const NavData& nav, const Trajectory& trajectory,
                                           const SelectionRequest& request) {
-  const std::vector<double> checks = check_points(request.duration_s);
   std::vector<SelectedSatellite> chosen;
   for (int prn = 1; prn <= 32; ++prn) {
     const bool listed = std::find(request.prns.begin(), request.prns.end(), prn) != request.prns.end();
@@ -100,19 +110,10 @@ std::vector<SelectedSatellite> select_gps(const NavData& nav, const Trajectory& 
     sat.prn = prn;
     sat.ephemeris = eph;
     sat.id = SatelliteId{GnssSystem::gps, prn};
-    sat.min_elevation_rad = 10.0;
-    for (double t : checks) {
-      const TrajectoryState state = trajectory.at(std::min(t, trajectory.duration_s()));
-      const LineOfSight los = line_of_sight(*eph, request.start.plus_seconds(t), state.r_ecef_m, state.v_ecef_mps);
-      const LookAngles look = look_angles(state.r_ecef_m, los.r_sat_ecef_m);
-      if (t == 0.0) {
-        sat.elevation_rad = look.elevation_rad;
-        sat.azimuth_rad = look.azimuth_rad;
-      }
-      sat.min_elevation_rad = std::min(sat.min_elevation_rad, look.elevation_rad);
-    }
-    const bool visible = listed ? sat.elevation_rad > 0.0 : sat.min_elevation_rad >= request.elevation_mask_rad;
-    if (visible) chosen.push_back(sat);
+    const auto r_sat_ecef_at = [&](double t, const TrajectoryState& state) {
+      return line_of_sight(*eph, request.start.plus_seconds(t), state.r_ecef_m, state.v_ecef_mps).r_sat_ecef_m;
+    };
+    if (sweep_elevation(sat, trajectory, request, listed, r_sat_ecef_at)) chosen.push_back(sat);
   }
   sort_and_cap(chosen, request.max_satellites);
   return chosen;
