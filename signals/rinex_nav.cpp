@@ -724,17 +724,26 @@ GpsTime full_toc(const Ephemeris& eph) {
   return GpsTime::normalized(eph.week, std::round(eph.toe_s + seconds_of_week_difference(eph.toc_s, eph.toe_s)));
 }
 
-void write_record(std::ostream& out, const Ephemeris& e) {
-  const CalendarTime c = calendar_from_gps_time(full_toc(e));
+/// A record's first line (RINEX 3.04 Table A4/A8): satellite, toc as a calendar epoch, clock.
+void write_clock_line(std::ostream& out, char system, int prn, const GpsTime& toc, double af0_s, double af1_sps,
+                      double af2_sps2) {
+  const CalendarTime c = calendar_from_gps_time(toc);
   const int seconds = static_cast<int>(std::lround(c.second));
-  out << fmt::format("G{:02d} {:04d} {:02d} {:02d} {:02d} {:02d} {:02d}", e.prn, c.year, c.month, c.day, c.hour,
+  out << fmt::format("{}{:02d} {:04d} {:02d} {:02d} {:02d} {:02d} {:02d}", system, prn, c.year, c.month, c.day, c.hour,
                      c.minute, seconds)
-      << d19(e.af0_s, "af0", e.prn) << d19(e.af1_sps, "af1", e.prn) << d19(e.af2_sps2, "af2", e.prn) << '\n';
-  const auto orbit = [&](std::initializer_list<double> values) {
-    out << "    ";
-    for (double v : values) out << d19(v, "orbit field", e.prn);
-    out << '\n';
-  };
+      << d19(af0_s, "af0", prn) << d19(af1_sps, "af1", prn) << d19(af2_sps2, "af2", prn) << '\n';
+}
+
+/// One of a record's broadcast orbit lines: four (or fewer) fields after four blanks.
+void write_orbit_line(std::ostream& out, int prn, std::initializer_list<double> values) {
+  out << "    ";
+  for (double v : values) out << d19(v, "orbit field", prn);
+  out << '\n';
+}
+
+void write_record(std::ostream& out, const Ephemeris& e) {
+  write_clock_line(out, 'G', e.prn, full_toc(e), e.af0_s, e.af1_sps, e.af2_sps2);
+  const auto orbit = [&](std::initializer_list<double> values) { write_orbit_line(out, e.prn, values); };
   orbit({static_cast<double>(e.iode), e.crs_m, e.delta_n_radps, e.m0_rad});
   orbit({e.cuc_rad, e.e, e.cus_rad, e.sqrt_a});
   orbit({e.toe_s, e.cic_rad, e.omega0_rad, e.cis_rad});
@@ -760,16 +769,8 @@ int status_bits(const galileo::SignalStatus& s, int first_bit) {
 }
 
 void write_galileo_record(std::ostream& out, const galileo::GalileoEphemeris& e) {
-  const CalendarTime c = calendar_from_gps_time(galileo_full_toc(e));
-  const int seconds = static_cast<int>(std::lround(c.second));
-  out << fmt::format("E{:02d} {:04d} {:02d} {:02d} {:02d} {:02d} {:02d}", e.prn, c.year, c.month, c.day, c.hour,
-                     c.minute, seconds)
-      << d19(e.af0_s, "af0", e.prn) << d19(e.af1_sps, "af1", e.prn) << d19(e.af2_sps2, "af2", e.prn) << '\n';
-  const auto orbit = [&](std::initializer_list<double> values) {
-    out << "    ";
-    for (double v : values) out << d19(v, "orbit field", e.prn);
-    out << '\n';
-  };
+  write_clock_line(out, 'E', e.prn, galileo_full_toc(e), e.af0_s, e.af1_sps, e.af2_sps2);
+  const auto orbit = [&](std::initializer_list<double> values) { write_orbit_line(out, e.prn, values); };
   const KeplerElements& k = e.orbit;
   const int health = status_bits(e.e1b, 0) | status_bits(e.e5a, 3) | status_bits(e.e5b, 6);
   // RINEX writes -1 m where no accuracy prediction is available (NAPA).
