@@ -48,7 +48,7 @@ TEST(InavDecoder, RecoversTheMessageFromNoisySymbolsInEitherPolarity) {
     EXPECT_EQ(decoder.pages().counts().crc_failures, 0);
     const InavNavigation& nav = decoder.navigation();
     ASSERT_TRUE(nav.ephemeris().has_value());
-    testing::expect_same_ephemeris(*nav.ephemeris(), testing::inav_test_expected_ephemeris());
+    testing::expect_same_galileo_ephemeris(*nav.ephemeris(), testing::inav_test_expected_ephemeris());
     // The words' rounding aside, the ephemeris is the one sent.
     EXPECT_NEAR(nav.ephemeris()->orbit.sqrt_a, testing::inav_test_ephemeris().orbit.sqrt_a, 1e-5);
     EXPECT_EQ(nav.ephemeris()->week, 1173);
@@ -113,7 +113,7 @@ TEST(InavDecoder, CorruptedPagesAreCountedAndNeverUsed) {
   for (std::size_t k = end_of_page4; k < symbols.size(); ++k) decoder.add(symbols[k]);
   EXPECT_EQ(decoder.pages().counts().crc_failures, 2);
   ASSERT_TRUE(decoder.navigation().ephemeris().has_value());
-  testing::expect_same_ephemeris(*decoder.navigation().ephemeris(), testing::inav_test_expected_ephemeris());
+  testing::expect_same_galileo_ephemeris(*decoder.navigation().ephemeris(), testing::inav_test_expected_ephemeris());
 }
 
 TEST(InavDecoder, WithholdsAnEphemerisOfAnotherSatellite) {
@@ -170,7 +170,7 @@ TEST(InavDecoder, DecodesTheEphemerisFromATrackedE1Channel) {
   EXPECT_GE(decoder.pages().counts().pages, 5);
   const InavNavigation& nav = decoder.navigation();
   ASSERT_TRUE(nav.ephemeris().has_value());
-  testing::expect_same_ephemeris(*nav.ephemeris(), testing::inav_test_expected_ephemeris());
+  testing::expect_same_galileo_ephemeris(*nav.ephemeris(), testing::inav_test_expected_ephemeris());
   // Word 5 (page 5) marks its page's start: the sample at which the signal's code period
   // 5 * 500 - kFirstSymbol began arriving, within a sample.
   ASSERT_TRUE(nav.time_mark().has_value());

@@ -8,6 +8,7 @@
 #include "signals/galileo/galileo_ephemeris.hpp"
 #include "signals/nav_merge.hpp"
 #include "signals/rinex_nav.hpp"
+#include "tests/support/galileo_test_ephemeris.hpp"
 
 namespace deepnav {
 namespace {
@@ -25,35 +26,6 @@ std::string written(const NavData& nav) {
   std::ostringstream out;
   write_rinex3_nav(out, nav, "deepnav nav merge");
   return out.str();
-}
-
-void expect_same_galileo(const galileo::GalileoEphemeris& a, const galileo::GalileoEphemeris& b) {
-  EXPECT_EQ(a.prn, b.prn);
-  EXPECT_EQ(a.week, b.week);
-  EXPECT_EQ(a.iod_nav, b.iod_nav);
-  EXPECT_EQ(a.toc_s, b.toc_s);
-  EXPECT_EQ(a.af0_s, b.af0_s);
-  EXPECT_EQ(a.af1_sps, b.af1_sps);
-  EXPECT_EQ(a.af2_sps2, b.af2_sps2);
-  EXPECT_EQ(a.orbit.sqrt_a, b.orbit.sqrt_a);
-  EXPECT_EQ(a.orbit.e, b.orbit.e);
-  EXPECT_EQ(a.orbit.m0_rad, b.orbit.m0_rad);
-  EXPECT_EQ(a.orbit.toe_s, b.orbit.toe_s);
-  EXPECT_EQ(a.orbit.omega0_rad, b.orbit.omega0_rad);
-  EXPECT_EQ(a.orbit.omega_dot_radps, b.orbit.omega_dot_radps);
-  EXPECT_EQ(a.orbit.idot_radps, b.orbit.idot_radps);
-  EXPECT_EQ(a.orbit.crs_m, b.orbit.crs_m);
-  EXPECT_EQ(a.orbit.cis_rad, b.orbit.cis_rad);
-  EXPECT_EQ(a.bgd_e1e5a_s, b.bgd_e1e5a_s);
-  EXPECT_EQ(a.bgd_e1e5b_s, b.bgd_e1e5b_s);
-  EXPECT_EQ(a.sisa_index, b.sisa_index);
-  EXPECT_EQ(a.e1b.health, b.e1b.health);
-  EXPECT_EQ(a.e1b.data_invalid, b.e1b.data_invalid);
-  EXPECT_EQ(a.e5a.health, b.e5a.health);
-  EXPECT_EQ(a.e5b.health, b.e5b.health);
-  EXPECT_EQ(a.data_sources, b.data_sources);
-  EXPECT_EQ(a.transmission_time_known, b.transmission_time_known);
-  EXPECT_EQ(a.transmission_time_s, b.transmission_time_s);
 }
 
 TEST(NavMerge, MovesGalileoWeeksOnlyAndKeepsInav) {
@@ -97,7 +69,7 @@ TEST(NavMerge, WrittenMixedFileReadsBackEqual) {
   const NavData back = read_rinex_nav(in, "written");
   ASSERT_EQ(back.galileo_ephemerides.size(), merged.galileo_ephemerides.size());
   for (std::size_t i = 0; i < back.galileo_ephemerides.size(); ++i)
-    expect_same_galileo(back.galileo_ephemerides[i], merged.galileo_ephemerides[i]);
+    testing::expect_same_galileo_ephemeris(back.galileo_ephemerides[i], merged.galileo_ephemerides[i]);
   ASSERT_EQ(back.ephemerides.size(), merged.ephemerides.size());
   EXPECT_EQ(back.galileo_iono.ai0_sfu, merged.galileo_iono.ai0_sfu);
   EXPECT_EQ(back.galileo_iono.ai1_sfu_per_deg, merged.galileo_iono.ai1_sfu_per_deg);
