@@ -95,6 +95,10 @@ void NavigationSession::run(const std::vector<ProductSink*>& sinks, const std::f
   for (const auto& [prn, eph] : receiver().decoded_ephemerides()) decoded.ephemerides.push_back(eph);
   decoded.iono = receiver().iono();
   decoded.utc = receiver().utc();
+  for (const auto& [svid, eph] : receiver().decoded_galileo_ephemerides()) decoded.galileo_ephemerides.push_back(eph);
+  // I/NAV sends WN0G modulo 64: a file carries the full week, the one nearest the data.
+  if (const auto ggto = receiver().ggto(); ggto && !decoded.galileo_ephemerides.empty())
+    decoded.ggto = galileo::with_full_reference_week(*ggto, decoded.galileo_ephemerides.front().week);
   products_.finish(decoded);
   if (failure) std::rethrow_exception(failure);
   if (!products_.failures().empty()) throw std::runtime_error(products_.failure_message());

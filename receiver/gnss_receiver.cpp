@@ -37,7 +37,15 @@ ReceiverConfig checked(ReceiverConfig cfg, const SampleSource& src) {
         fmt::format("observation rate {} Hz is outside [0.01, 50] Hz", cfg.observation_rate_hz));
   if (cfg.channels < 1 || cfg.channels > gps::kMaxPrn)
     throw std::invalid_argument(fmt::format("{} tracking channels: expected 1 to {}", cfg.channels, gps::kMaxPrn));
+  if (cfg.systems.empty()) throw std::invalid_argument("no satellite system to track: expected GPS, Galileo or both");
+  for (auto it = cfg.systems.begin(); it != cfg.systems.end(); ++it)
+    if (std::find(std::next(it), cfg.systems.end(), *it) != cfg.systems.end())
+      throw std::invalid_argument(fmt::format("satellite system {} is listed twice", system_name(*it)));
   return cfg;
+}
+
+bool tracks(const ReceiverConfig& cfg, GnssSystem system) {
+  return std::find(cfg.systems.begin(), cfg.systems.end(), system) != cfg.systems.end();
 }
 
 /// The workers that track channels besides the calling thread, which takes one share of
@@ -96,7 +104,9 @@ struct GnssReceiver::Impl {
   bool gap_since_epoch = false;                          ///< samples lost since the last observation epoch
   std::optional<double> ephemerides_complete_s;          ///< four satellites first had ephemerides
   std::optional<FirstFixOrigin> first_fix;
-  std::optional<HotStart> hot_start;  ///< ReceiverConfig::hot_start, until the clock is set
+  std::optional<HotStart> hot_start;           ///< ReceiverConfig::hot_start, until the clock is set
+  bool gps_on;                                 ///< GPS is tracked
+  std::unique_ptr<GalileoChannelSet> galileo;  ///< when Galileo is tracked
 
   Impl(ReceiverConfig c, SampleSource& s)
       : cfg(checked(std::move(c), s)),
@@ -109,6 +119,9 @@ struct GnssReceiver::Impl {
         guided(cfg.guided, fs, cfg.tracking.if_hz),
         pvt(cfg.pvt, cfg.atmosphere) {
     if (cfg.hot_start) hot_start.emplace(*cfg.hot_start, fs, cfg.atmosphere);
+    gps_on = tracks(cfg, GnssSystem::gps);
+    if (tracks(cfg, GnssSystem::galileo))
+      galileo = std::make_unique<GalileoChannelSet>(cfg.galileo, fs, cfg.tracking.if_hz);
   }
 
   int free_channels() const { return cfg.channels - static_cast<int>(channels.size()); }
@@ -134,7 +147,7 @@ struct GnssReceiver::Impl {
   /// Searches `samples` (starting at absolute index `first`) for satellites neither tracked
   /// nor under a guided search, and starts a channel on each found, strongest first.
   void acquire(const std::vector<Sample>& samples, std::int64_t first) {
-    if (!channel_free()) return;
+    if (!gps_on || !channel_free()) return;
     std::vector<int> prns;
     for (int prn = 1; prn <= gps::kMaxPrn; ++prn)
       if (!tracked(prn) && !guided.searching(prn) && acquisition.searchable(prn)) prns.push_back(prn);
@@ -159,6 +172,7 @@ struct GnssReceiver::Impl {
   /// flagged.
   void after_gap(std::int64_t first_after) {
     acquisition.restart_window();
+    if (galileo) galileo->restart_window();
     gap_since_epoch = true;
     if (src.gap_sizes_exact() || channels.empty()) return;
     // A gap known only roughly leaves every code phase off by its error: start over from
@@ -166,6 +180,7 @@ struct GnssReceiver::Impl {
     spdlog::info("a gap of estimated size at sample {}: every channel re-acquires", first_after);
     for (const ReceiverChannel& ch : channels) end_channel(ch);
     channels.clear();
+    if (galileo) galileo->release_all();
     guided.abandon();
     acquisition.search_when_full();
   }
@@ -186,9 +201,15 @@ struct GnssReceiver::Impl {
     tracked_prns.clear();
     for (const ReceiverChannel& ch : channels) tracked_prns.push_back(ch.prn());
     const bool clock_set = clock.is_set();
-    run_in_shares(workers.get(), channels.size(), [&](std::size_t i) {
+    const std::size_t galileo_channels = galileo ? galileo->size() : 0;
+    run_in_shares(workers.get(), channels.size() + galileo_channels, [&](std::size_t i) {
+      if (i >= channels.size()) {
+        galileo->channel(i - channels.size()).track(block);
+        return;
+      }
       channels[i].track(block, navigation.ephemeris(channels[i].prn()), clock_set, records[i]);
     });
+    if (galileo && galileo->after_block()) note_ephemerides(block_end(block));
     for (std::size_t i = 0; i < channels.size(); ++i) {
       for (const ChannelEpochRecord& r : records[i]) {
         if (r.new_ephemeris) {
@@ -204,7 +225,9 @@ struct GnssReceiver::Impl {
 
   /// Records when four satellites first have ephemerides in use (`sample`: now).
   void note_ephemerides(std::int64_t sample) {
-    if (!ephemerides_complete_s && navigation.in_use().size() >= kTransmitTimesToSetClock)
+    std::size_t count = navigation.in_use().size();
+    if (galileo) count += clock.is_set() ? galileo->in_use(*clock.at(sample)).size() : galileo->decoded().size();
+    if (!ephemerides_complete_s && count >= kTransmitTimesToSetClock)
       ephemerides_complete_s = static_cast<double>(sample) / fs;
   }
 
@@ -217,7 +240,8 @@ struct GnssReceiver::Impl {
     }
     const std::map<int, Ephemeris> decoded = navigation.decoded();
     const bool cold = std::all_of(fix.used_satellites.begin(), fix.used_satellites.end(), [&](const SatelliteId& s) {
-      return s.system == GnssSystem::gps && decoded.count(s.prn) > 0;
+      if (s.system == GnssSystem::galileo) return galileo && galileo->decoded().count(s.prn) > 0;
+      return decoded.count(s.prn) > 0;
     });
     first_fix = FirstFixOrigin{cold ? "cold" : "ephemerides given", ephemerides_complete_s};
   }
@@ -247,7 +271,8 @@ struct GnssReceiver::Impl {
     std::erase_if(channels, gone);
   }
 
-  /// The week from the first subframe 1 any channel decoded.
+  /// The week from the first subframe 1 any GPS channel decoded, or the first I/NAV page
+  /// with a GST week, whichever came first.
   void take_signal_week(std::int64_t now) {
     if (clock.signal_week()) return;
     for (const ReceiverChannel& ch : channels) {
@@ -256,6 +281,8 @@ struct GnssReceiver::Impl {
         return;
       }
     }
+    if (!galileo) return;
+    if (const auto mark = galileo->week_mark()) clock.take_galileo_week(mark->svid, mark->gst_week, mark->tow_s, now);
   }
 
   /// The channels as the outside filter sees them after a block ending at `end`.
@@ -372,7 +399,22 @@ struct GnssReceiver::Impl {
         transmit_sow.push_back(*t);
       }
     }
-    clock.set_from_transmit_times(transmit_sow, s);
+    // Galileo transmit times are GST, tens of nanoseconds from GPS time: as good for setting
+    // the clock (its first error is the travel time's, milliseconds).
+    std::vector<const GalileoChannel*> galileo_sent;
+    std::vector<double> galileo_transmit_sow;
+    for (std::size_t i = 0; galileo && i < galileo->size(); ++i) {
+      const GalileoChannel& ch = galileo->channel(i);
+      if (ch.tracking().state() == E1ChannelState::tracking) ++ep.channels_tracking;
+      if (!ch.observable(cfg.galileo.tracking.lost_cn0_dbhz)) continue;
+      if (const auto t = ch.transmit_time_sow(s)) {
+        galileo_sent.push_back(&ch);
+        galileo_transmit_sow.push_back(*t);
+      }
+    }
+    std::vector<double> all_transmit_sow = transmit_sow;
+    all_transmit_sow.insert(all_transmit_sow.end(), galileo_transmit_sow.begin(), galileo_transmit_sow.end());
+    clock.set_from_transmit_times(all_transmit_sow, s);
     ep.t_rx = clock.at(s);
     if (!ep.t_rx) {
       if (hot_start) hot_start_fix(s, ep);
@@ -389,7 +431,19 @@ struct GnssReceiver::Impl {
       if (o.system == GnssSystem::gps && navigation.ephemeris(o.prn))
         ranging.push_back({o.prn, o.pseudorange_m, o.doppler_hz, o.cn0_dbhz, o.system});
     }
-    ep.pvt = pvt.solve(*ep.t_rx, ranging, navigation.in_use(), navigation.iono());
+    if (!galileo) {
+      ep.pvt = pvt.solve(*ep.t_rx, ranging, navigation.in_use(), navigation.iono());
+    } else {
+      const std::map<int, galileo::GalileoEphemeris> galileo_ephemerides = galileo->in_use(*ep.t_rx);
+      for (std::size_t k = 0; k < galileo_sent.size(); ++k) {
+        const ChannelObservation o =
+            galileo_sent[k]->observe(*ep.t_rx, galileo_transmit_sow[k], s, fs, gap_since_epoch);
+        ep.observations.push_back(o);
+        if (galileo_ephemerides.count(o.prn))
+          ranging.push_back({o.prn, o.pseudorange_m, o.doppler_hz, o.cn0_dbhz, o.system});
+      }
+      ep.pvt = pvt.solve(*ep.t_rx, ranging, navigation.in_use(), galileo_ephemerides, navigation.iono());
+    }
     note_first_fix(ep.pvt, false);
     // Steer the receiver clock so that pseudoranges stay near the geometric ranges.
     if (ep.pvt.valid) clock.steer(ep.pvt.clock_bias_m);
@@ -436,7 +490,8 @@ void GnssReceiver::run(const std::function<void(const ReceiverEpoch&)>& on_epoch
       m.collect_published();
       if (m.cfg.guided.enabled) m.guide(block, snap);
     }
-    m.acquisition.keep(block, m.channel_free());
+    m.acquisition.keep(block, m.gps_on && m.channel_free());
+    if (m.galileo) m.galileo->keep(block);
     while (const auto epoch = epochs.next_until(end)) {
       on_epoch(m.observe(*epoch));
       m.gap_since_epoch = false;
@@ -444,8 +499,9 @@ void GnssReceiver::run(const std::function<void(const ReceiverEpoch&)>& on_epoch
     const double t = static_cast<double>(end) / m.fs;
     // New channels start at the window's first sample, already processed: they begin with
     // the next block, carried across by their NCOs.
-    if (m.acquisition.reacquisition_due(t, m.channel_free()))
+    if (m.acquisition.reacquisition_due(t, m.gps_on && m.channel_free()))
       m.acquire(m.acquisition.window().in_order(), m.acquisition.window().first_index());
+    if (m.galileo) m.galileo->acquire_if_due(t);
     if (progress) progress(t);
   }
   for (const ReceiverChannel& ch : m.channels) {
@@ -459,6 +515,7 @@ void GnssReceiver::set_assisted_iono(const IonoParameters& iono) { impl_->naviga
 
 void GnssReceiver::set_assisted_ephemerides(const NavData& nav) {
   impl_->navigation.set_assisted(nav);
+  if (impl_->galileo) impl_->galileo->set_assisted(nav);
   impl_->clock.use_assisted_ephemerides(nav);
 }
 
@@ -485,6 +542,22 @@ IonoParameters GnssReceiver::iono() const { return impl_->navigation.iono(); }
 const AtmosphereModels& GnssReceiver::atmosphere() const { return impl_->cfg.atmosphere; }
 UtcParameters GnssReceiver::utc() const { return impl_->navigation.utc(); }
 std::vector<int> GnssReceiver::acquired_prns() const { return impl_->acquired; }
+std::vector<SatelliteId> GnssReceiver::acquired_satellites() const {
+  std::vector<SatelliteId> out;
+  for (int prn : impl_->acquired) out.push_back({GnssSystem::gps, prn});
+  if (impl_->galileo)
+    for (int svid : impl_->galileo->acquired()) out.push_back({GnssSystem::galileo, svid});
+  return out;
+}
+std::map<int, galileo::GalileoEphemeris> GnssReceiver::decoded_galileo_ephemerides() const {
+  if (!impl_->galileo) return {};
+  return impl_->galileo->decoded();
+}
+std::optional<galileo::GgtoParameters> GnssReceiver::ggto() const {
+  if (!impl_->galileo) return std::nullopt;
+  return impl_->galileo->ggto();
+}
+const std::vector<GnssSystem>& GnssReceiver::systems() const { return impl_->cfg.systems; }
 AcquisitionEvidence GnssReceiver::acquisition_evidence() const {
   const AcquisitionSchedule& a = impl_->acquisition;
   return {a.config(), a.window().in_order(), a.strongest()};

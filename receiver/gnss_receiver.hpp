@@ -1,6 +1,7 @@
 #pragma once
-// The GNSS receiver (today GPS L1 C/A; named for the systems it is built to take): acquisition at the start and again every few seconds while a
-// channel is free (AcquisitionSchedule); one ReceiverChannel per satellite, closed by its
+// The GNSS receiver, GPS L1 C/A and Galileo E1 OS on the same samples (ReceiverConfig::systems;
+// the Galileo side is a GalileoChannelSet with scalar loops, galileo_channel_set.hpp). For GPS:
+// acquisition at the start and again every few seconds while a channel is free (AcquisitionSchedule); one ReceiverChannel per satellite, closed by its
 // own scalar loops or, given a ChannelAiding, steered by an outside filter (ultra-tight
 // aiding, see tracking/channel_controller.hpp); the navigation data in use
 // (BroadcastNavigation); the receiver clock and the GPS week (ReceiverClock); observables
@@ -18,6 +19,7 @@
 #include "receiver/acquisition/acquisition.hpp"
 #include "receiver/acquisition/guided_reacquisition.hpp"
 #include "receiver/acquisition/signal_diagnostics.hpp"
+#include "receiver/galileo_channel_set.hpp"
 #include "receiver/hot_start.hpp"
 #include "receiver/pvt/pvt_solver.hpp"
 #include "receiver/receiver_channel.hpp"
@@ -37,7 +39,9 @@ inline constexpr double kMinSampleRate_hz = 1.0e6;
 inline constexpr double kMaxSampleRate_hz = 2.0e8;
 
 struct ReceiverConfig {
-  int channels = 12;
+  /// The systems tracked, each once: GPS L1 C/A, Galileo E1 OS (4 Msps or more), or both.
+  std::vector<GnssSystem> systems{GnssSystem::gps};
+  int channels = 12;                 ///< GPS channels
   unsigned threads = 1;              ///< channel worker threads (0: all cores); 1 tracks inline
   double observation_rate_hz = 1.0;  ///< up to 50
   /// GPS week near the data (0: none given). The signal broadcasts its week modulo 1024
@@ -56,6 +60,8 @@ struct ReceiverConfig {
   LoopBandwidths pull_in{15.0, 10.0, 1.0};
   LoopBandwidths tracking_loops{10.0, 0.0, 0.5};
   int pll_order = 2;  ///< every channel's carrier loop, pull-in and tracking: 2, or 3 for high dynamics
+  /// The Galileo channels, their acquisition and loops (when systems holds Galileo).
+  GalileoReceiverSettings galileo;
   PvtConfig pvt;
   /// The atmosphere models of every range the receiver or an aided filter predicts: the
   /// PVT solution reads them from here, and so do tight coupling and the ultra-tight NCO commands
@@ -119,6 +125,7 @@ class GnssReceiver {
   void set_assisted_iono(const IonoParameters& iono);
   /// Broadcast ephemerides to use until the satellites' own are decoded (assisted start:
   /// the first fix then needs only a transmit time, i.e. one subframe, not a whole frame).
+  /// Galileo records in `nav` serve the Galileo channels the same way.
   void set_assisted_ephemerides(const NavData& nav);
   /// The ephemeris in use for a PRN (decoded, else assisted), nullptr when there is none.
   const Ephemeris* ephemeris(int prn) const;
@@ -147,8 +154,16 @@ class GnssReceiver {
   /// and iono() so that they agree with the receiver's own PVT.
   const AtmosphereModels& atmosphere() const;
   UtcParameters utc() const;
-  /// The satellites acquisition found, each once, in the order first found.
+  /// The GPS satellites acquisition found, each once, in the order first found.
   std::vector<int> acquired_prns() const;
+  /// Every satellite acquisition found, GPS first, each system's in the order first found.
+  std::vector<SatelliteId> acquired_satellites() const;
+  /// The Galileo ephemerides decoded from the signal (by SVID) and the GGTO, if broadcast;
+  /// none when the run does not track Galileo.
+  std::map<int, galileo::GalileoEphemeris> decoded_galileo_ephemerides() const;
+  std::optional<galileo::GgtoParameters> ggto() const;
+  /// The systems the receiver tracks (ReceiverConfig::systems).
+  const std::vector<GnssSystem>& systems() const;
   /// What the acquisition saw, for telling why it found nothing: its configuration, the
   /// latest samples it kept (a full window while a channel is free) and the strongest
   /// correlation of all its searches.

@@ -66,24 +66,36 @@ std::string ReceiverClock::contradiction_advice(double off_s) const {
 void ReceiverClock::take_broadcast_week(int prn, int wn10, double subframe_start_sow, std::int64_t now) {
   if (signal_week_) return;
   const int week = lnav::resolve_week(wn10, resolution_week());
-  signal_week_ = SignalWeek{week, subframe_start_sow};
   spdlog::info("GPS week {} (PRN {:2d} broadcasts week number {} modulo 1024; resolved against {})", week, prn, wn10,
                reference_origin());
+  take_signal_week(week, subframe_start_sow, fmt::format("PRN {} broadcasts week number {} (modulo 1024)", prn, wn10),
+                   now);
+}
+
+void ReceiverClock::take_galileo_week(int svid, int gst_week, double page_start_tow_s, std::int64_t now) {
+  if (signal_week_) return;
+  // GST week 0 began where GPS week 1024 did; the 12 bits broadcast last until GST week 4095.
+  const int week = gst_week + 1024;
+  spdlog::info("GPS week {} (E{:02d} broadcasts GST week {})", week, svid, gst_week);
+  take_signal_week(week, page_start_tow_s, fmt::format("E{:02d} broadcasts GST week {}", svid, gst_week), now);
+}
+
+void ReceiverClock::take_signal_week(int week, double start_sow, const std::string& broadcast, std::int64_t now) {
+  signal_week_ = SignalWeek{week, start_sow};
   // A week either side is the data crossing a week boundary, not a contradiction.
   if (reference_week_ > 0 && std::abs(week - reference_week_) > 1)
     throw std::runtime_error(fmt::format(
-        "the GPS week of {} contradicts the signal: PRN {} broadcasts week number {} (modulo 1024), i.e. week {} "
-        "({:.1f} days off): give {} {} or leave it out",
-        reference_origin(), prn, wn10, week, (week - reference_week_) * kSecondsPerWeek / 86400.0,
+        "the GPS week of {} contradicts the signal: {}, i.e. week {} ({:.1f} days off): give {} {} or leave it out",
+        reference_origin(), broadcast, week, (week - reference_week_) * kSecondsPerWeek / 86400.0,
         reference_week_origin_, week));
   if (reference_) {
-    // The clock, dated before this subframe came, now: some seconds after the subframe was sent.
-    const double off_s = reference_->at(now).seconds_since(GpsTime{week, subframe_start_sow});
+    // The clock, dated before this message came, now: some seconds after it was sent.
+    const double off_s = reference_->at(now).seconds_since(GpsTime{week, start_sow});
     if (std::abs(off_s) > kSecondsPerWeek / 2)
       throw std::runtime_error(fmt::format(
-          "the GPS week of {} contradicts the signal: PRN {} broadcasts week number {} (modulo 1024) in a subframe "
-          "sent at second {:.0f} of its week, i.e. week {}, {:.1f} days from the receiver clock it dated{}",
-          clock_origin_, prn, wn10, subframe_start_sow, week, off_s / 86400.0, contradiction_advice(off_s)));
+          "the GPS week of {} contradicts the signal: {} in a message sent at second {:.0f} of its week, i.e. week "
+          "{}, {:.1f} days from the receiver clock it dated{}",
+          clock_origin_, broadcast, start_sow, week, off_s / 86400.0, contradiction_advice(off_s)));
   }
 }
 

@@ -59,6 +59,10 @@ class ReceiverClock {
   /// a contradiction is std::runtime_error naming what set the clock and the week the data
   /// is in. Later calls are ignored: the first subframe 1 decides.
   void take_broadcast_week(int prn, int wn10, double subframe_start_sow, std::int64_t now);
+  /// The same for the first Galileo I/NAV page with a GST week (`gst_week`, 12 bits, full
+  /// until 2078) from `svid`, the page starting at GST second `page_start_tow_s`: GPS week =
+  /// GST week + 1024. Whichever system's week comes first decides.
+  void take_galileo_week(int svid, int gst_week, double page_start_tow_s, std::int64_t now);
   /// The full week the signal broadcast, once take_broadcast_week() has run.
   std::optional<int> signal_week() const;
 
@@ -87,6 +91,9 @@ class ReceiverClock {
     std::string origin;
   };
   std::optional<NearEpoch> near_epoch(double transmit_sow) const;
+  /// Takes the full week the signal broadcast (`broadcast`: who said what, for messages) in
+  /// a message starting at `start_sow`, decoded by sample `now`, and checks it.
+  void take_signal_week(int week, double start_sow, const std::string& broadcast, std::int64_t now);
   /// What the week 10-bit week numbers are resolved against came from, for messages.
   std::string reference_origin() const;
   /// The advice for a clock that the signal's week contradicts by `off_s`.

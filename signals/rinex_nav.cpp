@@ -679,6 +679,27 @@ NavData read_rinex_nav(const std::string& path) {
   return read_rinex_nav(file, path);
 }
 
+const galileo::GalileoEphemeris* select_galileo_ephemeris(const NavData& nav, int svid, const galileo::GstTime& t) {
+  constexpr double kValidity_s = 4.0 * 3600.0;
+  const galileo::GalileoEphemeris* best = nullptr;
+  double best_dt = 0.0;
+  bool best_future = false;
+  for (const galileo::GalileoEphemeris& eph : nav.galileo_ephemerides) {
+    if (eph.prn != svid || (eph.data_sources & 1) == 0 || !eph.healthy_on_e1b()) continue;
+    const double dt = t.seconds_since(galileo::GstTime{eph.week, eph.orbit.toe_s});
+    if (std::abs(dt) > kValidity_s) continue;
+    // The transmission time is a second of toe's week (RINEX may refer it to toe's week).
+    const bool future =
+        eph.transmission_time_known && seconds_of_week_difference(eph.transmission_time_s, eph.orbit.toe_s) > dt;
+    if (best == nullptr || (best_future && !future) || (future == best_future && std::abs(dt) < best_dt)) {
+      best = &eph;
+      best_dt = std::abs(dt);
+      best_future = future;
+    }
+  }
+  return best;
+}
+
 const Ephemeris* NavData::select(int prn, const GpsTime& t) const {
   const Ephemeris* best = nullptr;
   bool best_future = true;

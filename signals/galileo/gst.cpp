@@ -19,6 +19,14 @@ GstTime gst_from_gps_time(const GpsTime& t, double gst_minus_gpst_s) {
   return GstTime::normalized(t.week - kGstWeekOffsetFromGps, t.sow + gst_minus_gpst_s);
 }
 
+GgtoParameters with_full_reference_week(GgtoParameters ggto, int gst_week) {
+  int weeks = (gst_week - ggto.wn0g) % 64;  // in (-64, 64)
+  if (weeks < -32) weeks += 64;
+  if (weeks >= 32) weeks -= 64;
+  ggto.wn0g = gst_week - weeks;
+  return ggto;
+}
+
 double gst_minus_gpst_s(const GgtoParameters& ggto, const GstTime& t) {
   int weeks = (t.week - ggto.wn0g) % 64;
   if (weeks < 0) weeks += 64;

@@ -37,6 +37,9 @@ struct GgtoParameters {
   bool valid = false;
 };
 
+/// `ggto` with WN0G as broadcast (modulo 64) made a full GST week: the one nearest `gst_week`.
+GgtoParameters with_full_reference_week(GgtoParameters ggto, int gst_week);
+
 /// GST - GPST at GST t (ICD 5.1.8): A0G + A1G (TOW - t0G + 604800 (WN - WN0G)), with the week
 /// difference taken modulo 64 into [-32, 32) since WN0G is broadcast modulo 64.
 double gst_minus_gpst_s(const GgtoParameters& ggto, const GstTime& t);

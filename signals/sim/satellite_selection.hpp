@@ -39,11 +39,4 @@ struct SelectedSatellite {
 std::vector<SelectedSatellite> select_satellites(const NavData& nav, const Trajectory& trajectory,
                                                  const SelectionRequest& request);
 
-/// The Galileo record of `svid` a synthesized satellite broadcasts at GST t: from E1-B I/NAV
-/// (data sources bit 0), healthy on E1-B, toe within 4 hours of t (the ICD's validity of a
-/// batch), the toe closest to t. As NavData::select for GPS, a record whose known
-/// transmission time is later than t is used only when no other one qualifies (files cut
-/// at a time hold few records sent before it). nullptr when none qualifies.
-const galileo::GalileoEphemeris* select_galileo_ephemeris(const NavData& nav, int svid, const galileo::GstTime& t);
-
 }  // namespace deepnav

@@ -126,6 +126,30 @@ TEST(ReceiverClock, ABroadcastWeekFarFromTheReferenceIsAnError) {
   EXPECT_NE(error.find("give --week 2300 or leave it out"), std::string::npos) << error;
 }
 
+TEST(ReceiverClock, AGstWeekDatesTheClockAsGpsWeekPlus1024) {
+  ReceiverClock clock(kFs, 0, "--week");
+  clock.set_from_transmit_times(kFourTransmitTimes, 0);
+  EXPECT_FALSE(clock.is_set());  // no week known from the build date alone
+  clock.take_galileo_week(3, 1166, 73800.0, 0);
+  ASSERT_EQ(clock.signal_week(), 2190);
+  clock.set_from_transmit_times(kFourTransmitTimes, 0);
+  ASSERT_TRUE(clock.is_set());
+  EXPECT_EQ(clock.at(0)->week, 2190);
+  // The first week decides: a later GPS subframe 1 is not taken.
+  clock.take_broadcast_week(9, 2191 % 1024, 96.0, 0);
+  EXPECT_EQ(clock.signal_week(), 2190);
+}
+
+TEST(ReceiverClock, AGstWeekFarFromTheReferenceIsAnErrorNamingTheSatellite) {
+  ReceiverClock clock(kFs, 2190, "--week");
+  const std::string error = error_of([&] { clock.take_galileo_week(11, 1266, 96.0, 0); });
+  EXPECT_NE(error.find("the GPS week of --week 2190 contradicts the signal: E11 broadcasts GST week 1266, i.e. "
+                       "week 2290"),
+            std::string::npos)
+      << error;
+  EXPECT_NE(error.find("give --week 2290 or leave it out"), std::string::npos) << error;
+}
+
 TEST(ReceiverClock, AWeekEitherSideOfTheReferenceIsNoContradiction) {
   ReceiverClock clock(kFs, 2190, "--week");
   clock.take_broadcast_week(9, 2191 % 1024, 96.0, 0);

@@ -44,6 +44,7 @@ struct RunOptions {
   SourceRequest source;
   std::string out_dir, truth_path, assist_nav;
   std::string mitigation = "none";
+  std::string systems = "gps";  ///< --systems as given
   ReceiverConfig receiver;
   // INS aiding (--mode loose|tight|ultra).
   std::string assist_ephemeris;
@@ -66,6 +67,11 @@ aiding::NavMode parse_mode(const RunOptions& o) {
   const aiding::NavMode mode = aiding::parse_nav_mode(o.mode);
   if (mode != aiding::NavMode::scalar && o.imu_path.empty())
     throw UserError("--mode " + o.mode + " needs an IMU file (--imu FILE)");
+  const auto& systems = o.receiver.systems;
+  if (mode != aiding::NavMode::scalar &&
+      std::find(systems.begin(), systems.end(), GnssSystem::galileo) != systems.end())
+    throw UserError("--mode " + o.mode + " --systems " + o.systems +
+                    ": the aided modes take GPS measurements only so far (Galileo runs in --mode scalar)");
   return mode;
 }
 
@@ -167,7 +173,7 @@ std::optional<NothingFound> nothing_found(const RunOptions& o, const OpenedSourc
   GnssReceiver& receiver = session.receiver();
   const AcquisitionEvidence evidence = receiver.acquisition_evidence();
   const bool searched = evidence.strongest.has_value();
-  if (searched && receiver.acquired_prns().empty())
+  if (searched && receiver.acquired_satellites().empty())
     return diagnose_no_satellite(evidence, opened.settings, receiver.processed_s());
   if (stats.epochs() == 0)
     return too_short(receiver.processed_s(), 1.0 / o.receiver.observation_rate_hz,
@@ -225,10 +231,20 @@ nlohmann::json run_summary(const RunOptions& o, const OpenedSource& opened, aidi
       {"first_fix", first_fix_json(receiver.first_fix_origin())},
       {"hot_start", hot_start_json(receiver.hot_start_report())},
       {"acquired_prns", receiver.acquired_prns()},
+
       {"ephemerides", receiver.ephemerides().size()},
       {"ephemerides_decoded", receiver.decoded_ephemerides().size()},
       {"satellites_used", stats.satellites().json()},
       {"pdop", stats.pdop().json()}};
+  if (receiver.systems() != std::vector<GnssSystem>{GnssSystem::gps}) {
+    std::vector<std::string> names;
+    for (GnssSystem system : receiver.systems()) names.emplace_back(system_name(system));
+    summary["systems"] = names;
+    std::vector<std::string> acquired;
+    for (const SatelliteId& id : receiver.acquired_satellites()) acquired.push_back(id.to_string());
+    summary["acquired_satellites"] = acquired;
+    summary["galileo_ephemerides_decoded"] = receiver.decoded_galileo_ephemerides().size();
+  }
   if (scored) {
     summary["truth"] = o.truth_path;
     summary["horizontal_error_m"] = stats.horizontal_error_m().json();
@@ -417,8 +433,9 @@ void run_receiver(CLI::App& root, RunOptions o) {
   if (mode != aiding::NavMode::scalar) imu = read_imu(o);
   const aiding::NavigationSessionConfig config = session_config(o, opened.settings, mode);
   const ImuIntegrity imu_integrity = imu ? check_imu(o, *imu, config.navigator.imu) : ImuIntegrity{};
-  std::vector<std::unique_ptr<ProductSink>> products = file_products(
-      o.out_dir, std::filesystem::path(opened.input).filename().string(), 1.0 / o.receiver.observation_rate_hz);
+  std::vector<std::unique_ptr<ProductSink>> products =
+      file_products(o.out_dir, std::filesystem::path(opened.input).filename().string(),
+                    1.0 / o.receiver.observation_rate_hz, o.receiver.systems);
   aiding::NavigationSession session(config, *opened.source, std::move(imu), opened.duration_s);
   RunStatistics stats(truth ? &*truth : nullptr);
   std::optional<NothingFound> empty_run;  // decided when the run has ended, before the summary is written
@@ -447,7 +464,8 @@ void run_receiver(CLI::App& root, RunOptions o) {
   // After a hangup the terminal is gone: the results stay in the products.
   if (stop_signals.signal() != SIGHUP) {
     fmt::print("{} fixes in {} epochs; first fix at {}; satellites acquired: {}\n", stats.fixes(), stats.epochs(),
-               first_fix_text(stats, session.receiver().first_fix_origin()), session.receiver().acquired_prns().size());
+               first_fix_text(stats, session.receiver().first_fix_origin()),
+               session.receiver().acquired_satellites().size());
     if (truth && !stats.horizontal_error_m().values.empty())
       fmt::print("error vs truth: horizontal RMS {:.2f} m, vertical RMS {:.2f} m, velocity RMS {:.3f} m/s\n",
                  stats.horizontal_error_m().rms(), stats.vertical_error_m().rms(), stats.velocity_error_mps().rms());
@@ -476,7 +494,18 @@ void add_run_command(CommandParents& parents) {
       ->capture_default_str();
   cmd->add_option("--out", o->out_dir, "Output folder")->required();
   cmd->add_option("--truth", o->truth_path, "Synthesizer truth.csv: adds error statistics to summary.json");
-  cmd->add_option("--channels", o->receiver.channels, "Tracking channels")
+  cmd->add_option_function<std::string>(
+         "--systems",
+         [o](const std::string& text) {
+           o->systems = text;
+           o->receiver.systems = parse_systems_option(text);
+         },
+         "Satellite systems to track, comma-separated: gps, galileo (4 Msps or more) or gps,galileo")
+      ->default_str("gps");
+  cmd->add_option("--galileo-channels", o->receiver.galileo.channels, "Galileo E1 tracking channels")
+      ->check(CLI::Range(1, kGalileoMaxSvid).description("1 to 36 (one per Galileo SVID at most)"))
+      ->capture_default_str();
+  cmd->add_option("--channels", o->receiver.channels, "GPS tracking channels")
       ->check(CLI::Range(1, 32).description("1 to 32 (one per GPS PRN at most)"))
       ->capture_default_str();
   cmd->add_option("--pll-order", o->receiver.pll_order,

@@ -1,0 +1,78 @@
+#include "receiver/galileo_channel.hpp"
+
+#include <cmath>
+
+#include "signals/galileo/galileo_constants.hpp"
+#include "signals/gps_constants.hpp"
+
+namespace deepnav {
+
+GalileoChannel::GalileoChannel(const E1TrackingConfig& tracking, const E1LoopSettings& loops,
+                               const E1ChannelStart& start)
+    : tracking_(tracking, start), loops_(start.doppler_hz, loops), decoder_(start.satellite.prn) {}
+
+bool GalileoChannel::track(const SampleBlock& block) {
+  const int pages_before = decoder_.pages().counts().pages;
+  tracking_.process(block, [&](const E1CorrelatorEpoch& e) {
+    // Each integration's command acts from the very next sample.
+    tracking_.apply(loops_.update(e));
+    decoder_.add(e.symbols);
+    tracked_s_ += e.integration_s;
+    recent_.push_back({e.first_sample, e.first_sample + e.samples, e.integration_s, e.carrier_doppler_hz});
+    double kept_s = 0.0;
+    for (const DopplerSpan& d : recent_) kept_s += d.seconds;
+    while (recent_.size() > 1 && kept_s - recent_.front().seconds >= kDopplerWindow_s) {
+      kept_s -= recent_.front().seconds;
+      recent_.pop_front();
+    }
+  });
+  return decoder_.pages().counts().pages != pages_before;
+}
+
+bool GalileoChannel::observable(double lost_cn0_dbhz) const {
+  return tracking_.state() == E1ChannelState::tracking && decoder_.navigation().time_mark().has_value() &&
+         tracking_.cn0_dbhz() >= lost_cn0_dbhz;
+}
+
+std::optional<double> GalileoChannel::transmit_time_sow(std::int64_t sample) const {
+  // The time mark dates the start of a code period; the replica's unwrapped code phase
+  // counts chips from the start of period 0.
+  const std::optional<double> period0_tow = decoder_.navigation().tow_at_code_period(0);
+  if (!period0_tow) return std::nullopt;
+  const double tow = *period0_tow + tracking_.code_chips_at(sample) / galileo::kE1CodeRate_cps;
+  return tow - kSecondsPerWeek * std::floor(tow / kSecondsPerWeek);
+}
+
+double GalileoChannel::mean_doppler_hz() const {
+  double seconds = 0.0, cycles = 0.0;
+  for (const DopplerSpan& d : recent_) {
+    seconds += d.seconds;
+    cycles += d.seconds * d.doppler_hz;
+  }
+  return seconds > 0.0 ? cycles / seconds : loops_.doppler_hz();
+}
+
+ChannelObservation GalileoChannel::observe(const GpsTime& t_rx, double transmit_sow, std::int64_t sample,
+                                           double sample_rate_hz, bool after_gap) const {
+  // The travel time, across a week rollover between transmission and reception.
+  double travel_s = t_rx.sow - transmit_sow;
+  if (travel_s < -kSecondsPerWeek / 2) travel_s += kSecondsPerWeek;
+  if (travel_s > kSecondsPerWeek / 2) travel_s -= kSecondsPerWeek;
+  ChannelObservation o;
+  o.system = GnssSystem::galileo;
+  o.prn = svid();
+  o.pseudorange_m = gps::kSpeedOfLight_mps * travel_s;
+  o.doppler_hz = mean_doppler_hz();
+  // The mean refers to the middle of the integrations it averages.
+  if (!recent_.empty()) {
+    const double mid = 0.5 * static_cast<double>(recent_.front().first_sample + recent_.back().end_sample);
+    o.doppler_offset_s = (mid - static_cast<double>(sample)) / sample_rate_hz;
+  }
+  o.carrier_phase_cycles = tracking_.carrier_phase_cycles();
+  o.cn0_dbhz = tracking_.cn0_dbhz();
+  o.lock_time_s = tracked_s_;
+  o.after_gap = after_gap;
+  return o;
+}
+
+}  // namespace deepnav

@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# `deepnav run --systems` on synthesized GPS+Galileo IF (the bundled mixed scenario, Seoul,
+# 9 GPS and 4 Galileo satellites): a Galileo-only cold start decodes the I/NAV ephemerides
+# and fixes; an assisted start fixes from GPS and Galileo together, better than from
+# Galileo alone; obs.rnx and nav.rnx carry the Galileo satellites; a rate below 4 Msps and
+# the aided modes are refused for Galileo, naming why.
+#   usage: run_galileo.sh <deepnav binary> <source dir>
+source "$(dirname "$0")/lib/harness.sh" "$@"
+
+scenario="$src/data/scenarios/static_gps_galileo_60s.yaml"
+nav="$src/data/gps_galileo_20220101.rnx"
+sim_scenario "$scenario" "$work/sim" --duration 36
+
+# Cold, Galileo alone: the ephemerides of words 1-5 of every satellite by the end of the
+# first 30 s I/NAV subframe, and its GST week dates the receiver clock.
+run_on_sim "$work/sim" "$work/cold" --systems galileo --truth "$work/sim/truth.csv"
+check_json_each "$work/cold/summary.json" \
+  "cold Galileo: 4 ephemerides decoded" galileo_ephemerides_decoded '==' 4 \
+  "cold Galileo: first fix from decoded data" first_fix.method '==' '"cold"' \
+  "cold Galileo: first fix by 34 s" time_to_first_fix_s '<=' 34 \
+  "cold Galileo: four E satellites acquired" 'len(acquired_satellites)' '==' 4 \
+  "cold Galileo: no GPS satellite" 'len(acquired_prns)' '==' 0 \
+  "cold Galileo: horizontal RMS <= 4 m (PDOP 7.6)" horizontal_error_m.rms '<=' 4
+check "cold Galileo: nav.rnx holds the decoded Galileo records" \
+  '[[ $(grep -cE "^E[0-9]{2} " "$work/cold/nav.rnx") -eq 4 ]]'
+check "cold Galileo: obs.rnx declares Galileo" 'grep -q "^E .*C1C.*SYS / # / OBS TYPES" "$work/cold/obs.rnx"'
+
+# Assisted, over 14 s: GPS+Galileo beats Galileo alone.
+sim_scenario "$scenario" "$work/short" --duration 14
+for systems in galileo gps,galileo; do
+  run_on_sim "$work/short" "$work/assisted_${systems/,/_}" --systems "$systems" --ephemeris-from "$nav" \
+    --truth "$work/short/truth.csv"
+done
+check_json_each "$work/assisted_gps_galileo/summary.json" \
+  "assisted GPS+Galileo: 13 satellites acquired" 'len(acquired_satellites)' '==' 13 \
+  "assisted GPS+Galileo: first fix by 8 s" time_to_first_fix_s '<=' 8 \
+  "assisted GPS+Galileo: 13 satellites in the fix" satellites_used.max '==' 13 \
+  "assisted GPS+Galileo: horizontal RMS <= 1.5 m" horizontal_error_m.rms '<=' 1.5
+both=$(json_value "$work/assisted_gps_galileo/summary.json" horizontal_error_m.rms)
+alone=$(json_value "$work/assisted_galileo/summary.json" horizontal_error_m.rms)
+check "assisted: GPS+Galileo ($both m) beats Galileo alone ($alone m)" "py -c 'import sys; sys.exit(not $both < $alone)'"
+check "assisted GPS+Galileo: obs.rnx is mixed" 'head -1 "$work/assisted_gps_galileo/obs.rnx" | grep -q "M (MIXED)"'
+check "assisted GPS+Galileo: E and G observations" \
+  'grep -q "^E[0-9][0-9] " "$work/assisted_gps_galileo/obs.rnx" && grep -q "^G[0-9][0-9] " "$work/assisted_gps_galileo/obs.rnx"'
+check "assisted GPS+Galileo: NMEA GN talker" 'grep -q "^\$GNGGA" "$work/assisted_gps_galileo/fixes.nmea"'
+
+sim_source source "$work/sim"
+expect_failure slow_rate "Galileo E1 needs at least 4 Msps" -- "$deepnav" run "${source[@]/4000000/2000000}" \
+  --systems galileo --out "$work/slow"
+expect_failure aided "the aided modes take GPS measurements only" -- "$deepnav" run "${source[@]}" \
+  --systems gps,galileo --mode tight --imu "$work/sim/truth.csv" --out "$work/aided"
+finish
