@@ -273,7 +273,7 @@ struct AidedReceiver::Impl : ChannelAiding {
     double doppler_offset_s = 0.0;
     int dopplers = 0;
     for (const ChannelObservation& o : ep.observations) {
-      const SatelliteId sat{GnssSystem::gps, o.prn};
+      const SatelliteId sat = o.satellite();
       if (std::find(ep.pvt.used_satellites.begin(), ep.pvt.used_satellites.end(), sat) == ep.pvt.used_satellites.end())
         continue;
       doppler_offset_s += o.doppler_offset_s;
@@ -291,6 +291,8 @@ struct AidedReceiver::Impl : ChannelAiding {
     if (!ep.t_rx) return;
     RangeEpoch epoch{ep.t_s, *ep.t_rx, rx.iono(), {}};
     for (const ChannelObservation& o : ep.observations) {
+      // Range rows take GPS satellites (a Galileo one's PRN is not a GPS ephemeris's).
+      if (o.system != GnssSystem::gps) continue;
       const Ephemeris* eph = rx.ephemeris(o.prn);
       if (eph == nullptr || o.after_gap) continue;
       epoch.satellites.push_back({o.prn, *eph, o.pseudorange_m, o.cn0_dbhz, o.doppler_hz, o.doppler_offset_s,
@@ -411,7 +413,7 @@ struct AidedReceiver::Impl : ChannelAiding {
     if (ep.pvt.valid) last_pvt_t_s = ep.t_s;
     ranging = 0;
     for (const auto& o : ep.observations)
-      if (rx.ephemeris(o.prn)) ++ranging;
+      if (o.system == GnssSystem::gps && rx.ephemeris(o.prn)) ++ranging;
     // A hot start's coarse-time fix has no receiver clock behind it (its clock bias is
     // modulo 1 ms): the INS and its clock model start from the first fix with one.
     if (!nav && ep.pvt.valid && !ep.coarse_time && imu_feed.covers()) start_ins(ep);

@@ -8,6 +8,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "ins/frames.hpp"
 #include "signals/galileo/galileo_constants.hpp"
 
 namespace deepnav {
@@ -20,8 +21,7 @@ GalileoReceiverSettings checked(GalileoReceiverSettings s, double fs, double if_
         "Galileo E1 needs at least {:g} Msps (BOC(1,1)'s main lobes span +-2 MHz); the source gives {:g} Msps",
         kGalileoMinSampleRate_hz / 1e6, fs / 1e6));
   if (s.channels < 1 || s.channels > kGalileoMaxSvid)
-    throw std::invalid_argument(
-        fmt::format("{} Galileo channels: expected 1 to {}", s.channels, kGalileoMaxSvid));
+    throw std::invalid_argument(fmt::format("{} Galileo channels: expected 1 to {}", s.channels, kGalileoMaxSvid));
   if (!(s.reacquire_interval_s > 0.0))
     throw std::invalid_argument(
         fmt::format("Galileo reacquire interval {} s: expected a positive number", s.reacquire_interval_s));
@@ -64,12 +64,32 @@ void GalileoChannelSet::keep(const SampleBlock& block) {
   window_.append(block.samples.data(), block.samples.size(), block.first_sample_index);
 }
 
-void GalileoChannelSet::acquire_if_due(double t_s) {
+std::vector<int> GalileoChannelSet::candidates(const std::optional<SkyViewPoint>& where) const {
+  std::vector<int> out;
+  const bool predicted = where && !assisted_.galileo_ephemerides.empty();
+  for (int svid = 1; svid <= kGalileoMaxSvid; ++svid) {
+    if (tracked(svid)) continue;
+    const auto& searchable = cfg_.acquisition.prns;
+    if (!searchable.empty() && std::find(searchable.begin(), searchable.end(), svid) == searchable.end()) continue;
+    if (predicted) {
+      const galileo::GalileoEphemeris* eph = ephemeris(svid, where->t);
+      if (eph == nullptr) continue;
+      const SatelliteState sat = galileo::satellite_state(*eph, galileo::gst_from_gps_time(where->t));
+      if (look_angles(where->r_ecef_m, sat.r_ecef_m).elevation_rad < 0.0) continue;
+    }
+    out.push_back(svid);
+  }
+  return out;
+}
+
+void GalileoChannelSet::acquire_if_due(double t_s, const std::optional<SkyViewPoint>& where) {
   if (!channel_free() || !window_.full() || t_s - last_search_s_ < cfg_.reacquire_interval_s) return;
   last_search_s_ = t_s;
+  const std::vector<int> svids = candidates(where);
+  if (svids.empty()) return;
   const std::vector<Sample> samples = window_.in_order();
   std::vector<GalileoAcquisitionResult> found;
-  for (const GalileoAcquisitionResult& r : search_->search(samples))
+  for (const GalileoAcquisitionResult& r : search_->search(samples, svids))
     if (r.detected && !tracked(r.satellite.prn)) found.push_back(r);
   std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.cn0_dbhz > b.cn0_dbhz; });
   for (const GalileoAcquisitionResult& r : found) {

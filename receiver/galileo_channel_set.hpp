@@ -11,6 +11,8 @@
 #include <optional>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "receiver/acquisition/galileo_acquisition.hpp"
 #include "receiver/galileo_channel.hpp"
 #include "receiver/sources/sample_history.hpp"
@@ -27,6 +29,12 @@ struct GalileoReceiverSettings {
   GalileoAcquisitionConfig acquisition;  ///< sample rate and IF are taken from the source
   E1TrackingConfig tracking;             ///< sample rate and IF are taken from the source
   E1LoopSettings loops;
+};
+
+/// Where and when the receiver is (its latest fix), for predicting which satellites are up.
+struct SkyViewPoint {
+  GpsTime t{};
+  Eigen::Vector3d r_ecef_m = Eigen::Vector3d::Zero();
 };
 
 /// The GST week the first page with one carried: what dates the receiver clock's week.
@@ -57,8 +65,10 @@ class GalileoChannelSet {
   void release_all();
   /// Searches the window when a search is due at `t_s` (the first as soon as the window is
   /// full, then every reacquire interval while a channel is free) and starts a channel on
-  /// every satellite found that no channel tracks, strongest first.
-  void acquire_if_due(double t_s);
+  /// every satellite found that no channel tracks, strongest first. With `where` (a fix) and
+  /// assisted Galileo records, only the untracked satellites they put above the horizon
+  /// there are searched (no search when there is none); otherwise every SVID.
+  void acquire_if_due(double t_s, const std::optional<SkyViewPoint>& where = std::nullopt);
 
   std::size_t size() const { return channels_.size(); }
   GalileoChannel& channel(std::size_t i) { return *channels_[i]; }
@@ -84,6 +94,8 @@ class GalileoChannelSet {
 
  private:
   void start_channel(const GalileoAcquisitionResult& r, std::int64_t first_sample);
+  /// The SVIDs to search: those predicted up at `where`, else all the untracked ones.
+  std::vector<int> candidates(const std::optional<SkyViewPoint>& where) const;
   bool tracked(int svid) const;
 
   GalileoReceiverSettings cfg_;

@@ -104,9 +104,10 @@ struct GnssReceiver::Impl {
   bool gap_since_epoch = false;                          ///< samples lost since the last observation epoch
   std::optional<double> ephemerides_complete_s;          ///< four satellites first had ephemerides
   std::optional<FirstFixOrigin> first_fix;
-  std::optional<HotStart> hot_start;           ///< ReceiverConfig::hot_start, until the clock is set
-  bool gps_on;                                 ///< GPS is tracked
-  std::unique_ptr<GalileoChannelSet> galileo;  ///< when Galileo is tracked
+  std::optional<HotStart> hot_start;               ///< ReceiverConfig::hot_start, until the clock is set
+  bool gps_on;                                     ///< GPS is tracked
+  std::unique_ptr<GalileoChannelSet> galileo;      ///< when Galileo is tracked
+  std::optional<Eigen::Vector3d> last_fix_ecef_m;  ///< the latest valid fix's position
 
   Impl(ReceiverConfig c, SampleSource& s)
       : cfg(checked(std::move(c), s)),
@@ -244,6 +245,13 @@ struct GnssReceiver::Impl {
       return decoded.count(s.prn) > 0;
     });
     first_fix = FirstFixOrigin{cold ? "cold" : "ephemerides given", ephemerides_complete_s};
+  }
+
+  /// Where and when the receiver is at sample `s`, once it has a fix and a clock.
+  std::optional<SkyViewPoint> sky_view(std::int64_t s) const {
+    const auto t = clock.at(s);
+    if (!t || !last_fix_ecef_m) return std::nullopt;
+    return SkyViewPoint{*t, *last_fix_ecef_m};
   }
 
   static std::int64_t block_end(const SampleBlock& block) {
@@ -447,6 +455,7 @@ struct GnssReceiver::Impl {
     note_first_fix(ep.pvt, false);
     // Steer the receiver clock so that pseudoranges stay near the geometric ranges.
     if (ep.pvt.valid) clock.steer(ep.pvt.clock_bias_m);
+    if (ep.pvt.valid) last_fix_ecef_m = ep.pvt.r_ecef_m;
     return ep;
   }
 };
@@ -501,7 +510,7 @@ void GnssReceiver::run(const std::function<void(const ReceiverEpoch&)>& on_epoch
     // the next block, carried across by their NCOs.
     if (m.acquisition.reacquisition_due(t, m.gps_on && m.channel_free()))
       m.acquire(m.acquisition.window().in_order(), m.acquisition.window().first_index());
-    if (m.galileo) m.galileo->acquire_if_due(t);
+    if (m.galileo) m.galileo->acquire_if_due(t, m.sky_view(end));
     if (progress) progress(t);
   }
   for (const ReceiverChannel& ch : m.channels) {

@@ -183,13 +183,15 @@ struct GalileoAcquisition::Impl {
   std::vector<float> row;
   std::vector<GridSummary> summaries;
 
-  std::vector<GalileoAcquisitionResult> search(std::span<const Sample> x) {
+  std::vector<GalileoAcquisitionResult> search(std::span<const Sample> x, const std::vector<int>& prns) {
+    for (int p : prns)
+      if (std::find(cfg.prns.begin(), cfg.prns.end(), p) == cfg.prns.end())
+        throw std::invalid_argument(fmt::format("Galileo acquisition: E{:02d} is not among the SVIDs configured", p));
     const int blocks =
         static_cast<int>(std::min<std::int64_t>(cfg.noncoherent, static_cast<std::int64_t>(x.size()) / n));
     if (blocks < 1)
       throw std::invalid_argument(
           fmt::format("Galileo acquisition: need at least {} samples (one 4 ms code period), got {}", n, x.size()));
-    const std::vector<int>& prns = cfg.prns;
     scratch.resize(static_cast<std::size_t>(n));
     block_spectra.resize(static_cast<std::size_t>(blocks));
     for (auto& s : block_spectra) s.resize(static_cast<std::size_t>(nf));
@@ -299,7 +301,12 @@ std::int64_t GalileoAcquisition::samples_needed() const {
 }
 
 std::vector<GalileoAcquisitionResult> GalileoAcquisition::search(std::span<const Sample> samples) {
-  return impl_->search(samples);
+  return impl_->search(samples, impl_->cfg.prns);
+}
+
+std::vector<GalileoAcquisitionResult> GalileoAcquisition::search(std::span<const Sample> samples,
+                                                                 const std::vector<int>& prns) {
+  return impl_->search(samples, prns);
 }
 
 }  // namespace deepnav

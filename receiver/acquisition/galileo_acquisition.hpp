@@ -89,6 +89,9 @@ class GalileoAcquisition {
   /// samples than samples_needed() shorten the non-coherent sum; fewer than one code period
   /// throw std::invalid_argument.
   std::vector<GalileoAcquisitionResult> search(std::span<const Sample> samples);
+  /// The same for `prns` only (a subset of those configured, else std::invalid_argument):
+  /// the searches after the first, for the satellites predicted in view.
+  std::vector<GalileoAcquisitionResult> search(std::span<const Sample> samples, const std::vector<int>& prns);
 
  private:
   struct Impl;

@@ -3,7 +3,8 @@
 # 9 GPS and 4 Galileo satellites): a Galileo-only cold start decodes the I/NAV ephemerides
 # and fixes; an assisted start fixes from GPS and Galileo together, better than from
 # Galileo alone; obs.rnx and nav.rnx carry the Galileo satellites; a rate below 4 Msps and
-# the aided modes are refused for Galileo, naming why.
+# tight and ultra-tight coupling are refused with Galileo, naming why; loose coupling takes
+# the two-system fix.
 #   usage: run_galileo.sh <deepnav binary> <source dir>
 source "$(dirname "$0")/lib/harness.sh" "$@"
 
@@ -44,9 +45,21 @@ check "assisted GPS+Galileo: E and G observations" \
   'grep -q "^E[0-9][0-9] " "$work/assisted_gps_galileo/obs.rnx" && grep -q "^G[0-9][0-9] " "$work/assisted_gps_galileo/obs.rnx"'
 check "assisted GPS+Galileo: NMEA GN talker" 'grep -q "^\$GNGGA" "$work/assisted_gps_galileo/fixes.nmea"'
 
+# Loose coupling takes the two-system fix (the land circle with an IMU, 14 s, assisted).
+derive_scenario "$src/data/scenarios/land_circle_gps_galileo_60s.yaml" "$work/circle.yaml" \
+  --append 'imu: {grade: tactical, rate_hz: 100, lever_arm_m: [0.8, -0.3, 0.4]}'
+sim_scenario "$work/circle.yaml" "$work/circle" --duration 14
+sim_imu imu "$work/circle"
+run_on_sim "$work/circle" "$work/loose" --systems gps,galileo --ephemeris-from "$nav" --mode loose "${imu[@]}" \
+  --truth "$work/circle/truth.csv"
+check_json_each "$work/loose/summary.json" \
+  "loose GPS+Galileo: both systems in the fixes" satellites_used.max '>=' 13 \
+  "loose GPS+Galileo: horizontal RMS <= 1 m" horizontal_error_m.rms '<=' 1
+check "loose GPS+Galileo: the filter navigates" 'grep -q ",loose," "$work/loose/pvt.csv"'
+
 sim_source source "$work/sim"
 expect_failure slow_rate "Galileo E1 needs at least 4 Msps" -- "$deepnav" run "${source[@]/4000000/2000000}" \
   --systems galileo --out "$work/slow"
-expect_failure aided "the aided modes take GPS measurements only" -- "$deepnav" run "${source[@]}" \
-  --systems gps,galileo --mode tight --imu "$work/sim/truth.csv" --out "$work/aided"
+expect_failure aided "tight and ultra-tight coupling take GPS measurements only" -- "$deepnav" run \
+  "${source[@]}" --systems gps,galileo --mode tight --imu "$work/sim/truth.csv" --out "$work/aided"
 finish

@@ -47,10 +47,12 @@ RunFigures run_session(const Scenario& sc, const SynthesisSummary& s, aiding::Na
   return f;
 }
 
-RunFigures run_scalar(const Scenario& sc, const SynthesisSummary& s, int channels, unsigned threads) {
+RunFigures run_scalar(const Scenario& sc, const SynthesisSummary& s, int channels, unsigned threads,
+                      const std::vector<GnssSystem>& systems = {GnssSystem::gps}) {
   aiding::NavigationSessionConfig cfg = scenario_session_config(sc, aiding::NavMode::scalar);
   cfg.navigator.receiver.channels = channels;
   cfg.navigator.receiver.threads = threads;
+  cfg.navigator.receiver.systems = systems;
   return run_session(sc, s, std::move(cfg), [](const NavigationEpoch& e) { return e.receiver.channels_tracking; });
 }
 
@@ -82,7 +84,7 @@ CorrelatorKernel choose_kernel(const std::string& name) {
 }
 
 BenchReport speed_table() {
-  BenchReport report("Receiver speed (4.092 Msps ibyte)",
+  BenchReport report("Receiver speed (ibyte: 4.092 Msps GPS scenario, 4 Msps GPS+Galileo scenario)",
                      {"case", "channels", "threads", "tracking", "signal_s", "wall_s", "cpu_s", "realtime_factor",
                       "realtime_factor_cpu", "channel_samples_per_s", "channel_samples_per_cpu_s"});
   report.set_precision("signal_s", 1);
@@ -93,6 +95,15 @@ BenchReport speed_table() {
   report.set_precision("channel_samples_per_s", 3);
   report.set_precision("channel_samples_per_cpu_s", 3);
   return report;
+}
+
+/// A receiver run's row: its real-time factors over the scenario's signal.
+void add_receiver_row(BenchReport& report, const Scenario& sc, const std::string& name, int channels, unsigned threads,
+                      const RunFigures& f) {
+  const double rt = sc.duration_s / f.wall_s, rt_cpu = sc.duration_s / f.cpu_s;
+  report.add_row({name, static_cast<long long>(channels), static_cast<long long>(threads),
+                  static_cast<long long>(f.max_tracking), sc.duration_s, f.wall_s, f.cpu_s, rt, rt_cpu,
+                  rt * sc.sample_rate_hz * channels, rt_cpu * sc.sample_rate_hz * channels});
 }
 
 /// One row per kernel this CPU has, with and without the noise tap; returns the kernels' names.
@@ -113,6 +124,39 @@ std::vector<std::string> add_correlator_rows(BenchReport& report) {
 }  // namespace
 
 std::string default_rx_speed_scenario() { return source_tree_path("data/scenarios/rx_speed_12sat.yaml"); }
+std::string default_rx_speed_galileo_scenario() {
+  return source_tree_path("data/scenarios/static_gps_galileo_60s.yaml");
+}
+
+namespace {
+
+/// The mixed scenario's rows: GPS alone and GPS+Galileo on the same samples.
+void add_galileo_rows(const RxSpeedSettings& o, const std::string& work, unsigned cores, BenchReport& report) {
+  Scenario sc = load_scenario(o.galileo_scenario, DEEPNAV_SOURCE_DIR);
+  sc.duration_s = o.duration_s;
+  validate_scenario(sc);
+  if (std::find(sc.systems.begin(), sc.systems.end(), GnssSystem::galileo) == sc.systems.end())
+    throw InputError("scenario '" + o.galileo_scenario + "' has no Galileo satellites (systems: [gps, galileo])");
+  SynthesisOptions so;
+  so.threads = 0;
+  const SynthesisSummary s = IfSynthesizer(sc, read_rinex_nav(sc.nav_file)).run(work + "/galileo", so);
+  const int gps_channels = 12, galileo_channels = ReceiverConfig{}.galileo.channels;
+  const auto add = [&](const std::string& name, int channels, unsigned threads, const RunFigures& f) {
+    add_receiver_row(report, sc, name, channels, threads, f);
+  };
+  const std::vector<GnssSystem> both{GnssSystem::gps, GnssSystem::galileo};
+  for (unsigned threads : {1u, cores}) {
+    if (threads == cores && cores == 1) break;
+    add("scalar GPS, mixed IF", gps_channels, threads,
+        median_run(o.repeats, [&] { return run_scalar(sc, s, gps_channels, threads); }));
+    add("scalar GPS+Galileo", gps_channels + galileo_channels, threads,
+        median_run(o.repeats, [&] { return run_scalar(sc, s, gps_channels, threads, both); }));
+  }
+  report.add_note("galileo_scenario", source_relative(o.galileo_scenario));
+  report.add_note("galileo_kernel", "portable (the E1 correlator has no SIMD kernel yet)");
+}
+
+}  // namespace
 
 void run_rx_speed_bench(const RxSpeedSettings& o) {
   const CorrelatorKernel in_use = choose_kernel(o.kernel);
@@ -128,10 +172,7 @@ void run_rx_speed_bench(const RxSpeedSettings& o) {
 
   BenchReport report = speed_table();
   const auto add = [&](const std::string& name, int channels, unsigned threads, const RunFigures& f) {
-    const double rt = sc.duration_s / f.wall_s, rt_cpu = sc.duration_s / f.cpu_s;
-    report.add_row({name, static_cast<long long>(channels), static_cast<long long>(threads),
-                    static_cast<long long>(f.max_tracking), sc.duration_s, f.wall_s, f.cpu_s, rt, rt_cpu,
-                    rt * sc.sample_rate_hz * channels, rt_cpu * sc.sample_rate_hz * channels});
+    add_receiver_row(report, sc, name, channels, threads, f);
   };
   for (int channels : {8, 12}) {
     add("scalar", channels, 1, median_run(o.repeats, [&] { return run_scalar(sc, s, channels, 1); }));
@@ -139,6 +180,8 @@ void run_rx_speed_bench(const RxSpeedSettings& o) {
       add("scalar", channels, cores, median_run(o.repeats, [&] { return run_scalar(sc, s, channels, cores); }));
   }
   add("ultra-tight", 12, 1, median_run(o.repeats, [&] { return run_ultra(sc, s); }));
+  if (std::find(o.systems.begin(), o.systems.end(), GnssSystem::galileo) != o.systems.end())
+    add_galileo_rows(o, work, cores, report);
   const std::vector<std::string> kernels = add_correlator_rows(report);
   std::filesystem::remove_all(work);
   report.add_note("cpu", cpu_model());

@@ -1,6 +1,7 @@
 // `deepnav bench rx`: the options of the receiver speed benchmark
 // (tools/bench/rx_speed_bench.hpp).
 #include "tools/bench/rx_speed_bench.hpp"
+#include "tools/cli/cli_checks.hpp"
 #include "tools/cli/commands.hpp"
 
 namespace deepnav::cli {
@@ -21,6 +22,12 @@ void add_bench_rx_command(CommandParents& parents) {
       "--kernel", o->kernel,
       "Correlator kernel for the receiver runs (portable, avx2, avx512, neon; default: the CPU's fastest, or "
       "DEEPNAV_CORRELATOR_KERNEL)");
+  cmd->add_option_function<std::string>(
+         "--systems", [o](const std::string& text) { o->systems = parse_systems_option(text); },
+         "gps (default), or gps,galileo to add GPS-alone and GPS+Galileo rows on a mixed scenario")
+      ->default_str("gps");
+  cmd->add_option("--galileo-scenario", o->galileo_scenario, "Scenario with GPS and Galileo satellites (--systems)")
+      ->capture_default_str();
   cmd->callback([o] { run_rx_speed_bench(*o); });
 }
 

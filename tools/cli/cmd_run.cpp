@@ -68,10 +68,11 @@ aiding::NavMode parse_mode(const RunOptions& o) {
   if (mode != aiding::NavMode::scalar && o.imu_path.empty())
     throw UserError("--mode " + o.mode + " needs an IMU file (--imu FILE)");
   const auto& systems = o.receiver.systems;
-  if (mode != aiding::NavMode::scalar &&
-      std::find(systems.begin(), systems.end(), GnssSystem::galileo) != systems.end())
+  const bool ranges_taken = mode == aiding::NavMode::tight || mode == aiding::NavMode::ultra;
+  if (ranges_taken && std::find(systems.begin(), systems.end(), GnssSystem::galileo) != systems.end())
     throw UserError("--mode " + o.mode + " --systems " + o.systems +
-                    ": the aided modes take GPS measurements only so far (Galileo runs in --mode scalar)");
+                    ": tight and ultra-tight coupling take GPS measurements only so far (with Galileo: --mode scalar "
+                    "or loose, whose filter takes the two-system fix)");
   return mode;
 }
 
