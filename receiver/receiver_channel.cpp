@@ -82,9 +82,7 @@ std::optional<double> ReceiverChannel::transmit_time_sow(std::int64_t sample) co
 ChannelObservation ReceiverChannel::observe(const GpsTime& t_rx, double transmit_sow, std::int64_t sample,
                                             double sample_rate_hz, bool after_gap) const {
   // The travel time, across a week rollover between transmission and reception.
-  double travel_s = t_rx.sow - transmit_sow;
-  if (travel_s < -kSecondsPerWeek / 2) travel_s += kSecondsPerWeek;
-  if (travel_s > kSecondsPerWeek / 2) travel_s -= kSecondsPerWeek;
+  const double travel_s = seconds_of_week_difference(t_rx.sow, transmit_sow);
   ChannelObservation o;
   o.prn = prn();
   o.pseudorange_m = gps::kSpeedOfLight_mps * travel_s;
