@@ -11,8 +11,7 @@ GalileoChannel::GalileoChannel(const E1TrackingConfig& tracking, const E1LoopSet
                                const E1ChannelStart& start)
     : tracking_(tracking, start), loops_(start.doppler_hz, loops), decoder_(start.satellite.prn) {}
 
-bool GalileoChannel::track(const SampleBlock& block) {
-  const int pages_before = decoder_.pages().counts().pages;
+void GalileoChannel::track(const SampleBlock& block) {
   tracking_.process(block, [&](const E1CorrelatorEpoch& e) {
     // Each integration's command acts from the very next sample.
     tracking_.apply(loops_.update(e));
@@ -26,7 +25,6 @@ bool GalileoChannel::track(const SampleBlock& block) {
       recent_.pop_front();
     }
   });
-  return decoder_.pages().counts().pages != pages_before;
 }
 
 bool GalileoChannel::observable(double lost_cn0_dbhz) const {

@@ -29,11 +29,10 @@ class GalileoChannel {
   const SatelliteId& satellite() const { return tracking_.satellite(); }
   const E1TrackingChannel& tracking() const { return tracking_; }
   const InavDecoder& decoder() const { return decoder_; }
-  double last_doppler_hz() const { return loops_.doppler_hz(); }
 
   /// Tracks one block: correlation, the loops after every integration, the E1-B symbols to
-  /// the decoder. Returns whether the block completed pages (new navigation data may be in).
-  bool track(const SampleBlock& block);
+  /// the decoder.
+  void track(const SampleBlock& block);
   /// Whether its observables may be formed: tracking on the wiped pilot, a GST time mark
   /// decoded, and a signal behind it (C/N0 at or above `lost_cn0_dbhz`).
   bool observable(double lost_cn0_dbhz) const;
@@ -43,8 +42,6 @@ class GalileoChannel {
   /// `transmit_sow`; `after_gap`: samples were lost since the previous epoch.
   ChannelObservation observe(const GpsTime& t_rx, double transmit_sow, std::int64_t sample, double sample_rate_hz,
                              bool after_gap) const;
-  /// Seconds of signal tracked.
-  double tracked_s() const { return tracked_s_; }
 
  private:
   /// Mean NCO Doppler over the last kDopplerWindow_s of integrations (the loop's frequency

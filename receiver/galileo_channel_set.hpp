@@ -53,7 +53,6 @@ class GalileoChannelSet {
   GalileoChannelSet(const GalileoChannelSet&) = delete;
   GalileoChannelSet& operator=(const GalileoChannelSet&) = delete;
 
-  const GalileoReceiverSettings& settings() const { return cfg_; }
   bool channel_free() const { return static_cast<int>(channels_.size()) < cfg_.channels; }
 
   /// The block just read joins the search window while a channel is free.
@@ -99,7 +98,7 @@ class GalileoChannelSet {
   bool tracked(int svid) const;
 
   GalileoReceiverSettings cfg_;
-  std::unique_ptr<GalileoAcquisition> search_;  ///< made at the first search
+  std::unique_ptr<GalileoAcquisition> search_;  ///< its plans and code spectra made once, at construction
   SampleHistory window_;
   double last_search_s_;
   std::vector<std::unique_ptr<GalileoChannel>> channels_;

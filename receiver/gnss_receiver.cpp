@@ -44,10 +44,6 @@ ReceiverConfig checked(ReceiverConfig cfg, const SampleSource& src) {
   return cfg;
 }
 
-bool tracks(const ReceiverConfig& cfg, GnssSystem system) {
-  return std::find(cfg.systems.begin(), cfg.systems.end(), system) != cfg.systems.end();
-}
-
 /// The workers that track channels besides the calling thread, which takes one share of
 /// the channels itself: `threads` - 1 of them (none for one thread).
 std::unique_ptr<WorkerThreads> channel_workers(unsigned threads) {
@@ -120,8 +116,8 @@ struct GnssReceiver::Impl {
         guided(cfg.guided, fs, cfg.tracking.if_hz),
         pvt(cfg.pvt, cfg.atmosphere) {
     if (cfg.hot_start) hot_start.emplace(*cfg.hot_start, fs, cfg.atmosphere);
-    gps_on = tracks(cfg, GnssSystem::gps);
-    if (tracks(cfg, GnssSystem::galileo))
+    gps_on = includes_system(cfg.systems, GnssSystem::gps);
+    if (includes_system(cfg.systems, GnssSystem::galileo))
       galileo = std::make_unique<GalileoChannelSet>(cfg.galileo, fs, cfg.tracking.if_hz);
   }
 

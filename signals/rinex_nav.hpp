@@ -42,9 +42,10 @@ struct NavData {
 
 /// The Galileo record of `svid` in use at GST t (what a synthesized satellite broadcasts, what
 /// an assisted receiver takes): from E1-B I/NAV (data sources bit 0), healthy on E1-B, toe
-/// within 4 hours of t (the ICD's validity of a batch), the toe closest to t. As NavData::select for GPS, a record whose known
-/// transmission time is later than t is used only when no other one qualifies (files cut
-/// at a time hold few records sent before it). nullptr when none qualifies.
+/// within 4 hours of t (the ICD's validity of a batch), the toe closest to t. As
+/// NavData::select for GPS, a record whose known transmission time is later than t is used
+/// only when no other one qualifies (files cut at a time hold few records sent before it).
+/// nullptr when none qualifies.
 const galileo::GalileoEphemeris* select_galileo_ephemeris(const NavData& nav, int svid, const galileo::GstTime& t);
 
 /// Reads a RINEX 2.10/2.11/3.0x navigation file. Throws std::runtime_error naming the file

@@ -19,6 +19,10 @@ std::optional<GnssSystem> parse_system_name(std::string_view name) {
   return std::nullopt;
 }
 
+bool includes_system(const std::vector<GnssSystem>& systems, GnssSystem system) {
+  return std::find(systems.begin(), systems.end(), system) != systems.end();
+}
+
 std::string SatelliteId::to_string() const { return fmt::format("{}{:02d}", system_letter(system), prn); }
 
 std::optional<SatelliteId> parse_satellite_id(std::string_view text) {

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace deepnav {
 
@@ -17,6 +18,8 @@ char system_letter(GnssSystem system);
 std::string_view system_name(GnssSystem system);
 /// The system named "gps" or "galileo" (case-insensitive); nullopt for anything else.
 std::optional<GnssSystem> parse_system_name(std::string_view name);
+/// Whether `system` is among `systems` (a scenario's, a receiver's).
+bool includes_system(const std::vector<GnssSystem>& systems, GnssSystem system);
 
 struct SatelliteId {
   GnssSystem system = GnssSystem::gps;

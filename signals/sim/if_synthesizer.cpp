@@ -192,8 +192,7 @@ struct IfSynthesizer::Impl {
     request.max_satellites = sc.max_satellites;
     request.systems = sc.systems;
     request.gst_minus_gpst_s = gst_minus_gpst_s;
-    if (std::find(sc.systems.begin(), sc.systems.end(), GnssSystem::galileo) != sc.systems.end())
-      require_galileo_records();
+    if (includes_system(sc.systems, GnssSystem::galileo)) require_galileo_records();
     const auto chosen = select_satellites(nav, *trajectory, request);
     if (chosen.empty()) {
       throw std::runtime_error(fmt::format("{}: no healthy satellite of '{}' is above the elevation mask at the start",
@@ -591,7 +590,7 @@ SynthesisSummary IfSynthesizer::run(const std::string& out_dir, const SynthesisO
 
   // sat_truth.csv's prn column: the GPS PRN as a number in a GPS-only run (as it always was),
   // "G05" / "E11" in every row once Galileo is in the scenario.
-  const bool mixed = std::find(m.sc.systems.begin(), m.sc.systems.end(), GnssSystem::galileo) != m.sc.systems.end();
+  const bool mixed = includes_system(m.sc.systems, GnssSystem::galileo);
   const auto truth_name = [mixed](const SatelliteId& id) { return mixed ? id.to_string() : std::to_string(id.prn); };
   const std::int64_t truth_stride = std::llround(1000.0 / m.sc.truth_rate_hz);
   const std::int64_t sat_stride = std::llround(1000.0 / m.sc.sat_truth_rate_hz);

@@ -135,22 +135,20 @@ void add_galileo_rows(const RxSpeedSettings& o, const std::string& work, unsigne
   Scenario sc = load_scenario(o.galileo_scenario, DEEPNAV_SOURCE_DIR);
   sc.duration_s = o.duration_s;
   validate_scenario(sc);
-  if (std::find(sc.systems.begin(), sc.systems.end(), GnssSystem::galileo) == sc.systems.end())
+  if (!includes_system(sc.systems, GnssSystem::galileo))
     throw InputError("scenario '" + o.galileo_scenario + "' has no Galileo satellites (systems: [gps, galileo])");
   SynthesisOptions so;
   so.threads = 0;
   const SynthesisSummary s = IfSynthesizer(sc, read_rinex_nav(sc.nav_file)).run(work + "/galileo", so);
   const int gps_channels = 12, galileo_channels = ReceiverConfig{}.galileo.channels;
-  const auto add = [&](const std::string& name, int channels, unsigned threads, const RunFigures& f) {
-    add_receiver_row(report, sc, name, channels, threads, f);
-  };
   const std::vector<GnssSystem> both{GnssSystem::gps, GnssSystem::galileo};
-  for (unsigned threads : {1u, cores}) {
-    if (threads == cores && cores == 1) break;
-    add("scalar GPS, mixed IF", gps_channels, threads,
-        median_run(o.repeats, [&] { return run_scalar(sc, s, gps_channels, threads); }));
-    add("scalar GPS+Galileo", gps_channels + galileo_channels, threads,
-        median_run(o.repeats, [&] { return run_scalar(sc, s, gps_channels, threads, both); }));
+  std::vector<unsigned> thread_counts{1};
+  if (cores > 1) thread_counts.push_back(cores);
+  for (unsigned threads : thread_counts) {
+    add_receiver_row(report, sc, "scalar GPS, mixed IF", gps_channels, threads,
+                     median_run(o.repeats, [&] { return run_scalar(sc, s, gps_channels, threads); }));
+    add_receiver_row(report, sc, "scalar GPS+Galileo", gps_channels + galileo_channels, threads,
+                     median_run(o.repeats, [&] { return run_scalar(sc, s, gps_channels, threads, both); }));
   }
   report.add_note("galileo_scenario", source_relative(o.galileo_scenario));
   report.add_note("galileo_kernel", "portable (the E1 correlator has no SIMD kernel yet)");
@@ -171,17 +169,15 @@ void run_rx_speed_bench(const RxSpeedSettings& o) {
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
 
   BenchReport report = speed_table();
-  const auto add = [&](const std::string& name, int channels, unsigned threads, const RunFigures& f) {
-    add_receiver_row(report, sc, name, channels, threads, f);
-  };
   for (int channels : {8, 12}) {
-    add("scalar", channels, 1, median_run(o.repeats, [&] { return run_scalar(sc, s, channels, 1); }));
+    add_receiver_row(report, sc, "scalar", channels, 1,
+                     median_run(o.repeats, [&] { return run_scalar(sc, s, channels, 1); }));
     if (cores > 1)
-      add("scalar", channels, cores, median_run(o.repeats, [&] { return run_scalar(sc, s, channels, cores); }));
+      add_receiver_row(report, sc, "scalar", channels, cores,
+                       median_run(o.repeats, [&] { return run_scalar(sc, s, channels, cores); }));
   }
-  add("ultra-tight", 12, 1, median_run(o.repeats, [&] { return run_ultra(sc, s); }));
-  if (std::find(o.systems.begin(), o.systems.end(), GnssSystem::galileo) != o.systems.end())
-    add_galileo_rows(o, work, cores, report);
+  add_receiver_row(report, sc, "ultra-tight", 12, 1, median_run(o.repeats, [&] { return run_ultra(sc, s); }));
+  if (includes_system(o.systems, GnssSystem::galileo)) add_galileo_rows(o, work, cores, report);
   const std::vector<std::string> kernels = add_correlator_rows(report);
   std::filesystem::remove_all(work);
   report.add_note("cpu", cpu_model());

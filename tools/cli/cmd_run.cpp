@@ -67,9 +67,8 @@ aiding::NavMode parse_mode(const RunOptions& o) {
   const aiding::NavMode mode = aiding::parse_nav_mode(o.mode);
   if (mode != aiding::NavMode::scalar && o.imu_path.empty())
     throw UserError("--mode " + o.mode + " needs an IMU file (--imu FILE)");
-  const auto& systems = o.receiver.systems;
   const bool ranges_taken = mode == aiding::NavMode::tight || mode == aiding::NavMode::ultra;
-  if (ranges_taken && std::find(systems.begin(), systems.end(), GnssSystem::galileo) != systems.end())
+  if (ranges_taken && includes_system(o.receiver.systems, GnssSystem::galileo))
     throw UserError("--mode " + o.mode + " --systems " + o.systems +
                     ": tight and ultra-tight coupling take GPS measurements only so far (with Galileo: --mode scalar "
                     "or loose, whose filter takes the two-system fix)");
