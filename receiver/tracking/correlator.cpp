@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "receiver/tracking/kernels/kernels.hpp"
+#include "receiver/tracking/padded_correlation.hpp"
 
 namespace deepnav {
 namespace {
@@ -61,56 +62,25 @@ const CarrierTable& carrier_table(int bits) {
   return tables[bits <= kSmallBits ? 0 : 1];
 }
 
-/// Code levels (+-1) as int16 and int8 over chips -kPad .. 1022 + kPad.
-struct CodeTable {
-  alignas(64) std::int16_t l16[1023 + 2 * kPad];
-  alignas(64) std::int8_t l8[1023 + 2 * kPad];
-  explicit CodeTable(const CaCodeChips& code) {
-    for (int c = -kPad; c < 1023 + kPad; ++c) {
-      const std::int8_t v = code[static_cast<std::size_t>((c + 1023) % 1023)];
-      l16[c + kPad] = v;
-      l8[c + kPad] = v;
-    }
-  }
-};
+using CaTable = PaddedCodeTable<1023>;
 
-/// The table of a code. A receiver interleaves its channels over the same block, so each
+/// The table of a C/A code. A receiver interleaves its channels over the same block, so each
 /// thread keeps the tables of ca_code_chips()'s 32 constant codes, and of the last 64 other
-/// codes it saw, keyed by address and checked against a copy of the chips (a caller may
-/// reuse an address for another code).
-const CodeTable& table_for(const CaCodeChips& code) {
+/// codes it saw (cached_code_table()).
+const CaTable& table_for(const CaCodeChips& code) {
   static const CaCodeChips* const kFirst = &ca_code_chips(1);
   static const CaCodeChips* const kLast = &ca_code_chips(32);
+  const auto make = [](const CaCodeChips& chips) {
+    return std::make_unique<CaTable>([&chips](int e) { return chips[static_cast<std::size_t>(e)]; });
+  };
   if (std::less_equal<>()(kFirst, &code) && std::less_equal<>()(&code, kLast)) {
     // One of the 32 constant codes: its own slot, no search and no comparison.
-    thread_local std::array<std::unique_ptr<CodeTable>, 32> constant_tables;
+    thread_local std::array<std::unique_ptr<CaTable>, 32> constant_tables;
     auto& table = constant_tables[static_cast<std::size_t>(&code - kFirst)];
-    if (!table) table = std::make_unique<CodeTable>(code);
+    if (!table) table = make(code);
     return *table;
   }
-  struct Entry {
-    const CaCodeChips* key = nullptr;
-    CaCodeChips chips{};
-    std::unique_ptr<CodeTable> table;
-  };
-  constexpr int kEntries = 64;
-  thread_local std::array<Entry, kEntries> cache;
-  thread_local int next = 0;
-  for (Entry& e : cache) {
-    if (e.key == &code) {
-      if (e.chips != code) {
-        e.chips = code;
-        e.table = std::make_unique<CodeTable>(code);
-      }
-      return *e.table;
-    }
-  }
-  Entry& e = cache[static_cast<std::size_t>(next)];
-  next = (next + 1) % kEntries;
-  e.key = &code;
-  e.chips = code;
-  e.table = std::make_unique<CodeTable>(code);
-  return *e.table;
+  return cached_code_table<CaCodeChips, CaTable>(code, make);
 }
 
 KernelFn pick_kernel(CorrelatorKernel kernel, int taps, bool small, [[maybe_unused]] bool planar,
@@ -156,9 +126,9 @@ Geometry geometry(CorrelatorKernel kernel) {
   return kernel == CorrelatorKernel::avx512 ? Geometry{32, 32} : Geometry{16, 16};
 }
 
-double wrap_chips(double chips) {
-  double c = std::fmod(chips, kPeriodChips);
-  if (c < 0.0) c += kPeriodChips;
+double wrap_units(double units, double period) {
+  double c = std::fmod(units, period);
+  if (c < 0.0) c += period;
   return c;
 }
 
@@ -300,21 +270,27 @@ CorrelatorSums correlate(CorrelatorKernel kernel, const Sample* samples, int n, 
 
 CorrelatorSums correlate(CorrelatorKernel kernel, const CorrelatorInput& input, int n, const CorrelatorSpan& s,
                          const CaCodeChips& code, const CaCodeChips& noise_code) {
-  const Sample* samples = input.samples;
-  CorrelatorSums out;
-  if (n <= 0) return out;
+  if (n <= 0) return {};
   if (!(s.code_step_chips > 0.0 && s.code_step_chips <= 2.0))
     throw std::invalid_argument("correlate: code step per sample must be in (0, 2] chips, got " +
                                 std::to_string(s.code_step_chips));
-  const CodeTable& table = table_for(code);
-  const CodeTable& noise_table = table_for(noise_code);
+  return correlate_padded(kernel, input, n, s, table_for(code).view(), table_for(noise_code).view());
+}
+
+namespace correlator_detail {
+
+CorrelatorSums correlate_padded(CorrelatorKernel kernel, const CorrelatorInput& input, int n, const CorrelatorSpan& s,
+                                const PaddedCode& code, const PaddedCode& noise) {
+  const Sample* samples = input.samples;
+  CorrelatorSums out;
+  if (n <= 0) return out;
   const bool very = s.very_spacing_chips > 0.0;
 
   Setup su{};
   su.taps = very ? 5 : 3;
   su.noise = s.noise_tap;
-  const auto tap = [](double chips) {
-    return static_cast<std::int16_t>(std::clamp<long long>(std::llround(chips * 2048.0), -32000, 32000));
+  const auto tap = [](double entries) {
+    return static_cast<std::int16_t>(std::clamp<long long>(std::llround(entries * 2048.0), -32000, 32000));
   };
   su.d[0] = tap(0.5 * s.spacing_chips);
   su.d[1] = 0;
@@ -324,14 +300,16 @@ CorrelatorSums correlate(CorrelatorKernel kernel, const CorrelatorInput& input, 
   int reach = 0;
   for (int t = 0; t < su.taps; ++t) reach = std::max(reach, std::abs(static_cast<int>(su.d[t])));
   su.h = std::max(1, (reach + 2047) / 2048);
-  su.code16 = table.l16 + kPad;
-  su.noise16 = noise_table.l16 + kPad;
-  su.code8 = table.l8 + kPad;
-  su.noise8 = noise_table.l8 + kPad;
+  su.period = code.period;
+  su.code16 = code.l16;
+  su.noise16 = noise.l16;
+  su.code8 = code.l8;
+  su.noise8 = noise.l8;
   const auto inc = static_cast<std::int64_t>(std::llround(s.code_step_chips * kCodeOne));
+  const std::int64_t wrap = std::int64_t{code.period} << kCodeFracBits;
 
   // A SIMD kernel needs every tap of a block inside its window: the block's first
-  // position (fraction < 1 chip) plus h chips either side plus (block - 1) steps.
+  // position (fraction < 1 entry) plus h entries either side plus (block - 1) steps.
   if (kernel != CorrelatorKernel::portable) {
     const Geometry g = geometry(kernel);
     const std::int64_t need = (std::int64_t{1} + 2 * su.h) * (std::int64_t{1} << kCodeFracBits) + (g.block - 1) * inc;
@@ -357,9 +335,10 @@ CorrelatorSums correlate(CorrelatorKernel kernel, const CorrelatorInput& input, 
     run.phi0 = static_cast<std::uint32_t>(std::llround((carrier - std::floor(carrier)) * kCarrierOne)) &
                ((1u << kCarrierBits) - 1u);
     run.dphi = dphi;
-    run.pos0 = std::llround(wrap_chips(s.code_phase_chips + k0 * s.code_step_chips) * kCodeOne);
-    if (run.pos0 >= kCodeWrap) run.pos0 -= kCodeWrap;
+    run.pos0 = std::llround(wrap_units(s.code_phase_chips + k0 * s.code_step_chips, code.period) * kCodeOne);
+    if (run.pos0 >= wrap) run.pos0 -= wrap;
     run.inc = inc;
+    run.wrap = wrap;
     fn(in.at(k0), m, run, su, acc);
   }
   const auto sum = [&](int t) {
@@ -376,11 +355,13 @@ CorrelatorSums correlate(CorrelatorKernel kernel, const CorrelatorInput& input, 
   return out;
 }
 
+}  // namespace correlator_detail
+
 CorrelatorSums correlate_reference(const Sample* samples, int n, const CorrelatorSpan& s, const CaCodeChips& code,
                                    const CaCodeChips& noise_code) {
   CorrelatorSums out;
   const auto level = [](const CaCodeChips& c, double chips) {
-    return static_cast<double>(c[static_cast<std::size_t>(std::floor(wrap_chips(chips)))]);
+    return static_cast<double>(c[static_cast<std::size_t>(std::floor(wrap_units(chips, kPeriodChips)))]);
   };
   const double half = 0.5 * s.spacing_chips, very_half = 0.5 * s.very_spacing_chips;
   for (int k = 0; k < n; ++k) {

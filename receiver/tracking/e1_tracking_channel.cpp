@@ -107,6 +107,7 @@ void E1TrackingChannel::reset_integration() {
   acc_ = {};
   acc_first_ = -1;
   acc_samples_ = 0;
+  acc_noise_samples_ = 0;
   acc_periods_ = 0;
   symbols_.clear();
 }
@@ -142,8 +143,17 @@ void E1TrackingChannel::process(const SampleBlock& block,
     span.code_step_chips = code_step;
     span.spacing_chips = cfg_.spacing_chips;
     span.very_spacing_chips = cfg_.very_spacing_chips;
+    // The noise reference on an integration's first period only: the C/N0 estimate averages
+    // it over seconds, and the pass costs nearly as much as the pilot's five taps.
+    span.noise_tap = acc_periods_ == 0;
+    span.magnitude_bits = block.magnitude_bits;
     const auto offset = static_cast<std::size_t>(idx - block.first_sample_index);
-    add_to(period_, correlate_e1(block.samples.data() + offset, n, span, codes_));
+    CorrelatorInput input{block.samples.data() + offset};
+    if (block.planar.size() == 2 * block.samples.size()) {
+      input.i = block.planar.data() + offset;
+      input.q = block.planar.data() + block.samples.size() + offset;
+    }
+    add_to(period_, correlate_e1(input, n, span, codes_));
     if (period_first_ < 0) period_first_ = idx;
     period_samples_ += n;
     code_phase_chips_ += n * code_step;
@@ -193,6 +203,7 @@ std::optional<E1CorrelatorEpoch> E1TrackingChannel::finish_code_period() {
   add_to(acc_, scaled(sums, pilot_sign));
   if (acc_first_ < 0) acc_first_ = first;
   acc_samples_ += samples;
+  if (acc_periods_ == 0) acc_noise_samples_ += samples;
   if (++acc_periods_ < coherent_periods_ && state_ == E1ChannelState::tracking) return std::nullopt;
 
   E1CorrelatorEpoch e;
@@ -211,7 +222,7 @@ std::optional<E1CorrelatorEpoch> E1TrackingChannel::finish_code_period() {
   e.very_spacing_chips = cfg_.very_spacing_chips;
   e.data_prompt = sums.data_prompt;
   e.noise = acc_.noise;
-  e.noise_samples = acc_samples_;
+  e.noise_samples = acc_noise_samples_;
   e.code_phase_chips = code_phase_chips_;
   e.carrier_phase_cycles = carrier_phase_cycles_;
   e.carrier_doppler_hz = nco_.carrier_doppler_hz;

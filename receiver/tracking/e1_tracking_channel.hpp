@@ -121,6 +121,7 @@ class E1TrackingChannel {
   E1CorrelatorSums acc_;
   std::int64_t acc_first_ = -1;
   int acc_samples_ = 0;
+  int acc_noise_samples_ = 0;  ///< samples of the integration's first period, the one with the noise tap
   int acc_periods_ = 0;
   int coherent_periods_ = 1;
   std::vector<E1bSymbol> symbols_;

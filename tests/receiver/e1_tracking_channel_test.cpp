@@ -11,13 +11,11 @@
 #include <vector>
 
 #include "e1_test_signal.hpp"
-#include "receiver/tracking/e1_correlator.hpp"
 #include "receiver/tracking/e1_secondary_sync.hpp"
 #include "receiver/tracking/e1_side_peak_guard.hpp"
 #include "receiver/tracking/e1_tracking_channel.hpp"
 #include "receiver/tracking/e1_tracking_loops.hpp"
 #include "signals/galileo/e1_codes.hpp"
-#include "signals/galileo/e1_modulation.hpp"
 
 namespace deepnav {
 namespace {
@@ -217,51 +215,6 @@ TEST(E1TrackingChannel, DeclaresLossOnNoise) {
   E1LoopController loops(spec.doppler0_hz);
   track(signal, channel, loops, 1.6);
   EXPECT_EQ(channel.state(), E1ChannelState::lost);
-}
-
-TEST(E1Correlator, MatchesASampleBySampleSumOverTheSignalLayersReplica) {
-  E1SignalSpec spec;
-  spec.cn0_dbhz = 60.0;
-  spec.code0_chips = 4000.2;  // the span crosses the code's wrap
-  E1Signal signal(spec);
-  const SampleBlock block = signal.next(3);
-  const int n = static_cast<int>(block.samples.size());
-  E1CorrelatorSpan span;
-  span.carrier_phase_cycles = 0.37;
-  span.carrier_step_cycles = 1510.0 / spec.fs_hz;
-  // Phases that never fall exactly on a chip or half-chip edge (where either level is right).
-  span.code_phase_chips = 4000.31234567;
-  span.code_step_chips = 1.023e6 * (1.0 + 1510.0 / galileo::kE1_Hz) / spec.fs_hz;
-  const E1CorrelatorCodes codes{&galileo::e1c_code_chips(11), &galileo::e1b_code_chips(11),
-                                &galileo::e1c_code_chips(12)};
-  const E1CorrelatorSums fast = correlate_e1(block.samples.data(), n, span, codes);
-  const auto reference = [&](const galileo::E1CodeChips& code, double offset) {
-    const std::vector<float> replica =
-        galileo::e1_replica(code, galileo::E1Subcarrier::kBoc11, span.code_phase_chips + offset, span.code_step_chips,
-                            static_cast<std::size_t>(n));
-    std::complex<double> sum;
-    for (int k = 0; k < n; ++k) {
-      const double phase = span.carrier_phase_cycles + k * span.carrier_step_cycles;
-      const std::complex<double> x(block.samples[static_cast<std::size_t>(k)].real(),
-                                   block.samples[static_cast<std::size_t>(k)].imag());
-      sum += x * std::polar(1.0, -2.0 * M_PI * phase) * static_cast<double>(replica[static_cast<std::size_t>(k)]);
-    }
-    return sum;
-  };
-  const auto expect_close = [&](const std::complex<double>& a, const std::complex<double>& b) {
-    EXPECT_LT(std::abs(a - b), 1e-6 * n * 64.0) << a << " vs " << b;
-  };
-  expect_close(fast.prompt, reference(*codes.pilot, 0.0));
-  expect_close(fast.early, reference(*codes.pilot, 0.1));
-  expect_close(fast.late, reference(*codes.pilot, -0.1));
-  expect_close(fast.very_early, reference(*codes.pilot, 0.5));
-  expect_close(fast.very_late, reference(*codes.pilot, -0.5));
-  expect_close(fast.data_prompt, reference(*codes.data, 0.0));
-  expect_close(fast.noise, reference(*codes.noise, 0.0));
-  // At 60 dB-Hz the aligned pilot stands far above the noise reference.
-  EXPECT_GT(std::abs(fast.prompt), 10.0 * std::abs(fast.noise));
-  span.code_step_chips = 1.5;
-  EXPECT_THROW(correlate_e1(block.samples.data(), n, span, codes), std::invalid_argument);
 }
 
 TEST(E1SecondaryCodeSynchronizer, FindsThePhaseAndTheCarrierSideFromNoisyPrompts) {

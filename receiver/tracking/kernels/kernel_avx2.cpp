@@ -170,7 +170,7 @@ void kernel_wide(const Input& in, int m, const Run& run, const Setup& su, Acc& a
 #undef DEEPNAV_TAP
 #undef DEEPNAV_IDX
       pos += block_inc;
-      if (pos >= kCodeWrap) pos -= kCodeWrap;
+      if (pos >= run.wrap) pos -= run.wrap;
     }
     // Each madd adds up to 2^24 per lane: 64 iterations stay within int32.
     drain(e_re, wide[0][0]);
@@ -305,7 +305,7 @@ void kernel_int8(const Input& in, int m, const Run& run, const Setup& su, Acc& a
 #undef DEEPNAV_TAP
 #undef DEEPNAV_IDX
       pos += block_inc;
-      if (pos >= kCodeWrap) pos -= kCodeWrap;
+      if (pos >= run.wrap) pos -= run.wrap;
     }
     // Each madd adds below 2^24 per lane: 64 iterations stay within int32.
     drain(e_re, wide[0][0]);

@@ -148,7 +148,7 @@ void kernel(const Input& in, int m, const Run& run, const Setup& su, Acc& acc) {
     }
 #undef DEEPNAV_TAP
     pos += block_inc;
-    if (pos >= kCodeWrap) pos -= kCodeWrap;
+    if (pos >= run.wrap) pos -= run.wrap;
   }
   // A run adds at most 128 * 2 * 2^15 per lane: int32 lanes and their sum cannot overflow.
 #define DEEPNAV_ADD(T, RE, IM)              \

@@ -98,7 +98,7 @@ void kernel(const Input& in, int m, const Run& run, const Setup& su, Acc& acc) {
     }
     if constexpr (kN) tap(sums[kNoise], re, im, levels(vld1q_s8(su.noise8 + first - su.h), w, 0));
     pos += block_inc;
-    if (pos >= kCodeWrap) pos -= kCodeWrap;
+    if (pos >= run.wrap) pos -= run.wrap;
   }
   for (int t = 0; t < kTaps; ++t) drain(sums[t], acc[t]);
 }

@@ -10,17 +10,17 @@ inline std::int16_t mulhrs(std::int16_t a, std::int16_t b) {
   return static_cast<std::int16_t>((static_cast<std::int32_t>(a) * b + 0x4000) >> 15);
 }
 
-inline std::int16_t level(const std::int16_t* table, std::int64_t chip) {
-  if (chip >= -kPad && chip < 1023 + kPad) return table[chip];
-  return table[((chip % 1023) + 1023) % 1023];
+inline std::int16_t level(const std::int16_t* table, std::int64_t chip, int period) {
+  if (chip >= -kPad && chip < period + kPad) return table[chip];
+  return table[((chip % period) + period) % period];
 }
 
 template <bool kSmall, int kT, bool kNear, bool kN>
 void kernel_impl(const Input& in, int m, const Run& run, const Setup& su, Acc& acc) {
   const auto* x = reinterpret_cast<const std::int16_t*>(in.x);
   // kNear: every tap within kPad chips, so a chip index never leaves the padded table.
-  const auto chip_level = [](const std::int16_t* table, std::int64_t chip) {
-    return kNear ? table[chip] : level(table, chip);
+  const auto chip_level = [&su](const std::int16_t* table, std::int64_t chip) {
+    return kNear ? table[chip] : level(table, chip, su.period);
   };
   std::int64_t offset[kT];
   for (int t = 0; t < kT; ++t) offset[t] = std::int64_t{su.d[t]} << (kCodeFracBits - kTapFracBits);
@@ -50,7 +50,7 @@ void kernel_impl(const Input& in, int m, const Run& run, const Setup& su, Acc& a
       sums[kNoise][1] += im * l;
     }
     pos += run.inc;
-    if (pos >= kCodeWrap) pos -= kCodeWrap;
+    if (pos >= run.wrap) pos -= run.wrap;
   }
   for (int t = 0; t < kTaps; ++t) {
     acc[t][0] += sums[t][0];

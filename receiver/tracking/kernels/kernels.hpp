@@ -21,9 +21,8 @@ constexpr int kRun = 4096;         // samples per run: phases restart exactly at
 constexpr int kCarrierBits = 21;   // carrier phase accumulator: 1 cycle = 2^21
 constexpr int kCodeFracBits = 27;  // code position: chips with 27 fraction bits
 constexpr int kTapFracBits = 11;   // tap offsets: chips with 11 fraction bits
-constexpr std::int64_t kCodeWrap = std::int64_t{1023} << kCodeFracBits;
-constexpr int kPad = 64;  // code table chips before 0 and after 1022 (window loads, tap offsets)
-constexpr int kTaps = 6;  // early, prompt, late, very early, very late, noise
+constexpr int kPad = 64;           // code table entries before 0 and after period - 1 (window loads, tap offsets)
+constexpr int kTaps = 6;           // early, prompt, late, very early, very late, noise
 constexpr int kNoise = 5;
 constexpr int kSmallBits = 7;  // |I|, |Q| <= 127: int8 carrier table, exact products (see the header)
 
@@ -31,21 +30,24 @@ constexpr int kSmallBits = 7;  // |I|, |Q| <= 127: int8 carrier table, exact pro
 struct Setup {
   const std::int16_t* cos_tab;  // 32 entries
   const std::int16_t* sin_tab;
-  const std::int16_t* code16;  // code levels, index = chip (valid for -kPad .. 1022 + kPad)
+  // Code levels, index = table entry (a chip, or a BOC half-chip), valid for -kPad .. period - 1 + kPad.
+  const std::int16_t* code16;
   const std::int16_t* noise16;
   const std::int8_t* code8;
   const std::int8_t* noise8;
   int taps;           // 3 (E/P/L) or 5 (with VE/VL)
   bool noise;         // the noise tap runs (else its sums stay 0)
-  int h;              // whole chips the widest tap reaches beyond the prompt (>= 1)
+  int period;         // table entries per code period (1023 for C/A, 8184 for E1 BOC(1,1) half-chips)
+  int h;              // whole entries the widest tap reaches beyond the prompt (>= 1)
   std::int16_t d[5];  // tap offsets in 2^-11 chip: E, P (0), L, VE, VL
 };
 
 /// Phases at the first sample of a run.
 struct Run {
   std::uint32_t phi0, dphi;  // carrier, 2^21 per cycle (bits above 20 are ignored)
-  std::int64_t pos0;         // prompt position in [0, 1023 * 2^27)
-  std::int64_t inc;          // code step, 2^27 per chip
+  std::int64_t pos0;         // prompt position in [0, wrap)
+  std::int64_t inc;          // code step, 2^27 per entry
+  std::int64_t wrap;         // period * 2^27
 };
 
 using Acc = std::int64_t[kTaps][2];
