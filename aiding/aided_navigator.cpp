@@ -180,11 +180,11 @@ double AidedNavigator::predicted_rate_mps(const RangeMeasurement& m) const {
 namespace {
 
 /// The rows one navigator update builds: per row its H, z, R and the satellite it came from
-/// (pseudorange rows only carry a PRN to the fault monitor; rate rows report 0).
+/// (pseudorange rows only carry their satellite to the fault monitor; rate rows none).
 struct RangeRows {
   std::vector<StateRow> h;
   std::vector<double> z, r;
-  std::vector<int> pseudorange_prn;
+  std::vector<std::optional<SatelliteId>> pseudorange_of;
 };
 
 }  // namespace
@@ -197,13 +197,13 @@ KalmanUpdate AidedNavigator::update_ranges(const std::vector<RangeMeasurement>& 
       rows.h.push_back(pseudorange_row_of(m.geometry));
       rows.z.push_back(predicted_pseudorange_m(m) - *m.pseudorange_m);
       rows.r.push_back(m.pseudorange_sigma_m * m.pseudorange_sigma_m);
-      rows.pseudorange_prn.push_back(m.prn);
+      rows.pseudorange_of.push_back(m.satellite);
     }
     if (m.rate_mps) {
       rows.h.push_back(pseudorange_rate_row_of(m.rate_at_own_time ? m.rate_geometry : m.geometry));
       rows.z.push_back(predicted_rate_mps(m) - *m.rate_mps);
       rows.r.push_back(m.rate_sigma_mps * m.rate_sigma_mps);
-      rows.pseudorange_prn.push_back(0);
+      rows.pseudorange_of.push_back(std::nullopt);
     }
   };
   if (innovations) {
@@ -211,9 +211,9 @@ KalmanUpdate AidedNavigator::update_ranges(const std::vector<RangeMeasurement>& 
     RangeRows watched;
     for (const auto& m : test_only) append(m, watched);
     for (std::size_t i = 0; i < watched.z.size(); ++i)
-      if (watched.pseudorange_prn[i] != 0)
+      if (watched.pseudorange_of[i])
         innovations->push_back(
-            {watched.pseudorange_prn[i], kf_.normalized_innovation(watched.z[i], watched.h[i], watched.r[i]), false});
+            {*watched.pseudorange_of[i], kf_.normalized_innovation(watched.z[i], watched.h[i], watched.r[i]), false});
   }
   RangeRows rows;
   for (const auto& m : measurements) append(m, rows);
@@ -228,8 +228,8 @@ KalmanUpdate AidedNavigator::update_ranges(const std::vector<RangeMeasurement>& 
   const KalmanUpdate result = kf_.update(zv, H, rv, {.row_sigma = cfg_.gate_sigma});
   if (innovations) {
     for (std::size_t i = 0; i < result.normalized_innovations.size(); ++i)
-      if (rows.pseudorange_prn[i] != 0)
-        innovations->push_back({rows.pseudorange_prn[i], result.normalized_innovations[i], result.row_rejected[i]});
+      if (rows.pseudorange_of[i])
+        innovations->push_back({*rows.pseudorange_of[i], result.normalized_innovations[i], result.row_rejected[i]});
   }
   if (result.applied) feed_back();
   return result;

@@ -76,7 +76,7 @@ struct NavigatorConfig {
 
 /// A satellite's measurement for a range update; either part may be absent.
 struct RangeMeasurement {
-  int prn = 0;
+  SatelliteId satellite;
   RangePrediction geometry;  ///< satellite geometry at the antenna estimate
   std::optional<double> pseudorange_m;
   double pseudorange_sigma_m = 5.0;

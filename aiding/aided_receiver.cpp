@@ -5,10 +5,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
 
+#include "aiding/galileo_clock_offset.hpp"
 #include "aiding/gnss_coupling.hpp"
 #include "aiding/imu_feed.hpp"
 #include "aiding/innovation_monitor.hpp"
@@ -77,6 +79,10 @@ struct AidedReceiver::Impl : ChannelAiding {
   double last_pvt_t_s = -1e9;
   int ranging = 0;
   int last_tight_satellites = 0;
+  /// The Galileo ephemerides in use at the latest epoch (by SVID; empty without Galileo) and
+  /// the offset of the Galileo clock the mixed fixes estimate.
+  std::map<int, galileo::GalileoEphemeris> galileo_ephemerides;
+  GalileoClockOffset galileo_offset;
   // The receiver's sum of clock steps the filter's clock has followed.
   double followed_clock_steps_s = 0.0;
 
@@ -287,23 +293,31 @@ struct AidedReceiver::Impl : ChannelAiding {
                          coupling.pvt_position_sigma_scale_m);
   }
 
-  void tight_update(const ReceiverEpoch& ep) {
+  /// The tight update: every satellite's pseudorange and Doppler rows, or (galileo_only, in
+  /// ultra-tight mode, whose steered channels are GPS ones) the Galileo satellites' alone:
+  /// their E1 channels keep their own loops and reach the filter through their observables.
+  void tight_update(const ReceiverEpoch& ep, bool galileo_only = false) {
+    last_tight_satellites = 0;
     if (!ep.t_rx) return;
     RangeEpoch epoch{ep.t_s, *ep.t_rx, rx.iono(), {}};
     for (const ChannelObservation& o : ep.observations) {
-      // Range rows take GPS satellites (a Galileo one's PRN is not a GPS ephemeris's).
-      if (o.system != GnssSystem::gps) continue;
-      const Ephemeris* eph = rx.ephemeris(o.prn);
-      if (eph == nullptr || o.after_gap) continue;
-      epoch.satellites.push_back({o.prn, *eph, o.pseudorange_m, o.cn0_dbhz, o.doppler_hz, o.doppler_offset_s,
-                                  scalar_rate_sigma_mps(o.cn0_dbhz, cfg.receiver.tracking_loops.pll_hz,
-                                                        1e-3 * cfg.receiver.tracking.coherent_ms_after_bit_sync)});
+      if (o.after_gap) continue;
+      if (o.system == GnssSystem::gps && !galileo_only) {
+        const Ephemeris* eph = rx.ephemeris(o.prn);
+        if (eph == nullptr) continue;
+        epoch.satellites.push_back({o.satellite(), *eph, o.pseudorange_m, o.cn0_dbhz, o.doppler_hz, o.doppler_offset_s,
+                                    scalar_rate_sigma_mps(o.cn0_dbhz, cfg.receiver.tracking_loops.pll_hz,
+                                                          1e-3 * cfg.receiver.tracking.coherent_ms_after_bit_sync)});
+      } else if (const auto eph = galileo_ephemerides.find(o.prn);
+                 o.system == GnssSystem::galileo && eph != galileo_ephemerides.end()) {
+        epoch.satellites.push_back(galileo_observation(o, eph->second));
+      }
     }
     const PseudorangeWeighting weighting{cfg.receiver.pvt.range_errors, 1.0 / cfg.receiver.observation_rate_hz};
     std::vector<RangeMeasurement> ms, watched;
     for (const RangeMeasurement& m :
          tight_rows(*nav, epoch, coupling.atmosphere, cfg.receiver.pvt.elevation_mask_rad, weighting).used)
-      (cfg.fault_exclusion && faults.excluded(m.prn) ? watched : ms).push_back(m);
+      (cfg.fault_exclusion && faults.excluded(m.satellite) ? watched : ms).push_back(m);
     last_tight_satellites = static_cast<int>(ms.size());
     if (ms.empty()) return;
     std::vector<SatelliteInnovation> rows;
@@ -312,18 +326,43 @@ struct AidedReceiver::Impl : ChannelAiding {
     if (cfg.fault_exclusion) report_exclusions(ep.t_s, rows);
   }
 
+  /// A Galileo satellite's observables for the tight update: its pseudorange on the GPS clock
+  /// (less the system offset the mixed fixes estimate, its sigma added) once that offset is
+  /// known, and its Doppler (the E1 pilot PLL's noise at its tracking bandwidth).
+  RangeObservation galileo_observation(const ChannelObservation& o, const galileo::GalileoEphemeris& eph) const {
+    const GalileoReceiverSettings& g = cfg.receiver.galileo;
+    RangeObservation r{
+        o.satellite(),
+        eph,
+        std::nullopt,
+        o.cn0_dbhz,
+        o.doppler_hz,
+        o.doppler_offset_s,
+        scalar_rate_sigma_mps(o.cn0_dbhz, g.loops.tracking.pll_hz, 1e-3 * g.tracking.coherent_ms_after_sync)};
+    if (const std::optional<double> offset_m = galileo_offset.offset_m()) {
+      r.pseudorange_m = o.pseudorange_m - *offset_m;
+      r.offset_sigma_m = galileo_offset.sigma_m();
+    }
+    return r;
+  }
+
+  /// How the logs name a satellite: "PRN  5" for GPS (as GPS-only runs always have), "E11".
+  static std::string satellite_label(const SatelliteId& s) {
+    return s.system == GnssSystem::gps ? fmt::format("PRN {:2d}", s.prn) : s.to_string();
+  }
+
   /// Feeds the per-satellite fault monitor and logs each satellite it excludes or re-admits.
   void report_exclusions(double t_s, const std::vector<SatelliteInnovation>& rows) {
-    const std::vector<int> before = faults.excluded_prns();
+    const std::vector<SatelliteId> before = faults.excluded_satellites();
     faults.add(t_s, rows);
-    const std::vector<int> after = faults.excluded_prns();
-    for (int prn : after)
-      if (std::find(before.begin(), before.end(), prn) == before.end())
-        spdlog::info("t = {:.2f} s: PRN {:2d} excluded: its pseudorange innovations disagree with the filter", t_s,
-                     prn);
-    for (int prn : before)
-      if (std::find(after.begin(), after.end(), prn) == after.end())
-        spdlog::info("t = {:.2f} s: PRN {:2d} agrees with the filter again: re-admitted", t_s, prn);
+    const std::vector<SatelliteId> after = faults.excluded_satellites();
+    for (const SatelliteId& s : after)
+      if (std::find(before.begin(), before.end(), s) == before.end())
+        spdlog::info("t = {:.2f} s: {} excluded: its pseudorange innovations disagree with the filter", t_s,
+                     satellite_label(s));
+    for (const SatelliteId& s : before)
+      if (std::find(after.begin(), after.end(), s) == after.end())
+        spdlog::info("t = {:.2f} s: {} agrees with the filter again: re-admitted", t_s, satellite_label(s));
   }
 
   /// Looks for atmosphere models the signal does not match, and once one is found has
@@ -411,17 +450,22 @@ struct AidedReceiver::Impl : ChannelAiding {
 
   AidedEpoch on_observation(const ReceiverEpoch& ep) {
     if (ep.pvt.valid) last_pvt_t_s = ep.t_s;
+    if (ep.t_rx) galileo_ephemerides = rx.galileo_ephemerides(*ep.t_rx);
+    galileo_offset.add(ep.t_s, ep.pvt);
     ranging = 0;
     for (const auto& o : ep.observations)
-      if (o.system == GnssSystem::gps && rx.ephemeris(o.prn)) ++ranging;
+      if (o.system == GnssSystem::gps ? rx.ephemeris(o.prn) != nullptr : galileo_ephemerides.count(o.prn) > 0)
+        ++ranging;
     // A hot start's coarse-time fix has no receiver clock behind it (its clock bias is
     // modulo 1 ms): the INS and its clock model start from the first fix with one.
     if (!nav && ep.pvt.valid && !ep.coarse_time && imu_feed.covers()) start_ins(ep);
     watch_atmosphere(ep);
     ultra.clear_pseudorange_residuals();
+    last_tight_satellites = 0;
     if (nav) {
       if (modes.mode() == NavMode::loose) loose_update(ep);
       if (modes.mode() == NavMode::tight) tight_update(ep);
+      if (modes.mode() == NavMode::ultra && !galileo_ephemerides.empty()) tight_update(ep, true);
       check_health();
     }
     AidedEpoch out;
@@ -455,7 +499,7 @@ struct AidedReceiver::Impl : ChannelAiding {
     out.measuring_channels = ultra.measuring_channels();
     switch (out.mode) {
       case NavMode::ultra:
-        out.filter_satellites = ultra.measuring_channels();
+        out.filter_satellites = ultra.measuring_channels() + last_tight_satellites;  // steered GPS + Galileo rows
         break;
       case NavMode::tight:
         out.filter_satellites = last_tight_satellites;

@@ -60,18 +60,29 @@ TightRows tight_rows(const AidedNavigator& nav, const RangeEpoch& epoch, const A
   const double dt = epoch.t_s - nav.time_s();
   const double bias = nav.clock_bias_m() + nav.clock_drift_mps() * dt;
   for (const RangeObservation& o : epoch.satellites) {
+    const auto predict = [&](const GpsTime& t_rx, double clock_bias_m, const Eigen::Vector3d& r_ecef_m,
+                             const Eigen::Vector3d& v_ecef_mps) {
+      return std::visit(
+          [&](const auto& eph) {
+            return predict_range(eph, t_rx, clock_bias_m, r_ecef_m, v_ecef_mps, epoch.iono, atmosphere);
+          },
+          o.ephemeris);
+    };
     RangeMeasurement m;
-    m.prn = o.prn;
+    m.satellite = o.satellite;
     m.time_offset_s = dt;
-    m.geometry = predict_range(o.ephemeris, epoch.t_rx, bias, nav.antenna_ecef_at(epoch.t_s),
-                               nav.antenna_velocity_ecef_mps(), epoch.iono, atmosphere);
+    m.geometry = predict(epoch.t_rx, bias, nav.antenna_ecef_at(epoch.t_s), nav.antenna_velocity_ecef_mps());
     if (m.geometry.elevation_rad < elevation_mask_rad) {
       out.below_mask.push_back(m);
       continue;
     }
-    m.pseudorange_m = o.pseudorange_m;
-    m.pseudorange_sigma_m = weighting.scale * scalar_pseudorange_sigma_m(weighting.errors, m.geometry.elevation_rad,
-                                                                         o.cn0_dbhz, weighting.row_interval_s);
+    if (o.pseudorange_m) {
+      m.pseudorange_m = o.pseudorange_m;
+      m.pseudorange_sigma_m =
+          std::hypot(weighting.scale * scalar_pseudorange_sigma_m(weighting.errors, m.geometry.elevation_rad,
+                                                                  o.cn0_dbhz, weighting.row_interval_s),
+                     o.offset_sigma_m);
+    }
     if (o.doppler_hz) {
       m.rate_mps = -gps::kL1Wavelength_m * *o.doppler_hz;
       m.rate_sigma_mps = o.rate_sigma_mps;
@@ -80,10 +91,11 @@ TightRows tight_rows(const AidedNavigator& nav, const RangeEpoch& epoch, const A
       const double t_rate = epoch.t_s + o.doppler_offset_s;
       m.rate_at_own_time = true;
       m.rate_time_offset_s = t_rate - nav.time_s();
-      m.rate_geometry = predict_range(o.ephemeris, epoch.t_rx.plus_seconds(o.doppler_offset_s),
-                                      bias + nav.clock_drift_mps() * o.doppler_offset_s, nav.antenna_ecef_at(t_rate),
-                                      nav.antenna_velocity_ecef_at(t_rate), epoch.iono, atmosphere);
+      m.rate_geometry =
+          predict(epoch.t_rx.plus_seconds(o.doppler_offset_s), bias + nav.clock_drift_mps() * o.doppler_offset_s,
+                  nav.antenna_ecef_at(t_rate), nav.antenna_velocity_ecef_at(t_rate));
     }
+    if (!m.pseudorange_m && !m.rate_mps) continue;  // nothing measured
     out.used.push_back(m);
   }
   return out;

@@ -21,6 +21,7 @@
 // velocity, so both steps compare a Doppler with the INS at the Doppler's time.
 #include <Eigen/Core>
 #include <optional>
+#include <variant>
 #include <vector>
 
 #include "aiding/aided_navigator.hpp"
@@ -30,7 +31,9 @@
 #include "receiver/pvt/pvt_solver.hpp"
 #include "receiver/pvt/range_weight.hpp"
 #include "signals/ephemeris.hpp"
+#include "signals/galileo/galileo_ephemeris.hpp"
 #include "signals/iono_utc.hpp"
+#include "signals/satellite_id.hpp"
 
 namespace deepnav::aiding {
 
@@ -83,15 +86,24 @@ KalmanUpdate loose_update(AidedNavigator& nav, const LooseFix& fix, double posit
 
 // ---- Tight update ----
 
-/// One satellite's observables at an epoch for the tight update.
+/// A satellite's broadcast orbit and clock: GPS LNAV or Galileo I/NAV.
+using BroadcastEphemeris = std::variant<Ephemeris, galileo::GalileoEphemeris>;
+
+/// One satellite's observables at an epoch for the tight update. E1 and L1 share the carrier
+/// frequency, so a Doppler means the same rate for either system.
 struct RangeObservation {
-  int prn = 0;
-  Ephemeris ephemeris;
-  double pseudorange_m = 0.0;
+  SatelliteId satellite;
+  BroadcastEphemeris ephemeris;
+  /// On the GPS clock: a Galileo pseudorange less the Galileo system offset (GalileoClockOffset);
+  /// none: a rate row only (a Galileo satellite before the offset is known).
+  std::optional<double> pseudorange_m;
   double cn0_dbhz = 0.0;             ///< weighs the pseudorange
   std::optional<double> doppler_hz;  ///< none: a pseudorange row only
   double doppler_offset_s = 0.0;     ///< the Doppler's time minus the epoch's
   double rate_sigma_mps = 0.1;       ///< of the pseudorange rate from the Doppler
+  /// Added in quadrature to the pseudorange's sigma: what the system offset taken off it is
+  /// not sure of (0 for GPS).
+  double offset_sigma_m = 0.0;
 };
 
 /// One epoch's observables, in the order the rows are to be made.

@@ -35,7 +35,7 @@ std::optional<double> common_code_offset(const std::vector<RangeMeasurement>& ro
     if (m.pseudorange_m) {
       if (k >= r.row_rejected.size() || !r.row_rejected[k]) return std::nullopt;
       for (const FusionSatelliteTrace& st : trace.satellites)
-        if (st.prn == m.prn && st.code_residual_m) residuals.push_back(*st.code_residual_m);
+        if (st.prn == m.satellite.prn && st.code_residual_m) residuals.push_back(*st.code_residual_m);
       ++k;
     }
     if (m.rate_mps) ++k;
@@ -282,8 +282,9 @@ class FusionRun {
     for (const GpsL1Observation& o : fe.recorded->gps) {
       const auto eph = fe.ephemerides.find(o.prn);
       if (eph == fe.ephemerides.end()) continue;
-      epoch.satellites.push_back({o.prn, eph->second, fe.code.at(o.prn), o.cn0_dbhz.value_or(kMissingCn0_dbhz),
-                                  o.doppler_hz, cfg_.doppler_time_offset_s, cfg_.doppler_sigma_mps});
+      epoch.satellites.push_back({SatelliteId{GnssSystem::gps, o.prn}, eph->second, fe.code.at(o.prn),
+                                  o.cn0_dbhz.value_or(kMissingCn0_dbhz), o.doppler_hz, cfg_.doppler_time_offset_s,
+                                  cfg_.doppler_sigma_mps});
     }
     // Each epoch's row carries the range model's terms whole, whatever the epoch rate (the
     // IF path shares them among the rows of a second); pseudorange_sigma_scale tunes it.
@@ -291,9 +292,9 @@ class FusionRun {
     const TightRows rows =
         tight_rows(*nav_filter_, epoch, cfg_.coupling.atmosphere, cfg_.pvt.elevation_mask_rad, weighting);
     for (const RangeMeasurement& m : rows.below_mask)
-      satellite_trace(fe.trace, m.prn).elevation_deg = m.geometry.elevation_rad * 180.0 / M_PI;
+      satellite_trace(fe.trace, m.satellite.prn).elevation_deg = m.geometry.elevation_rad * 180.0 / M_PI;
     for (const RangeMeasurement& m : rows.used) {
-      FusionSatelliteTrace& st = satellite_trace(fe.trace, m.prn);
+      FusionSatelliteTrace& st = satellite_trace(fe.trace, m.satellite.prn);
       st.elevation_deg = m.geometry.elevation_rad * 180.0 / M_PI;
       st.code_residual_m = *m.pseudorange_m - nav_filter_->predicted_pseudorange_m(m);
       if (m.rate_mps) st.rate_residual_mps = *m.rate_mps - nav_filter_->predicted_rate_mps(m);
@@ -322,7 +323,7 @@ class FusionRun {
     // The rows in order: each measurement's pseudorange row, then its rate row.
     std::size_t k = 0;
     for (const RangeMeasurement& m : rows) {
-      FusionSatelliteTrace& st = satellite_trace(fe.trace, m.prn);
+      FusionSatelliteTrace& st = satellite_trace(fe.trace, m.satellite.prn);
       if (m.pseudorange_m && k < r.normalized_innovations.size()) {
         st.code_normalized = -r.normalized_innovations[k];
         st.code_rejected = r.row_rejected[k];

@@ -7,9 +7,9 @@ namespace deepnav::aiding {
 void SatelliteFaultMonitor::add(double t_s, const std::vector<SatelliteInnovation>& rows) {
   for (const SatelliteInnovation& r : rows) {
     if (!std::isfinite(r.normalized)) continue;
-    tracks_[r.prn].rows.push_back({t_s, r.normalized, r.rejected});
+    tracks_[r.satellite].rows.push_back({t_s, r.normalized, r.rejected});
   }
-  for (auto& [prn, track] : tracks_) {
+  for (auto& [satellite, track] : tracks_) {
     while (!track.rows.empty() &&
            (track.rows.front().t_s <= t_s - cfg_.window_s || static_cast<int>(track.rows.size()) > cfg_.max_rows))
       track.rows.pop_front();
@@ -37,15 +37,15 @@ bool SatelliteFaultMonitor::faulty(const Track& track) const {
   return rejected > cfg_.max_rejected_fraction * n || std::abs(sum / n) > cfg_.max_mean_sigma;
 }
 
-bool SatelliteFaultMonitor::excluded(int prn) const {
-  const auto it = tracks_.find(prn);
+bool SatelliteFaultMonitor::excluded(const SatelliteId& satellite) const {
+  const auto it = tracks_.find(satellite);
   return it != tracks_.end() && it->second.excluded;
 }
 
-std::vector<int> SatelliteFaultMonitor::excluded_prns() const {
-  std::vector<int> out;
-  for (const auto& [prn, track] : tracks_)
-    if (track.excluded) out.push_back(prn);
+std::vector<SatelliteId> SatelliteFaultMonitor::excluded_satellites() const {
+  std::vector<SatelliteId> out;
+  for (const auto& [satellite, track] : tracks_)
+    if (track.excluded) out.push_back(satellite);
   return out;
 }
 

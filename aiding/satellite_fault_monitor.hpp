@@ -17,6 +17,8 @@
 #include <map>
 #include <vector>
 
+#include "signals/satellite_id.hpp"
+
 namespace deepnav::aiding {
 
 struct SatelliteFaultConfig {
@@ -31,7 +33,7 @@ struct SatelliteFaultConfig {
 /// One satellite's pseudorange row at one update: its innovation over its predicted sigma
 /// (against the prior), and whether the row gate turned it away.
 struct SatelliteInnovation {
-  int prn = 0;
+  SatelliteId satellite;
   double normalized = 0.0;
   bool rejected = false;
 };
@@ -43,9 +45,9 @@ class SatelliteFaultMonitor {
   /// The rows of one update at t_s (non-decreasing), used or test-only.
   void add(double t_s, const std::vector<SatelliteInnovation>& rows);
   /// Whether the satellite's measurements are kept out of the filter at t_s.
-  bool excluded(int prn) const;
+  bool excluded(const SatelliteId& satellite) const;
   /// Satellites excluded now.
-  std::vector<int> excluded_prns() const;
+  std::vector<SatelliteId> excluded_satellites() const;
   /// How many times a satellite was excluded (each start of an exclusion counts once).
   int exclusions() const { return exclusions_; }
   void clear();
@@ -64,7 +66,7 @@ class SatelliteFaultMonitor {
   /// Whether the rows in the window say the satellite is faulty (false with too few rows).
   bool faulty(const Track& track) const;
   SatelliteFaultConfig cfg_;
-  std::map<int, Track> tracks_;
+  std::map<SatelliteId, Track> tracks_;
   int exclusions_ = 0;
 };
 

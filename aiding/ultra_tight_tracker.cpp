@@ -68,7 +68,7 @@ std::optional<RangeMeasurement> UltraTightTracker::to_measurement(const Discrimi
   const std::optional<SamplePrediction> p = predict_at(d.ephemeris, d.mid_sample, nav, block);
   if (!p) return std::nullopt;
   RangeMeasurement m;
-  m.prn = d.prn;
+  m.satellite = {GnssSystem::gps, d.prn};
   m.time_offset_s = p->offset_s;
   m.geometry = p->range;
   const double t_tx = d.replica_transmit_sow + d.code_error_chips / gps::kCodeRate_cps;
@@ -112,7 +112,7 @@ KalmanUpdate UltraTightTracker::update_and_steer(AidedNavigator& nav, const Bloc
       const std::optional<RangeMeasurement> m = to_measurement(d, nav, block);
       if (!m) continue;
       last_measured_sample_[d.prn] = d.mid_sample;
-      (faults_ && faults_->excluded(d.prn) ? watched : ms).push_back(*m);
+      (faults_ && faults_->excluded({GnssSystem::gps, d.prn}) ? watched : ms).push_back(*m);
       if (m->pseudorange_m) {
         const RangePrediction& g = m->geometry;
         const double predicted =

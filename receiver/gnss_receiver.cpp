@@ -558,6 +558,10 @@ std::map<int, galileo::GalileoEphemeris> GnssReceiver::decoded_galileo_ephemerid
   if (!impl_->galileo) return {};
   return impl_->galileo->decoded();
 }
+std::map<int, galileo::GalileoEphemeris> GnssReceiver::galileo_ephemerides(const GpsTime& t) const {
+  if (!impl_->galileo) return {};
+  return impl_->galileo->in_use(t);
+}
 std::optional<galileo::GgtoParameters> GnssReceiver::ggto() const {
   if (!impl_->galileo) return std::nullopt;
   return impl_->galileo->ggto();

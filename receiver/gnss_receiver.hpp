@@ -161,6 +161,9 @@ class GnssReceiver {
   /// The Galileo ephemerides decoded from the signal (by SVID) and the GGTO, if broadcast;
   /// none when the run does not track Galileo.
   std::map<int, galileo::GalileoEphemeris> decoded_galileo_ephemerides() const;
+  /// The Galileo ephemerides in use at t (decoded, else assisted; by SVID), as the PVT takes
+  /// them; empty when the run does not track Galileo.
+  std::map<int, galileo::GalileoEphemeris> galileo_ephemerides(const GpsTime& t) const;
   std::optional<galileo::GgtoParameters> ggto() const;
   /// The systems the receiver tracks (ReceiverConfig::systems).
   const std::vector<GnssSystem>& systems() const;

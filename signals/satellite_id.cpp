@@ -23,6 +23,17 @@ bool includes_system(const std::vector<GnssSystem>& systems, GnssSystem system) 
   return std::find(systems.begin(), systems.end(), system) != systems.end();
 }
 
+bool is_gps_only(const std::vector<GnssSystem>& systems) { return systems == std::vector<GnssSystem>{GnssSystem::gps}; }
+
+std::string systems_list(const std::vector<GnssSystem>& systems) {
+  std::string s;
+  for (GnssSystem system : systems) {
+    if (!s.empty()) s += ',';
+    s += system_name(system);
+  }
+  return s;
+}
+
 std::string SatelliteId::to_string() const { return fmt::format("{}{:02d}", system_letter(system), prn); }
 
 std::optional<SatelliteId> parse_satellite_id(std::string_view text) {

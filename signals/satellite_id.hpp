@@ -20,6 +20,10 @@ std::string_view system_name(GnssSystem system);
 std::optional<GnssSystem> parse_system_name(std::string_view name);
 /// Whether `system` is among `systems` (a scenario's, a receiver's).
 bool includes_system(const std::vector<GnssSystem>& systems, GnssSystem system);
+/// Whether `systems` is GPS alone (every output keeps its GPS-only form then).
+bool is_gps_only(const std::vector<GnssSystem>& systems);
+/// "gps", "gps,galileo": the systems as --systems reads them.
+std::string systems_list(const std::vector<GnssSystem>& systems);
 
 struct SatelliteId {
   GnssSystem system = GnssSystem::gps;

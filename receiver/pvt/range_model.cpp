@@ -1,10 +1,12 @@
 #include "receiver/pvt/range_model.hpp"
 
 #include <cmath>
+#include <utility>
 
 #include "ins/frames.hpp"
 #include "ins/wgs84.hpp"
 #include "signals/atmosphere.hpp"
+#include "signals/galileo/gst.hpp"
 
 namespace deepnav {
 namespace {
@@ -26,11 +28,12 @@ Atmosphere atmosphere_at(const Eigen::Vector3d& r_rx_ecef_m, const Eigen::Vector
   return a;
 }
 
-}  // namespace
-
-RangePrediction predict_range(const Ephemeris& eph, const GpsTime& t_rx, double clock_bias_m,
-                              const Eigen::Vector3d& r_rx_ecef_m, const Eigen::Vector3d& v_rx_ecef_mps,
-                              const IonoParameters& iono, const AtmosphereModels& models) {
+/// The prediction for any system: `clock_and_state(t_tx)` gives the satellite's clock
+/// correction (s) and its state at the transmit time t_tx (GPS time).
+template <typename ClockAndState>
+RangePrediction predict(ClockAndState clock_and_state, const GpsTime& t_rx, double clock_bias_m,
+                        const Eigen::Vector3d& r_rx_ecef_m, const Eigen::Vector3d& v_rx_ecef_mps,
+                        const IonoParameters& iono, const AtmosphereModels& models) {
   constexpr double c = wgs84::kSpeedOfLight_mps;
   RangePrediction p;
   // True receive time, then two fixed-point passes on the flight time (converges to
@@ -39,8 +42,7 @@ RangePrediction predict_range(const Ephemeris& eph, const GpsTime& t_rx, double 
   double tau = 0.075;
   for (int pass = 0; pass < 3; ++pass) {
     const GpsTime t_tx = t_true.plus_seconds(-tau);
-    const double dts = l1_clock_correction_s(eph, t_tx);
-    const SatelliteState s = satellite_state(eph, t_tx);
+    const auto [dts, s] = clock_and_state(t_tx);
     p.r_sat_ecef_m = earth_rotation_corrected(s.r_ecef_m, tau);
     p.v_sat_ecef_mps = earth_rotation_corrected(s.v_ecef_mps, tau);
     p.satellite_clock_m = c * dts;
@@ -73,6 +75,30 @@ RangePrediction predict_range(const Ephemeris& eph, const GpsTime& t_rx, double 
   p.troposphere_mapping_rate_per_s =
       (troposphere_mapping(after.elevation_rad) - troposphere_mapping(before.elevation_rad)) / (2.0 * h);
   return p;
+}
+
+}  // namespace
+
+RangePrediction predict_range(const Ephemeris& eph, const GpsTime& t_rx, double clock_bias_m,
+                              const Eigen::Vector3d& r_rx_ecef_m, const Eigen::Vector3d& v_rx_ecef_mps,
+                              const IonoParameters& iono, const AtmosphereModels& models) {
+  const auto clock_and_state = [&eph](const GpsTime& t_tx) {
+    return std::pair{l1_clock_correction_s(eph, t_tx), satellite_state(eph, t_tx)};
+  };
+  return predict(clock_and_state, t_rx, clock_bias_m, r_rx_ecef_m, v_rx_ecef_mps, iono, models);
+}
+
+RangePrediction predict_range(const galileo::GalileoEphemeris& eph, const GpsTime& t_rx, double clock_bias_m,
+                              const Eigen::Vector3d& r_rx_ecef_m, const Eigen::Vector3d& v_rx_ecef_mps,
+                              const IonoParameters& iono, const AtmosphereModels& models) {
+  // GPS time labels read as GST ones, as the PVT does: the GGTO (tens of ns) moves a satellite
+  // by a tenth of a millimetre; the clock offset it leaves is the caller's (its Galileo rows'
+  // system offset).
+  const auto clock_and_state = [&eph](const GpsTime& t_tx) {
+    const galileo::GstTime t = galileo::gst_from_gps_time(t_tx);
+    return std::pair{galileo::e1_clock_correction_s(eph, t), galileo::satellite_state(eph, t)};
+  };
+  return predict(clock_and_state, t_rx, clock_bias_m, r_rx_ecef_m, v_rx_ecef_mps, iono, models);
 }
 
 }  // namespace deepnav

@@ -22,6 +22,7 @@
 #include "ins/gps_time.hpp"
 #include "receiver/pvt/atmosphere_models.hpp"
 #include "signals/ephemeris.hpp"
+#include "signals/galileo/galileo_ephemeris.hpp"
 #include "signals/gps_constants.hpp"
 #include "signals/iono_utc.hpp"
 
@@ -69,6 +70,12 @@ struct RangePrediction {
 /// applies); `iono` is used only with the Klobuchar model and may be invalid (no
 /// ionosphere applied).
 RangePrediction predict_range(const Ephemeris& eph, const GpsTime& t_rx, double clock_bias_m,
+                              const Eigen::Vector3d& r_rx_ecef_m, const Eigen::Vector3d& v_rx_ecef_mps,
+                              const IonoParameters& iono, const AtmosphereModels& models = {});
+/// The same for a Galileo satellite (E1 clock with BGD(E1,E5b)). `clock_bias_m` is the clock
+/// its measurements see: the GPS clock plus the Galileo system offset (GGTO and the
+/// receiver's inter-system bias). The Klobuchar model stands in for NeQuick-G, as in the PVT.
+RangePrediction predict_range(const galileo::GalileoEphemeris& eph, const GpsTime& t_rx, double clock_bias_m,
                               const Eigen::Vector3d& r_rx_ecef_m, const Eigen::Vector3d& v_rx_ecef_mps,
                               const IonoParameters& iono, const AtmosphereModels& models = {});
 

@@ -136,7 +136,7 @@ struct TightRun {
       actual.carrier_atmosphere_rate_mps = -actual.ionosphere_rate_mps;
     }
     RangeMeasurement m;
-    m.prn = e.prn;
+    m.satellite = {GnssSystem::gps, e.prn};
     m.geometry = predict_range(e, t_rx, nav.clock_bias_m(), nav.antenna_ecef_m(), nav.antenna_velocity_ecef_mps(),
                                nav_data.iono);
     m.pseudorange_m = actual.pseudorange_m(b) + pseudorange_sigma_m * n01(rng) + pseudorange_fault_m;
@@ -320,13 +320,13 @@ StepOutcome run_tight_step(double step_m, bool monitor) {
     std::vector<RangeMeasurement> used, watched;
     for (const Ephemeris* e : sats) {
       const double fault_m = e->prn == faulty && s.t_s >= 60.0 ? step_m : 0.0;
-      (monitor && faults.excluded(e->prn) ? watched : used)
+      (monitor && faults.excluded({GnssSystem::gps, e->prn}) ? watched : used)
           .push_back(tr.measure(*e, nav, truth, s.t_s, 1.0, 0.05, rng, fault_m));
     }
     std::vector<SatelliteInnovation> rows;
     nav.update_ranges(used, monitor ? &rows : nullptr, watched);
     faults.add(s.t_s, rows);
-    if (out.excluded_after_s < 0.0 && faults.excluded(faulty)) out.excluded_after_s = s.t_s - 60.0;
+    if (out.excluded_after_s < 0.0 && faults.excluded({GnssSystem::gps, faulty})) out.excluded_after_s = s.t_s - 60.0;
     if (s.t_s >= 60.0)
       out.worst_h_m = std::max(out.worst_h_m, testing::antenna_error_ned(nav, *run.trajectory).head<2>().norm());
   }

@@ -4,11 +4,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 
 #include "aiding/gnss_coupling.hpp"
 #include "aiding/measurement_models.hpp"
 #include "ins/gps_time.hpp"
 #include "receiver/pvt/range_model.hpp"
+#include "signals/galileo/galileo_constants.hpp"
+#include "signals/galileo/gst.hpp"
 #include "signals/rinex_nav.hpp"
 
 namespace deepnav::aiding {
@@ -79,7 +82,7 @@ struct RangeScene {
     RangeEpoch e{nav.time_s() + 0.5, t0, nav_data.iono, {}};
     for (int prn = 1; prn <= gps::kMaxPrn; ++prn)
       if (const Ephemeris* eph = nav_data.select(prn, t0))
-        e.satellites.push_back({prn, *eph, 2.2e7, 40.0, 1000.0, doppler_offset_s, 0.07});
+        e.satellites.push_back({SatelliteId{GnssSystem::gps, prn}, *eph, 2.2e7, 40.0, 1000.0, doppler_offset_s, 0.07});
     return e;
   }
 };
@@ -122,6 +125,61 @@ TEST(GnssCoupling, ASatelliteWithoutDopplerGivesAPseudorangeRowOnly) {
     EXPECT_TRUE(m.pseudorange_m.has_value());
     EXPECT_FALSE(m.rate_mps.has_value());
   }
+}
+
+/// When the mixed file's Galileo records are densest.
+const GpsTime kGalileoTime = gps_time_from_calendar(CalendarTime{2022, 1, 1, 23, 50, 0.0});
+
+/// The Galileo satellites of the mixed file at 23:50, observed with a Doppler, their
+/// pseudoranges (when given) already on the GPS clock.
+RangeEpoch galileo_epoch(const RangeScene& scene, const NavData& mixed, std::optional<double> pseudorange_m) {
+  RangeEpoch e{scene.nav.time_s(), kGalileoTime, mixed.iono, {}};
+  for (int svid = 1; svid <= galileo::kMaxPrn; ++svid)
+    if (const auto* eph = select_galileo_ephemeris(mixed, svid, galileo::gst_from_gps_time(kGalileoTime))) {
+      RangeObservation o{SatelliteId{GnssSystem::galileo, svid}, *eph, pseudorange_m, 40.0, -800.0, 0.0, 0.05};
+      o.offset_sigma_m = 0.6;
+      e.satellites.push_back(o);
+    }
+  return e;
+}
+
+TEST(GnssCoupling, GalileoRowsTakeTheirOrbitFromGalileoRecordsAndTheOffsetSigmaInQuadrature) {
+  const RangeScene scene;
+  const NavData mixed = read_rinex_nav(std::string(DEEPNAV_SOURCE_DIR) + "/data/gps_galileo_20220101.rnx");
+  const RangeEpoch epoch = galileo_epoch(scene, mixed, 2.4e7);
+  const TightRows rows = tight_rows(scene.nav, epoch, AtmosphereModels{}, 5.0 * kDeg, {});
+  ASSERT_GE(rows.used.size(), 3u);
+  for (const RangeMeasurement& m : rows.used) {
+    EXPECT_EQ(m.satellite.system, GnssSystem::galileo);
+    // The satellite where its own I/NAV record puts it at the transmit time.
+    const auto* eph = select_galileo_ephemeris(mixed, m.satellite.prn, galileo::gst_from_gps_time(kGalileoTime));
+    ASSERT_NE(eph, nullptr);
+    const double tau = m.geometry.geometric_range_m / gps::kSpeedOfLight_mps;
+    const SatelliteState s =
+        galileo::satellite_state(*eph, galileo::gst_from_gps_time(kGalileoTime.plus_seconds(-tau)));
+    EXPECT_LT((s.r_ecef_m - m.geometry.r_sat_ecef_m).norm(), 3.0e3 * tau + 50.0) << m.satellite.to_string();
+    EXPECT_GT(m.geometry.geometric_range_m, 2.3e7);  // MEO at 23 222 km
+    EXPECT_DOUBLE_EQ(
+        m.pseudorange_sigma_m,
+        std::hypot(scalar_pseudorange_sigma_m(RangeErrorModel{}, m.geometry.elevation_rad, 40.0, 1.0), 0.6));
+    EXPECT_DOUBLE_EQ(*m.rate_mps, -gps::kL1Wavelength_m * -800.0);
+  }
+}
+
+TEST(GnssCoupling, AGalileoSatelliteBeforeTheOffsetIsKnownGivesARateRowOnly) {
+  const RangeScene scene;
+  const NavData mixed = read_rinex_nav(std::string(DEEPNAV_SOURCE_DIR) + "/data/gps_galileo_20220101.rnx");
+  RangeEpoch epoch = galileo_epoch(scene, mixed, std::nullopt);
+  TightRows rows = tight_rows(scene.nav, epoch, AtmosphereModels{}, 5.0 * kDeg, {});
+  ASSERT_FALSE(rows.used.empty());
+  for (const RangeMeasurement& m : rows.used) {
+    EXPECT_FALSE(m.pseudorange_m.has_value());
+    EXPECT_TRUE(m.rate_mps.has_value());
+  }
+  // Neither a pseudorange nor a Doppler: no row at all.
+  for (RangeObservation& o : epoch.satellites) o.doppler_hz.reset();
+  rows = tight_rows(scene.nav, epoch, AtmosphereModels{}, 5.0 * kDeg, {});
+  EXPECT_TRUE(rows.used.empty());
 }
 
 }  // namespace

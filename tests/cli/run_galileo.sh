@@ -2,9 +2,9 @@
 # `deepnav run --systems` on synthesized GPS+Galileo IF (the bundled mixed scenario, Seoul,
 # 9 GPS and 4 Galileo satellites): a Galileo-only cold start decodes the I/NAV ephemerides
 # and fixes; an assisted start fixes from GPS and Galileo together, better than from
-# Galileo alone; obs.rnx and nav.rnx carry the Galileo satellites; a rate below 4 Msps and
-# tight and ultra-tight coupling are refused with Galileo, naming why; loose coupling takes
-# the two-system fix.
+# Galileo alone; obs.rnx and nav.rnx carry the Galileo satellites; a rate below 4 Msps is
+# refused with Galileo, naming why; loose coupling takes the two-system fix, tight and
+# ultra-tight coupling both systems' measurements.
 #   usage: run_galileo.sh <deepnav binary> <source dir>
 source "$(dirname "$0")/lib/harness.sh" "$@"
 
@@ -56,10 +56,23 @@ check_json_each "$work/loose/summary.json" \
   "loose GPS+Galileo: both systems in the fixes" satellites_used.max '>=' 13 \
   "loose GPS+Galileo: horizontal RMS <= 1 m" horizontal_error_m.rms '<=' 1
 check "loose GPS+Galileo: the filter navigates" 'grep -q ",loose," "$work/loose/pvt.csv"'
+# Tight and ultra-tight: the filter's rows come from both systems (more satellites than GPS
+# alone); in ultra-tight mode the GPS channels are steered and the Galileo ones add tight rows.
+for mode in tight ultra; do
+  for systems in gps gps,galileo; do
+    run_on_sim "$work/circle" "$work/${mode}_${systems/,/_}" --systems "$systems" --ephemeris-from "$nav" \
+      --mode "$mode" "${imu[@]}" --truth "$work/circle/truth.csv"
+  done
+  most() { awk -F, -v mode="$1" 'NR > 1 && $(NF-1) == mode && $NF > m { m = $NF } END { print m + 0 }' "$2"; }
+  gps_rows=$(most "$mode" "$work/${mode}_gps/pvt.csv")
+  both_rows=$(most "$mode" "$work/${mode}_gps_galileo/pvt.csv")
+  check "$mode GPS+Galileo: the filter takes more satellites ($both_rows) than GPS alone ($gps_rows)" \
+    "(( both_rows > gps_rows && gps_rows > 0 ))"
+  check_json_each "$work/${mode}_gps_galileo/summary.json" \
+    "$mode GPS+Galileo: horizontal RMS <= 1 m" horizontal_error_m.rms '<=' 1
+done
 
 sim_source source "$work/sim"
 expect_failure slow_rate "Galileo E1 needs at least 4 Msps" -- "$deepnav" run "${source[@]/4000000/2000000}" \
   --systems galileo --out "$work/slow"
-expect_failure aided "tight and ultra-tight coupling take GPS measurements only" -- "$deepnav" run \
-  "${source[@]}" --systems gps,galileo --mode tight --imu "$work/sim/truth.csv" --out "$work/aided"
 finish

@@ -52,6 +52,11 @@ std::vector<SettingChange> setting_changes() {
        {"--troposphere", "none"}},
       {"filter_troposphere", [](CouplingPoint& p) { p.settings.filter_troposphere = true; }, {"--filter-troposphere"}},
       {"filter_ionosphere", [](CouplingPoint& p) { p.settings.filter_ionosphere = true; }, {"--filter-ionosphere"}},
+      {"systems",
+       [](CouplingPoint& p) {
+         p.settings.systems = {GnssSystem::gps, GnssSystem::galileo};
+       },
+       {"--systems", "gps,galileo"}},
   };
 }
 

@@ -67,6 +67,9 @@ TEST(JamSweepPoints, RejectsWhatTheSweepCannotRun) {
   rejected([](JamSweepSettings& o) { o.runs = 0; });
   rejected([](JamSweepSettings& o) { o.onset_s = 1e6; });
   rejected([](JamSweepSettings& o) { o.scenario = "no_such_scenario.yaml"; });
+  rejected([](JamSweepSettings& o) {  // Galileo on a GPS-only scenario
+    o.systems = {GnssSystem::gps, GnssSystem::galileo};
+  });
   rejected([](JamSweepSettings& o) {  // an aided mode on a scenario without an IMU
     o.scenario = std::string(DEEPNAV_SOURCE_DIR) + "/data/scenarios/static_120s.yaml";
     o.modes = "tight";
@@ -96,6 +99,11 @@ TEST(JamPointCommand, NamesEveryFieldOfThePoint) {
       {"coherent_ms", [](JamPoint& p) { p.long_integration.coherent_ms = 400; }, {"--coherent-ms", "400"}},
       {"noncoherent_ms", [](JamPoint& p) { p.long_integration.noncoherent_ms = 2000; }, {"--noncoherent-ms", "2000"}},
       {"assist_data_bits", [](JamPoint& p) { p.long_integration.assist_data_bits = true; }, {"--assist-data-bits"}},
+      {"systems",
+       [](JamPoint& p) {
+         p.systems = {GnssSystem::gps, GnssSystem::galileo};
+       },
+       {"--systems", "gps,galileo"}},
   };
   for (const FieldChange& c : changes) {
     JamPoint p = base;
@@ -106,6 +114,18 @@ TEST(JamPointCommand, NamesEveryFieldOfThePoint) {
     EXPECT_TRUE(contains_words(argv, {"--out", "/sweep"}));
   }
   EXPECT_FALSE(has_flag(jam_point_command("deepnav", base, "/sweep"), "--assist-data-bits"));
+  EXPECT_FALSE(has_flag(jam_point_command("deepnav", base, "/sweep"), "--systems"));
+}
+
+TEST(JamPointId, NamesBothSystemsAndKeepsTheGpsOnlyIdAsItWas) {
+  JamPoint p;
+  p.scenario = "data/scenarios/jam_static_gps_galileo_32s.yaml";
+  p.jammer = "wideband";
+  p.js_db = 42.5;
+  p.mode = "tight";
+  EXPECT_EQ(point_id(p), "jam_static_gps_galileo_32s_wideband_js042.5_tight_none_s1");
+  p.systems = {GnssSystem::gps, GnssSystem::galileo};
+  EXPECT_EQ(point_id(p), "jam_static_gps_galileo_32s_wideband_js042.5_tight_none_s1_gps-galileo");
 }
 
 }  // namespace

@@ -76,6 +76,14 @@ std::vector<FieldChange> field_changes(const std::string& other_imu_file) {
        "2600000"},
       {"if_hz", false, [](RunConfiguration& r) { r.if_hz = 1250.0; }, {"--if", "1250"}, "if", "1250"},
       {"week", false, [](RunConfiguration& r) { r.week = 2190; }, {"--week", "2190"}, "week", "2190"},
+      {"systems",
+       false,
+       [](RunConfiguration& r) {
+         r.systems = {GnssSystem::gps, GnssSystem::galileo};
+       },
+       {"--systems", "gps,galileo"},
+       "systems",
+       "gps,galileo"},
       {"iono_from",
        false,
        [](RunConfiguration& r) { r.iono_from = kNavFile; },

@@ -91,6 +91,7 @@ AidedRunResult run_aided_scenario(const Scenario& sc, const SynthesisSummary& s,
   nav.troposphere.enabled = settings.filter_troposphere;
   nav.ionosphere.enabled = settings.filter_ionosphere;
   nav.ultra.long_integration = settings.long_integration;
+  nav.receiver.systems = settings.systems;
   aiding::NavigationSession session(cfg, source, scenario_imu_log(s, mode), sc.duration_s);
   const TruthFile truth(s.truth_path);
   AidedRunResult result;

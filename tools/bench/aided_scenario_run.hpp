@@ -55,6 +55,8 @@ struct AidedRunSettings {
   bool filter_ionosphere = false;
   /// Ultra-tight: long integration of weak channels (data wipe-off).
   aiding::LongIntegrationConfig long_integration;
+  /// The systems the receiver tracks (the scenario must carry them; Galileo needs 4 Msps).
+  std::vector<GnssSystem> systems{GnssSystem::gps};
 };
 
 /// The session for a synthesized scenario in `mode`: its week, its navigation file's

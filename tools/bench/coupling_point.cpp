@@ -45,6 +45,11 @@ Scenario point_scenario(const CouplingPoint& p) {
   sc.seed = point_seed(p);
   sc.errors = error_preset(o.errors);
   validate_scenario(sc);
+  for (GnssSystem system : o.systems)
+    if (!includes_system(sc.systems, system))
+      throw InputError("--systems: the scenario '" + source_relative(o.base_scenario) + "' has no " +
+                       std::string(system_name(system)) + " satellites (its systems: " + systems_list(sc.systems) +
+                       ")");
   return sc;
 }
 
@@ -94,6 +99,8 @@ nlohmann::json coupling_point_settings(const CouplingPoint& p) {
                       {"receiver_troposphere", to_string(o.atmosphere.troposphere)}};
   if (o.filter_troposphere) s[kFlagsRecordedWhenSet[0]] = true;
   if (o.filter_ionosphere) s[kFlagsRecordedWhenSet[1]] = true;
+  // Recorded only beside GPS, so that the GPS-only points made before keep their settings.
+  if (!is_gps_only(o.systems)) s["systems"] = systems_list(o.systems);
   return s;
 }
 
@@ -131,6 +138,10 @@ std::vector<std::string> coupling_point_command(const std::string& exe, const Co
                                out_dir};
   if (o.filter_troposphere) cmd.push_back("--filter-troposphere");
   if (o.filter_ionosphere) cmd.push_back("--filter-ionosphere");
+  if (!is_gps_only(o.systems)) {
+    cmd.push_back("--systems");
+    cmd.push_back(systems_list(o.systems));
+  }
   return cmd;
 }
 
@@ -147,6 +158,7 @@ nlohmann::json run_coupling_point(const CouplingPoint& p, const std::string& wor
   run_settings.atmosphere = o.atmosphere;
   run_settings.filter_troposphere = o.filter_troposphere;
   run_settings.filter_ionosphere = o.filter_ionosphere;
+  run_settings.systems = o.systems;
   nlohmann::json point = coupling_point_settings(p);
   for (const auto& m : o.modes)
     point["modes"][m] = mode_record(run_aided_scenario(sc, s, aiding::parse_nav_mode(m), run_settings));
@@ -183,6 +195,9 @@ nlohmann::json load_coupling_point(const std::string& out_dir, const CouplingPoi
       throw InputError(fmt::format("{}: made with {} = {}, this run asks for {}; use another --out", path.string(), key,
                                    point.contains(key) ? point[key].dump() : "nothing", value.dump()));
   // A flag the point was made with and this run does not ask for is another setting too.
+  if (point.value("systems", "gps") != want.value("systems", "gps"))
+    throw InputError(fmt::format("{}: made with systems {}, this run asks for {}; use another --out", path.string(),
+                                 point.value("systems", "gps"), want.value("systems", "gps")));
   for (const char* flag : kFlagsRecordedWhenSet)
     if (point.value(flag, false) != want.value(flag, false))
       throw InputError(fmt::format("{}: made with {} = {}, this run asks for {}; use another --out", path.string(),

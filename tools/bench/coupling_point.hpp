@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "receiver/pvt/atmosphere_models.hpp"
+#include "signals/satellite_id.hpp"
 
 namespace deepnav::bench {
 
@@ -34,6 +35,9 @@ struct CouplingPointSettings {
   AtmosphereModels atmosphere;      ///< the receiver's (the scenario decides what is synthesized)
   bool filter_troposphere = false;  ///< tight/ultra: the zenith troposphere residual state
   bool filter_ionosphere = false;   ///< tight/ultra: the ionosphere model's scale state
+  /// The systems the receiver tracks; with Galileo the base scenario must carry Galileo
+  /// satellites (data/scenarios/land_circle_gps_galileo_aided.yaml).
+  std::vector<GnssSystem> systems{GnssSystem::gps};
 };
 
 struct CouplingPoint {

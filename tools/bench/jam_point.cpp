@@ -87,10 +87,13 @@ std::string point_id(const JamPoint& p) {
   const aiding::LongIntegrationConfig defaults;
   const bool own_integration = p.long_integration.coherent_ms != defaults.coherent_ms ||
                                p.long_integration.noncoherent_ms != defaults.noncoherent_ms;
+  std::string systems = systems_list(p.systems);
+  std::replace(systems.begin(), systems.end(), ',', '-');
   return fmt::format(
-      "{}_{}_js{:05.1f}_{}{}_{}_s{}{}", fs::path(p.scenario).stem().string(), p.jammer, p.js_db, p.mode,
+      "{}_{}_js{:05.1f}_{}{}_{}_s{}{}{}", fs::path(p.scenario).stem().string(), p.jammer, p.js_db, p.mode,
       p.long_integration.assist_data_bits ? "-assisted-bits" : "", p.mitigation, p.seed,
-      own_integration ? fmt::format("_c{}n{}", p.long_integration.coherent_ms, p.long_integration.noncoherent_ms) : "");
+      own_integration ? fmt::format("_c{}n{}", p.long_integration.coherent_ms, p.long_integration.noncoherent_ms) : "",
+      is_gps_only(p.systems) ? "" : "_" + systems);
 }
 
 std::string point_dir(const std::string& out_dir, const JamPoint& p) {
@@ -116,6 +119,10 @@ Scenario jam_point_scenario(const JamPoint& p) {
                       "(e.g. imu: {{grade: tactical, rate_hz: 100}})",
                       p.mode, p.scenario));
     validate_scenario(sc);
+    for (GnssSystem system : p.systems)
+      if (!includes_system(sc.systems, system))
+        throw InputError(fmt::format("--systems: scenario '{}' has no {} satellites (its systems: {})", p.scenario,
+                                     system_name(system), systems_list(sc.systems)));
   } catch (const std::invalid_argument& e) {
     throw InputError(e.what());
   } catch (const std::runtime_error& e) {
@@ -142,6 +149,7 @@ RunConfiguration jam_point_run(const JamPoint& p, const Scenario& sc, const JamP
   run.mode = p.mode;
   run.imu = {files.imu_path, sc.imu.grade, sc.imu.grades_file, sc.imu.lever_arm_m};
   run.out_dir = files.run_dir;
+  run.systems = p.systems;
   return run;
 }
 
@@ -174,6 +182,7 @@ nlohmann::json run_jam_point(const JamPoint& p, const std::string& out_dir) {
                         {"noncoherent_ms", p.long_integration.noncoherent_ms},
                         {"assisted_data_bits", p.long_integration.assist_data_bits},
                         {"command", shell_command_line(run_command(run))}};
+  if (!is_gps_only(p.systems)) fig["systems"] = systems_list(p.systems);
   const ChannelTimeline timeline = channel_timeline(recorder.tracking, s.sat_truth_path, p.onset_s, sc.duration_s);
   const JamChannels channels = channel_figures(timeline, p.onset_s, sc.duration_s);
   const JamSolutionFigures solution =

@@ -5,8 +5,10 @@
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "aiding/long_integrator.hpp"
+#include "signals/satellite_id.hpp"
 #include "signals/sim/jammer.hpp"
 #include "signals/sim/scenario.hpp"
 #include "tools/bench/run_configuration.hpp"
@@ -23,13 +25,17 @@ struct JamPoint {
   double onset_s = 16.0;  ///< jammer on from here to the end of the scenario
   /// Ultra-tight long integration; a coherent length other than the default shows in the id.
   aiding::LongIntegrationConfig long_integration;
+  /// The systems the receiver tracks (the scenario must carry them); other than GPS alone
+  /// they show in the id.
+  std::vector<GnssSystem> systems{GnssSystem::gps};
 };
 
 /// The benchmark's jammer of each type at this J/S (see docs/jamming.md, "The sweep"):
 /// CW 151.7 kHz off L1; chirp sweeping 2 MHz every 1 ms; wideband noise over 2.046 MHz;
 /// pulsed noise bursts over 2.046 MHz, 10 % duty at 3 kHz.
 JammerConfig benchmark_jammer(const std::string& type, double js_db, double onset_s);
-/// "<scenario stem>_<jammer>_js<J/S>_<mode>_<mitigation>_s<seed>", a folder name.
+/// "<scenario stem>_<jammer>_js<J/S>_<mode>_<mitigation>_s<seed>", a folder name (with
+/// "_gps-galileo" at the end for both systems).
 std::string point_id(const JamPoint& p);
 /// Folder of a point's results inside the sweep folder.
 std::string point_dir(const std::string& out_dir, const JamPoint& p);

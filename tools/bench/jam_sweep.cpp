@@ -100,6 +100,11 @@ std::vector<JamPoint> jam_sweep_points(const JamSweepSettings& o) {
   } catch (const std::exception& e) {
     throw InputError(e.what());
   }
+  for (GnssSystem system : o.systems)
+    if (!includes_system(base.systems, system))
+      throw InputError(fmt::format("--systems {}: scenario '{}' has no {} satellites (its systems: {})",
+                                   systems_list(o.systems), o.scenario, system_name(system),
+                                   systems_list(base.systems)));
   const auto jammers = split_list(o.jammers, "--jammer");
   for (const auto& j : jammers) benchmark_jammer(j, 0.0, 0.0);  // rejects unknown types
   const auto modes = split_list(o.modes, "--modes");
@@ -127,7 +132,7 @@ std::vector<JamPoint> jam_sweep_points(const JamSweepSettings& o) {
         for (int r = 0; r < o.runs; ++r)
           for (double js : parse_js_range(o.js))
             points.push_back({o.scenario, jammer, js, mode, mitigation, base.seed + static_cast<std::uint64_t>(r),
-                              o.onset_s, o.long_integration});
+                              o.onset_s, o.long_integration, o.systems});
   return points;
 }
 
@@ -155,6 +160,10 @@ std::vector<std::string> jam_point_command(const std::string& exe, const JamPoin
                                   "--noncoherent-ms",
                                   std::to_string(p.long_integration.noncoherent_ms)};
   if (p.long_integration.assist_data_bits) cmd.push_back("--assist-data-bits");
+  if (!is_gps_only(p.systems)) {
+    cmd.push_back("--systems");
+    cmd.push_back(systems_list(p.systems));
+  }
   cmd.push_back("--out");
   cmd.push_back(out_dir);
   return cmd;

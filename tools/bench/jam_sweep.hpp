@@ -31,6 +31,7 @@ struct JamSweepSettings {
   bool no_plots = false;
   std::string json_path;  ///< the threshold table as JSON; empty: none
   aiding::LongIntegrationConfig long_integration;
+  std::vector<GnssSystem> systems{GnssSystem::gps};  ///< what the receiver tracks
 };
 
 /// FROM:TO:STEP (or one value) in dB, each rounded to 0.1 dB; throws InputError naming --js.

@@ -31,6 +31,7 @@ std::vector<std::string> run_command(const RunConfiguration& run) {
   add("--coherent-ms", std::to_string(run.coherent_ms));
   add("--noncoherent-ms", std::to_string(run.noncoherent_ms));
   add("--out", run.out_dir);
+  if (!is_gps_only(run.systems)) add("--systems", systems_list(run.systems));
   if (run.assist_data_bits) argv.push_back("--assist-data-bits");
   for (const auto& a : receiver_mode_run_arguments(find_receiver_mode(run.mode), run.imu)) argv.push_back(a);
   return argv;
@@ -50,6 +51,7 @@ aiding::NavigationSessionConfig run_session_config(const RunConfiguration& run) 
   aiding::AidedReceiverConfig& nav = c.navigator;
   nav.mode = aiding::parse_nav_mode(run.mode);
   nav.receiver.reference_week = run.week;
+  nav.receiver.systems = run.systems;
   try {
     if (nav.mode != aiding::NavMode::scalar) {
       // Relative grades files as `deepnav run` finds them: from here, else the project's.

@@ -31,9 +31,10 @@ struct RunConfiguration {
   int coherent_ms = aiding::LongIntegrationConfig{}.coherent_ms;
   int noncoherent_ms = aiding::LongIntegrationConfig{}.noncoherent_ms;
   bool assist_data_bits = false;
-  std::string mode = "scalar";  ///< a row of receiver_modes()
-  RunImu imu;                   ///< the aided modes' IMU (--imu, --imu-grade, ...)
-  std::string out_dir;          ///< --out: where `deepnav run` writes its products
+  std::string mode = "scalar";                       ///< a row of receiver_modes()
+  RunImu imu;                                        ///< the aided modes' IMU (--imu, --imu-grade, ...)
+  std::string out_dir;                               ///< --out: where `deepnav run` writes its products
+  std::vector<GnssSystem> systems{GnssSystem::gps};  ///< --systems
 };
 
 /// The `deepnav run` command line ("deepnav", "run", options...) of this configuration:

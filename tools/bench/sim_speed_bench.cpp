@@ -51,11 +51,7 @@ void run_sim_speed_bench(const SimSpeedSettings& o) {
   report.add_note("adc_bits", sc.adc.bits);
   report.add_note("hardware_threads", all);
   // Which systems only where Galileo is in, which keeps a GPS run's report as it was.
-  if (sc.systems != std::vector<GnssSystem>{GnssSystem::gps}) {
-    std::vector<std::string_view> names;
-    for (GnssSystem system : sc.systems) names.push_back(system_name(system));
-    report.add_note("systems", fmt::format("{}", fmt::join(names, ",")));
-  }
+  if (!is_gps_only(sc.systems)) report.add_note("systems", systems_list(sc.systems));
   report.emit(o.json_path);
 }
 

@@ -50,4 +50,11 @@ std::vector<GnssSystem> parse_systems_option(const std::string& text) {
   return systems;
 }
 
+void add_systems_option(CLI::App& cmd, std::vector<GnssSystem>& systems) {
+  cmd.add_option_function<std::string>(
+         "--systems", [&systems](const std::string& text) { systems = parse_systems_option(text); },
+         "gps or gps,galileo: the systems the receiver tracks (the scenario must carry them)")
+      ->default_str("gps");
+}
+
 }  // namespace deepnav::cli

@@ -18,5 +18,8 @@ CLI::Validator finite_above(double lo, double hi, const std::string& what = "a n
 /// --systems: comma-separated system names ("gps,galileo"), each once; a UserError naming
 /// the option otherwise.
 std::vector<GnssSystem> parse_systems_option(const std::string& text);
+/// A benchmark's --systems option: what the receiver tracks ("gps" by default; the
+/// scenario must carry the systems named).
+void add_systems_option(CLI::App& cmd, std::vector<GnssSystem>& systems);
 
 }  // namespace deepnav::cli

@@ -3,6 +3,7 @@
 // each point).
 #include "tools/bench/coupling_sweep.hpp"
 #include "tools/cli/atmosphere_options.hpp"
+#include "tools/cli/cli_checks.hpp"
 #include "tools/cli/commands.hpp"
 #include "tools/cli/progress.hpp"
 
@@ -32,6 +33,7 @@ void add_bench_coupling_command(CommandParents& parents) {
                 "Tight and ultra-tight: estimate a zenith troposphere residual (an 18th state)");
   cmd->add_flag("--filter-ionosphere", pt.filter_ionosphere,
                 "Tight and ultra-tight: estimate the ionosphere model's scale error (a 19th state)");
+  add_systems_option(*cmd, pt.systems);
   cmd->add_flag("--list-commands", o->list_commands, "Print one command per unfinished point and stop");
   cmd->add_option("--work-dir", o->work_dir, "Where the (deleted) IF files are written");
   cmd->add_option("--csv", o->csv_path, "Per-epoch errors of every run");

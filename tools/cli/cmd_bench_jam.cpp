@@ -8,6 +8,7 @@
 #include "tools/bench/jam_point.hpp"
 #include "tools/bench/jam_sweep.hpp"
 #include "tools/bench/receiver_modes.hpp"
+#include "tools/cli/cli_checks.hpp"
 #include "tools/cli/commands.hpp"
 #include "tools/cli/long_integration_options.hpp"
 
@@ -34,6 +35,7 @@ void add_bench_jam_command(CommandParents& parents) {
   cmd->add_flag("--list-commands", o->list_commands, "Print the unfinished points' commands, one a line, and stop");
   cmd->add_flag("--no-plots", o->no_plots, "Skip the PNG plots");
   cmd->add_option("--json", o->json_path, "Write the threshold table as JSON to this file");
+  add_systems_option(*cmd, o->systems);
   cmd->callback([o] { run_jam_sweep(*o); });
 
   // The options jam_point_command writes for each point of the sweep.
@@ -51,6 +53,7 @@ void add_bench_jam_command(CommandParents& parents) {
   point->add_option("--seed", p->seed, "Seed of noise and jammer")->capture_default_str();
   point->add_option("--onset", p->onset_s, "Jammer onset (s)")->capture_default_str();
   add_long_integration_options(*point, p->long_integration);
+  add_systems_option(*point, p->systems);
   point->add_option("--out", *out, "Sweep folder")->required();
   point->callback(
       [p, out] { fmt::print("{}\n", jam_point_summary(run_jam_point(*p, std::filesystem::absolute(*out).string()))); });

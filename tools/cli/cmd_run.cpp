@@ -67,11 +67,6 @@ aiding::NavMode parse_mode(const RunOptions& o) {
   const aiding::NavMode mode = aiding::parse_nav_mode(o.mode);
   if (mode != aiding::NavMode::scalar && o.imu_path.empty())
     throw UserError("--mode " + o.mode + " needs an IMU file (--imu FILE)");
-  const bool ranges_taken = mode == aiding::NavMode::tight || mode == aiding::NavMode::ultra;
-  if (ranges_taken && includes_system(o.receiver.systems, GnssSystem::galileo))
-    throw UserError("--mode " + o.mode + " --systems " + o.systems +
-                    ": tight and ultra-tight coupling take GPS measurements only so far (with Galileo: --mode scalar "
-                    "or loose, whose filter takes the two-system fix)");
   return mode;
 }
 
@@ -236,7 +231,7 @@ nlohmann::json run_summary(const RunOptions& o, const OpenedSource& opened, aidi
       {"ephemerides_decoded", receiver.decoded_ephemerides().size()},
       {"satellites_used", stats.satellites().json()},
       {"pdop", stats.pdop().json()}};
-  if (receiver.systems() != std::vector<GnssSystem>{GnssSystem::gps}) {
+  if (!is_gps_only(receiver.systems())) {
     std::vector<std::string> names;
     for (GnssSystem system : receiver.systems()) names.emplace_back(system_name(system));
     summary["systems"] = names;
