@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "converter_samples.hpp"
 #include "signals/sim/satellite_signal_kernel.hpp"
 
 namespace deepnav {
@@ -61,10 +62,8 @@ RandomCase random_case(std::mt19937_64& rng, int n) {
   s.very_spacing_chips = u(rng) < 0.5 ? 0.0 : s.spacing_chips + u(rng) * (2.0 - s.spacing_chips);
 
   // Input scale: 1 bit, 2 bits, 8 bits, 12 bits, full-scale 16 bits.
-  const int kind = static_cast<int>(rng() % 5);
-  const double sigma[] = {0.0, 1.5, 30.0, 500.0, 9000.0};
-  const double amp[] = {1.0, 1.0, 20.0, 300.0, 6000.0};
-  std::normal_distribution<double> noise(0.0, 1.0);
+  const auto kind = static_cast<test_input::Converter>(rng() % test_input::kConverters);
+  const double amp = test_input::converter_amplitude(kind);
   const auto& code = ca_code_chips(c.prn);
   const double lag = (u(rng) - 0.5) * 0.6;  // signal a little off the prompt
   c.x.resize(static_cast<std::size_t>(n));
@@ -72,24 +71,10 @@ RandomCase random_case(std::mt19937_64& rng, int n) {
     const double chip = s.code_phase_chips + lag + k * s.code_step_chips;
     const double lvl = code[static_cast<std::size_t>(std::fmod(std::fmod(std::floor(chip), 1023.0) + 1023.0, 1023.0))];
     const double ph = 2.0 * M_PI * (s.carrier_phase_cycles + 0.1 + k * s.carrier_step_cycles);
-    double i = amp[kind] * lvl * std::cos(ph), q = amp[kind] * lvl * std::sin(ph);
-    if (kind == 0) {  // 1 bit: signs of signal plus noise
-      i = i + 2.0 * noise(rng) >= 0.0 ? 1.0 : -1.0;
-      q = q + 2.0 * noise(rng) >= 0.0 ? 1.0 : -1.0;
-    } else if (kind == 1) {  // 2 bits: +-1, +-3
-      const auto two = [](double v) { return v >= 0.0 ? (v > 2.0 ? 3.0 : 1.0) : (v < -2.0 ? -3.0 : -1.0); };
-      i = two(i + sigma[kind] * noise(rng));
-      q = two(q + sigma[kind] * noise(rng));
-    } else {
-      i += sigma[kind] * noise(rng);
-      q += sigma[kind] * noise(rng);
-    }
-    const auto clamp16 = [](double v) {
-      return static_cast<std::int16_t>(std::clamp(std::lround(v), -32768L, 32767L));
-    };
-    c.x[static_cast<std::size_t>(k)] = {clamp16(i), clamp16(q)};
+    c.x[static_cast<std::size_t>(k)] =
+        test_input::converter_sample(kind, amp * lvl * std::cos(ph), amp * lvl * std::sin(ph), rng);
   }
-  if (kind == 4 && n > 2) {  // the extremes of int16 must not overflow anything
+  if (kind == test_input::Converter::sixteen_bits && n > 2) {  // the extremes of int16 must not overflow anything
     c.x[0] = {-32768, 32767};
     c.x[static_cast<std::size_t>(n - 1)] = {32767, -32768};
   }

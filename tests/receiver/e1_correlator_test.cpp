@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "converter_samples.hpp"
 #include "e1_test_signal.hpp"
 #include "signals/galileo/e1_codes.hpp"
 #include "signals/galileo/e1_modulation.hpp"
@@ -98,7 +99,8 @@ TEST(E1Correlator, FixedPointSumsAreWithinTheCarrierTablesErrorOfTheReference) {
 
 /// A random span and input: sample rates 2.046-20 Msps (commensurate with the 2.046 MHz
 /// half-chip rate or not), spacings 0.05-0.6 chip, VE/VL on or off, Doppler +-10 kHz on an IF
-/// up to fs/4, inputs from 1 bit to full-scale int16, a BOC(1,1) pilot near the prompt.
+/// up to fs/4, inputs from 1 bit to full-scale int16 (converter_samples.hpp), a BOC(1,1)
+/// pilot near the prompt.
 struct RandomCase {
   E1CorrelatorSpan span;
   std::vector<Sample> x;
@@ -123,32 +125,15 @@ RandomCase random_case(std::mt19937_64& rng, int n) {
   s.very_spacing_chips = u(rng) < 0.3 ? 0.0 : s.spacing_chips + u(rng) * (1.2 - s.spacing_chips);
   s.noise_tap = u(rng) < 0.7;
 
-  const int kind = static_cast<int>(rng() % 4);  // 1 bit, 2 bits, 8 bits, full-scale 16 bits
-  const double sigma[] = {0.0, 1.5, 30.0, 9000.0};
-  const double amp[] = {1.0, 1.0, 20.0, 6000.0};
-  std::normal_distribution<double> noise(0.0, 1.0);
+  const auto kind = static_cast<test_input::Converter>(rng() % test_input::kConverters);
+  const double amp = test_input::converter_amplitude(kind);
   const double lag = (u(rng) - 0.5) * 0.3;
   c.x.resize(static_cast<std::size_t>(n));
   for (int k = 0; k < n; ++k) {
-    const double chip = s.code_phase_chips + lag + k * s.code_step_chips;
-    const double lvl = boc11_level(*c.codes.pilot, chip);
+    const double lvl = boc11_level(*c.codes.pilot, s.code_phase_chips + lag + k * s.code_step_chips);
     const double ph = 2.0 * M_PI * (s.carrier_phase_cycles + 0.1 + k * s.carrier_step_cycles);
-    double i = amp[kind] * lvl * std::cos(ph), q = amp[kind] * lvl * std::sin(ph);
-    if (kind == 0) {
-      i = i + 2.0 * noise(rng) >= 0.0 ? 1.0 : -1.0;
-      q = q + 2.0 * noise(rng) >= 0.0 ? 1.0 : -1.0;
-    } else if (kind == 1) {
-      const auto two = [](double v) { return v >= 0.0 ? (v > 2.0 ? 3.0 : 1.0) : (v < -2.0 ? -3.0 : -1.0); };
-      i = two(i + sigma[kind] * noise(rng));
-      q = two(q + sigma[kind] * noise(rng));
-    } else {
-      i += sigma[kind] * noise(rng);
-      q += sigma[kind] * noise(rng);
-    }
-    const auto clamp16 = [](double v) {
-      return static_cast<std::int16_t>(std::clamp(std::lround(v), -32768L, 32767L));
-    };
-    c.x[static_cast<std::size_t>(k)] = {clamp16(i), clamp16(q)};
+    c.x[static_cast<std::size_t>(k)] =
+        test_input::converter_sample(kind, amp * lvl * std::cos(ph), amp * lvl * std::sin(ph), rng);
   }
   return c;
 }
@@ -170,9 +155,10 @@ TEST(E1Correlator, EveryKernelIsBitExactWithThePortableOneWithAndWithoutPlanarIn
       EXPECT_EQ(p.noise, std::complex<double>());
     }
     for (CorrelatorKernel k : available_correlator_kernels()) {
-      for (const CorrelatorInput& input : {CorrelatorInput{c.x.data()}, CorrelatorInput{c.x.data(), i.data(), q.data()}}) {
-        SCOPED_TRACE(::testing::Message() << correlator_kernel_name(k) << " trial " << trial << " n " << n
-                                        << (input.i ? " planar" : ""));
+      for (const CorrelatorInput& input :
+           {CorrelatorInput{c.x.data()}, CorrelatorInput{c.x.data(), i.data(), q.data()}}) {
+        SCOPED_TRACE(::testing::Message()
+                     << correlator_kernel_name(k) << " trial " << trial << " n " << n << (input.i ? " planar" : ""));
         const E1CorrelatorSums s = correlate_e1(k, input, n, c.span, c.codes);
         EXPECT_EQ(s.very_early, p.very_early);
         EXPECT_EQ(s.early, p.early);
