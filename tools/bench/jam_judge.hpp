@@ -25,7 +25,8 @@ struct JamChannelFigures {
   std::optional<double> cn0_dbhz;  ///< mean estimate while tracked; none: never tracked after settling
 };
 
-/// Per satellite, keyed as point.json keys them (the PRN as text: "1", "10", "2", ...), so
+/// Per satellite, keyed as point.json keys them (a GPS PRN as text: "1", "10", "2", ...; a
+/// Galileo satellite as "E11"), so
 /// the means over channels add up in the order of the record they are written beside.
 using JamChannels = std::map<std::string, JamChannelFigures>;
 

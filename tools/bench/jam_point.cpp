@@ -183,7 +183,8 @@ nlohmann::json run_jam_point(const JamPoint& p, const std::string& out_dir) {
                         {"assisted_data_bits", p.long_integration.assist_data_bits},
                         {"command", shell_command_line(run_command(run))}};
   if (!is_gps_only(p.systems)) fig["systems"] = systems_list(p.systems);
-  const ChannelTimeline timeline = channel_timeline(recorder.tracking, s.sat_truth_path, p.onset_s, sc.duration_s);
+  const ChannelTimeline timeline =
+      channel_timeline(recorder.tracking, s.sat_truth_path, p.onset_s, sc.duration_s, p.systems);
   const JamChannels channels = channel_figures(timeline, p.onset_s, sc.duration_s);
   const JamSolutionFigures solution =
       solution_figures(recorder.solutions, run.truth, timeline, p.onset_s, sc.duration_s);

@@ -77,19 +77,33 @@ nlohmann::json figure(const std::optional<double>& v) { return v ? nlohmann::jso
 }  // namespace
 
 void JamRecorder::on_epoch(const NavigationEpoch& e) {
+  // Galileo channels by their observables over the interval since the last epoch.
+  const double t = e.receiver.t_s;
+  if (last_epoch_t_s_ && t > *last_epoch_t_s_) {
+    for (const ChannelObservation& o : e.receiver.observations)
+      if (o.system == GnssSystem::galileo)
+        tracking.push_back({*last_epoch_t_s_, o.satellite(), ChannelState::tracking, t - *last_epoch_t_s_, o.doppler_hz,
+                            o.cn0_dbhz, std::nullopt});
+  }
+  last_epoch_t_s_ = t;
   if (!e.solution.valid) return;
   solutions.push_back(
       {e.receiver.t_s, e.solution.r_ecef_m, e.solution.llh.lat_rad, e.solution.llh.lon_rad, std::string(e.mode)});
 }
 
 void JamRecorder::on_correlation(const CorrelatorEpoch& e, const ChannelSnapshot& ch) {
-  tracking.push_back({static_cast<double>(e.first_sample) / fs_hz_, e.prn, ch.state, e.integration_s,
-                      e.carrier_doppler_hz, ch.cn0_dbhz, ch.aided_lock});
+  tracking.push_back({static_cast<double>(e.first_sample) / fs_hz_,
+                      {GnssSystem::gps, e.prn},
+                      ch.state,
+                      e.integration_s,
+                      e.carrier_doppler_hz,
+                      ch.cn0_dbhz,
+                      ch.aided_lock});
 }
 
 int ChannelTimeline::tracked_at(double t) const {
   int n = 0;
-  for (const auto& [prn, v] : spans) {
+  for (const auto& [satellite, v] : spans) {
     const auto it = std::lower_bound(v.begin(), v.end(), t, [](const Span& s, double x) { return s.t_s < x; });
     if (it == v.begin()) continue;
     const Span& last = *std::prev(it);
@@ -98,37 +112,54 @@ int ChannelTimeline::tracked_at(double t) const {
   return n;
 }
 
+namespace {
+
+/// A sat_truth.csv `prn` cell: "G05" / "E11" (mixed scenarios) or a GPS PRN alone.
+SatelliteId truth_satellite(const std::string& cell, const std::string& path) {
+  if (const auto id = parse_satellite_id(cell)) return *id;
+  try {
+    return {GnssSystem::gps, std::stoi(cell)};
+  } catch (const std::exception&) {
+    throw InputError(path + ": prn '" + cell + "': expected a GPS PRN or a satellite such as G05 or E11");
+  }
+}
+
+}  // namespace
+
 ChannelTimeline channel_timeline(const std::vector<TrackingRow>& tracking, const std::string& sat_truth_path,
-                                 double window_start_s, double window_end_s) {
+                                 double window_start_s, double window_end_s, const std::vector<GnssSystem>& systems) {
   const Csv truth(sat_truth_path);
   const std::size_t t_col = truth.at("t_s", sat_truth_path), prn_col = truth.at("prn", sat_truth_path),
                     dop_col = truth.at("doppler_hz", sat_truth_path);
-  std::map<int, std::vector<std::pair<double, double>>> doppler;
-  for (const auto& r : truth.rows) doppler[std::stoi(r[prn_col])].emplace_back(number(r, t_col), number(r, dop_col));
-  const auto true_doppler = [&](int prn, double t) {
-    const auto& v = doppler[prn];
+  std::map<SatelliteId, std::vector<std::pair<double, double>>> doppler;
+  for (const auto& r : truth.rows) {
+    const SatelliteId sat = truth_satellite(r[prn_col], sat_truth_path);
+    if (includes_system(systems, sat.system)) doppler[sat].emplace_back(number(r, t_col), number(r, dop_col));
+  }
+  const auto true_doppler = [&](const SatelliteId& sat, double t) {
+    const auto& v = doppler[sat];
     const auto it = std::lower_bound(v.begin(), v.end(), std::make_pair(t, -1e300));
     return it == v.end() ? v.back().second : it->second;
   };
   const TrackingConfig loss;  // the receiver's loss-of-lock rule
   ChannelTimeline timeline;
-  for (const auto& [prn, v] : doppler) timeline.prns.push_back(prn);
-  std::map<int, double> below_since;  // per PRN: start of the current run of C/N0 below the loss threshold
-  std::map<int, std::deque<std::pair<double, double>>> last_second;  // per PRN: (t, C/N0) over the last second
-  std::map<int, double> last_second_sum;
+  for (const auto& [sat, v] : doppler) timeline.satellites.push_back(sat);
+  std::map<SatelliteId, double> below_since;  // start of the current run of C/N0 below the loss threshold
+  std::map<SatelliteId, std::deque<std::pair<double, double>>> last_second;  // (t, C/N0) over the last second
+  std::map<SatelliteId, double> last_second_sum;
   for (const TrackingRow& r : tracking) {
     const double t = r.t_s;
-    const int prn = r.prn;
-    if (!doppler.count(prn) || t >= window_end_s) continue;
+    const SatelliteId& sat = r.satellite;
+    if (!doppler.count(sat) || t >= window_end_s) continue;
     const double cn0 = r.cn0_dbhz;
-    if (!(cn0 < loss.lost_cn0_dbhz)) below_since.erase(prn);
-    else below_since.try_emplace(prn, t);
+    if (!(cn0 < loss.lost_cn0_dbhz)) below_since.erase(sat);
+    else below_since.try_emplace(sat, t);
     // A channel its filter steers and judges (ultra-tight) is held to that filter's lock
     // criterion instead: a measurement within the last second.
     const bool faded =
-        r.aided_lock ? !*r.aided_lock : below_since.count(prn) && t - below_since[prn] >= loss.lost_after_s;
-    auto& recent = last_second[prn];
-    double& recent_sum = last_second_sum[prn];
+        r.aided_lock ? !*r.aided_lock : below_since.count(sat) && t - below_since[sat] >= loss.lost_after_s;
+    auto& recent = last_second[sat];
+    double& recent_sum = last_second_sum[sat];
     recent.emplace_back(t, cn0);
     recent_sum += cn0;
     while (recent.front().first < t - loss.lost_after_s) {
@@ -139,10 +170,10 @@ ChannelTimeline channel_timeline(const std::vector<TrackingRow>& tracking, const
     // Kept from one second before the window, so the first epochs see their channels.
     if (t < window_start_s - 1.0) continue;
     const bool following =
-        r.state == ChannelState::tracking && std::abs(r.doppler_hz - true_doppler(prn, t)) <= kDopplerToleranceHz;
-    timeline.spans[prn].push_back({t, r.integration_s, cn0, following && !faded, following && !no_signal});
+        r.state == ChannelState::tracking && std::abs(r.doppler_hz - true_doppler(sat, t)) <= kDopplerToleranceHz;
+    timeline.spans[sat].push_back({t, r.integration_s, cn0, following && !faded, following && !no_signal});
   }
-  for (auto& [prn, v] : timeline.spans)
+  for (auto& [sat, v] : timeline.spans)
     std::stable_sort(v.begin(), v.end(), [](const auto& a, const auto& b) { return a.t_s < b.t_s; });
   return timeline;
 }
@@ -150,10 +181,10 @@ ChannelTimeline channel_timeline(const std::vector<TrackingRow>& tracking, const
 JamChannels channel_figures(const ChannelTimeline& timeline, double window_start_s, double window_end_s) {
   JamChannels channels;
   const double window = window_end_s - window_start_s;
-  for (int prn : timeline.prns) {
+  for (const SatelliteId& sat : timeline.satellites) {
     double tracked_s = 0.0, signal_s = 0.0, cn0_sum = 0.0;
     int cn0_count = 0;
-    if (const auto found = timeline.spans.find(prn); found != timeline.spans.end()) {
+    if (const auto found = timeline.spans.find(sat); found != timeline.spans.end()) {
       for (const auto& s : found->second) {
         if (s.t_s < window_start_s) continue;
         if (s.with_signal) signal_s += s.integration_s;
@@ -165,7 +196,8 @@ JamChannels channel_figures(const ChannelTimeline& timeline, double window_start
         }
       }
     }
-    JamChannelFigures& ch = channels[std::to_string(prn)];
+    // GPS satellites keyed by their PRN alone, as GPS-only points always were.
+    JamChannelFigures& ch = channels[sat.system == GnssSystem::gps ? std::to_string(sat.prn) : sat.to_string()];
     ch.tracked_fraction = std::min(1.0, tracked_s / window);
     ch.signal_fraction = std::min(1.0, signal_s / window);
     if (cn0_count) ch.cn0_dbhz = finite(cn0_sum / cn0_count);

@@ -11,14 +11,17 @@
 
 #include "receiver/products/product_sink.hpp"
 #include "receiver/tracking/tracking_channel.hpp"
+#include "signals/satellite_id.hpp"
 #include "tools/bench/jam_judge.hpp"
 
 namespace deepnav::bench {
 
-/// One correlator integration of the run.
+/// One correlator integration of the run (a GPS channel's), or one observation epoch of a
+/// Galileo channel (its E1 channel reports observables only: observable means tracking on
+/// the pilot above the loss threshold, the scalar loss rule's verdict).
 struct TrackingRow {
-  double t_s;  ///< start of the integration (first sample / fs)
-  int prn;
+  double t_s;  ///< start of the integration (first sample / fs), or of the epoch's interval
+  SatelliteId satellite;
   ChannelState state;
   double integration_s, doppler_hz, cn0_dbhz;
   std::optional<bool> aided_lock;  ///< steered channel: the aided lock criterion
@@ -43,6 +46,7 @@ class JamRecorder : public ProductSink {
 
  private:
   double fs_hz_;
+  std::optional<double> last_epoch_t_s_;
 };
 
 /// When each satellite is tracked in the jammed window, from the run's integrations and
@@ -62,15 +66,17 @@ struct ChannelTimeline {
     bool tracked;      ///< under the receiver's loss rule (22 dB-Hz for 1 s)
     bool with_signal;  ///< following, with a mean C/N0 over the last second above the signal floor
   };
-  std::map<int, std::vector<Span>> spans;  ///< per PRN, in time order; PRNs of the truth only
-  std::vector<int> prns;                   ///< every satellite the synthesizer transmitted
+  std::map<SatelliteId, std::vector<Span>> spans;  ///< per satellite, in time order; the truth's only
+  std::vector<SatelliteId> satellites;             ///< every satellite the synthesizer transmitted
 
   /// Satellites whose latest integration starting in [t - 1 s, t) is tracked.
   int tracked_at(double t) const;
 };
 
+/// `systems`: those the receiver tracked; the truth's satellites of other systems are left out.
 ChannelTimeline channel_timeline(const std::vector<TrackingRow>& tracking, const std::string& sat_truth_path,
-                                 double window_start_s, double window_end_s);
+                                 double window_start_s, double window_end_s,
+                                 const std::vector<GnssSystem>& systems = {GnssSystem::gps});
 
 /// Per-satellite tracked and signal fractions and mean C/N0 estimate in the jammed window.
 JamChannels channel_figures(const ChannelTimeline& timeline, double window_start_s, double window_end_s);
