@@ -75,4 +75,11 @@ done
 sim_source source "$work/sim"
 expect_failure slow_rate "Galileo E1 needs at least 4 Msps" -- "$deepnav" run "${source[@]/4000000/2000000}" \
   --systems galileo --out "$work/slow"
+# The benchmarks' --systems: a scenario without Galileo, or a sweep that follows GPS channels
+# only, is refused naming why.
+expect_failure threshold_gps_scenario "has no galileo satellites" -- "$deepnav" bench threshold --modes tight \
+  --systems gps,galileo
+expect_failure threshold_per_channel "follows GPS channels only" -- "$deepnav" bench threshold --systems gps,galileo
+expect_failure coupling_gps_scenario "has no galileo satellites" -- "$deepnav" bench coupling --runs 1 \
+  --trajectories land-circle --modes tight --systems gps,galileo --duration 20 --score-at 10 --out "$work/coupling"
 finish

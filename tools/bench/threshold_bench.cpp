@@ -80,6 +80,11 @@ void run_mode_thresholds(const ThresholdBenchSettings& o) {
   const Scenario sc = with_ramp(base, o);
   if (!sc.imu.enabled)
     throw InputError("scenario '" + o.aided_scenario + "' has no imu section (the aided modes need one)");
+  for (GnssSystem system : o.systems)
+    if (!includes_system(sc.systems, system))
+      throw InputError("--systems " + systems_list(o.systems) + ": scenario '" + o.aided_scenario + "' has no " +
+                       std::string(system_name(system)) + " satellites (its systems: " + systems_list(sc.systems) +
+                       ")");
   const std::string work = bench_scratch_dir(o.work_dir, "bench_threshold_modes");
   SynthesisOptions so;
   so.threads = 0;
@@ -92,6 +97,7 @@ void run_mode_thresholds(const ThresholdBenchSettings& o) {
     const aiding::NavMode mode = aiding::parse_nav_mode(name);
     AidedRunSettings settings;
     settings.long_integration = o.long_integration;
+    settings.systems = o.systems;
     const AidedRunResult r = run_aided_scenario(sc, s, mode, settings);
     const ModeHold hold = mode_hold(r, mode, o.ramp_start_s);
     report.add_row({name, hold.until_s, ramp_cn0_dbhz(o, hold.until_s), hold.failure, hold.max_h_error_m, r.wall_s});
@@ -103,6 +109,7 @@ void run_mode_thresholds(const ThresholdBenchSettings& o) {
   report.add_note("oscillator", sc.clock.oscillator);
   report.add_note("ultra_integration", o.long_integration_text);
   report.add_note("coherent_ms", static_cast<long long>(o.long_integration.coherent_ms));
+  if (!is_gps_only(o.systems)) report.add_note("systems", systems_list(o.systems));
   report.emit(o.json_path);
 }
 
@@ -209,6 +216,8 @@ double ramp_cn0_dbhz(const ThresholdBenchSettings& o, double t) {
 
 void run_threshold_bench(const ThresholdBenchSettings& o) {
   if (!o.modes.empty()) return run_mode_thresholds(o);
+  if (!is_gps_only(o.systems))
+    throw InputError("--systems: the per-channel sweep follows GPS channels only; name --modes for the per-mode one");
   run_scalar_threshold(o);
 }
 

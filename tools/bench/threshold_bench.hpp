@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "aiding/long_integrator.hpp"
+#include "signals/satellite_id.hpp"
 
 namespace deepnav::bench {
 
@@ -30,6 +31,8 @@ struct ThresholdBenchSettings {
   std::string oscillator;  ///< per mode: this oscillator instead of the scenario's (empty: the scenario's)
   aiding::LongIntegrationConfig long_integration;  ///< ultra-tight long integration
   std::string long_integration_text;               ///< how the report describes long_integration
+  /// Per mode: the systems the receiver tracks (the aided scenario must carry them).
+  std::vector<GnssSystem> systems{GnssSystem::gps};
 };
 
 /// The ramp's C/N0 at time t (dB-Hz).

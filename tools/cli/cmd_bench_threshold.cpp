@@ -1,6 +1,7 @@
 // `deepnav bench threshold`: the options of the weak-signal threshold benchmark
 // (tools/bench/threshold_bench.hpp).
 #include "tools/bench/threshold_bench.hpp"
+#include "tools/cli/cli_checks.hpp"
 #include "tools/cli/commands.hpp"
 #include "tools/cli/long_integration_options.hpp"
 
@@ -28,6 +29,7 @@ void add_bench_threshold_command(CommandParents& parents) {
                   "With --modes: this receiver oscillator instead of the scenario's (ideal, tcxo, ocxo)")
       ->check(CLI::IsMember({"ideal", "tcxo", "ocxo"}));
   add_long_integration_options(*cmd, o->long_integration);
+  add_systems_option(*cmd, o->systems);
   cmd->add_option("--work-dir", o->work_dir, "Where the (deleted) IF file is written");
   cmd->add_option("--json", o->json_path, "Write the figures as JSON to this file");
   cmd->callback([o] {
