@@ -30,7 +30,12 @@ TEST(JamChannelTimeline, KeysSatellitesBySystemAndLeavesOutUntrackedSystems) {
   for (int k = 0; k < 100; ++k)  // G05: 100 ms integrations, on its Doppler
     rows.push_back({0.1 * k, {GnssSystem::gps, 5}, ChannelState::tracking, 0.1, 1000.0, 45.0, std::nullopt});
   for (int k = 0; k < 10; ++k)  // E05: one row per 1 s epoch, its Doppler 40 Hz off after 5 s
-    rows.push_back({1.0 * k, {GnssSystem::galileo, 5}, ChannelState::tracking, 1.0, k < 5 ? -2000.0 : -1960.0, 44.0,
+    rows.push_back({1.0 * k,
+                    {GnssSystem::galileo, 5},
+                    ChannelState::tracking,
+                    1.0,
+                    k < 5 ? -2000.0 : -1960.0,
+                    44.0,
                     std::nullopt});
 
   const ChannelTimeline gps_only = channel_timeline(rows, truth, 2.0, 10.0);
