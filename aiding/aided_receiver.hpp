@@ -39,7 +39,8 @@ struct AidedReceiverConfig {
   TroposphereResidualConfig troposphere;
   IonosphereResidualConfig ionosphere;
   DelayMismatchConfig troposphere_mismatch;
-  DelayMismatchConfig ionosphere_mismatch{.signature = DelaySignature::ionosphere_scale, .threshold = 0.75};
+  DelayMismatchConfig ionosphere_mismatch{
+      .signature = DelaySignature::ionosphere_scale, .threshold = 0.75, .plausible_floor = -1.75};
   bool fault_exclusion = true;
   /// An aided or coasting solution whose own horizontal 1-sigma exceeds this (m) is not
   /// published: the INS alone after a long outage, or a filter that has lost its way, is

@@ -30,6 +30,10 @@ std::vector<RangeResidual> fix_residuals(const PvtSolution& fix, const std::map<
 
 namespace {
 
+const char* signature_name(DelaySignature s) {
+  return s == DelaySignature::troposphere_zenith ? "troposphere zenith" : "ionosphere scale";
+}
+
 /// How a model error of this kind reaches one satellite's pseudorange (see the header).
 double signature_of(DelaySignature s, const RangeResidual& e) {
   return s == DelaySignature::troposphere_zenith ? troposphere_mapping(e.elevation_rad) : e.ionosphere_model_m;
@@ -60,10 +64,14 @@ void DelayMismatchDetector::add(const std::vector<RangeResidual>& epoch, const R
   const double information = m.dot(w.cwiseProduct(m)) - b.dot(solver.solve(b));
   const double rhs = m.dot(w.cwiseProduct(r)) - b.dot(solver.solve(c));
   if (!(information > 1e-9) || !std::isfinite(information) || !std::isfinite(rhs)) return;
+  if (std::abs(rhs / information) > 5.0 * std::abs(cfg_.plausible_floor)) {
+    spdlog::debug("a fix's {} model error fit of {:.3f} is no model error: left out", signature_name(cfg_.signature),
+                  rhs / information);
+    return;
+  }
   window_.push_back({information, rhs});
   spdlog::debug("{} model error fitted to one fix: {:.3f} (1-sigma {:.3f}, {} satellites)",
-                cfg_.signature == DelaySignature::troposphere_zenith ? "troposphere zenith" : "ionosphere scale",
-                rhs / information, 1.0 / std::sqrt(information), n);
+                signature_name(cfg_.signature), rhs / information, 1.0 / std::sqrt(information), n);
   while (static_cast<int>(window_.size()) > cfg_.window_fixes) window_.pop_front();
 }
 
@@ -90,7 +98,8 @@ double DelayMismatchDetector::consistency() const {
 }
 
 bool DelayMismatchDetector::mismatch() const {
-  return fitted_error() < -cfg_.threshold && consistency() < -cfg_.min_consistency;
+  const double fitted = fitted_error();
+  return fitted < -cfg_.threshold && fitted >= cfg_.plausible_floor && consistency() < -cfg_.min_consistency;
 }
 
 }  // namespace deepnav::aiding

@@ -66,6 +66,15 @@ struct DelayMismatchConfig {
   /// rest is too small to tell; eliminating the troposphere's signature gives the scale
   /// error unbiased, at the cost of a noisier fit.
   std::optional<DelaySignature> also_fitted = std::nullopt;
+  /// The lowest error a signal can show (troposphere: a signal without any reads the model's
+  /// zenith delay, about -2.3 m at sea level, -2.6 to -2.8 m with the ionosphere missing too;
+  /// ionosphere: -1, no delay at all, read as -0.8 to -1.2). A window fitting below it is
+  /// no model the signal could have but something else, wild fixes or multipath, and gets no
+  /// verdict: on a 7-satellite night sky in Helsinki the ionosphere watch read scales of
+  /// -2 to -4 (a negative delay) and the troposphere watch -2240 m and -197 km, and the
+  /// filter took those states and left the truth by kilometres. A single fix fitting beyond
+  /// five times it either way is left out of the window.
+  double plausible_floor = -4.0;
 };
 
 /// One satellite's pseudorange residual (measured minus predicted) at an epoch.
@@ -104,7 +113,8 @@ class DelayMismatchDetector {
   /// The window's mean fit over the standard error of its per-fix fits (0 before
   /// min_fixes; infinite when every fix reads exactly the same).
   double consistency() const;
-  /// fitted_error() below -threshold, with a consistency beyond min_consistency.
+  /// fitted_error() below -threshold but not below plausible_floor, with a consistency
+  /// beyond min_consistency.
   bool mismatch() const;
 
  private:

@@ -57,6 +57,28 @@ TEST(DelayMismatchDetector, ExtraDelayIsNoMismatch) {
   EXPECT_FALSE(d.mismatch());
 }
 
+TEST(DelayMismatchDetector, AnErrorNoSignalCouldShowIsNoMismatch) {
+  // A consistent zenith fit of -10 m: more than any troposphere model's whole delay.
+  DelayMismatchDetector d;
+  const RangeErrorModel weights;
+  std::mt19937 rng(8);
+  std::normal_distribution<double> noise(0.0, 0.3);
+  for (int k = 0; k < 30; ++k) d.add(sky(Eigen::Vector3d::Zero(), 0.0, -10.0 + noise(rng)), weights);
+  EXPECT_NEAR(d.fitted_error(), -10.0, 0.3);
+  EXPECT_LT(d.consistency(), -DelayMismatchConfig{}.min_consistency) << "the fixes agree";
+  EXPECT_FALSE(d.mismatch());
+}
+
+TEST(DelayMismatchDetector, OneWildFixIsLeftOutOfTheWindow) {
+  // 29 fixes without error and one whose residuals fit -2000 m at the zenith (a fix gone
+  // wrong): the window keeps reading no error.
+  DelayMismatchDetector d;
+  const RangeErrorModel weights;
+  for (int k = 0; k < 30; ++k) d.add(sky(Eigen::Vector3d::Zero(), 0.0, k == 15 ? -2000.0 : 0.01 * (k % 3)), weights);
+  EXPECT_NEAR(d.fitted_error(), 0.01, 0.01);
+  EXPECT_FALSE(d.mismatch());
+}
+
 TEST(DelayMismatchDetector, AMissingDelayIsFoundThroughFixToFixNoise) {
   // Each fix reads -2.3 m with 0.4 m of its own noise (as the circles without troposphere
   // do): consistent, so a mismatch.
@@ -142,6 +164,21 @@ TEST(DelayMismatchDetector, IonosphereSignatureRecoversTheModelsScaleError) {
   EXPECT_TRUE(missing.mismatch());
   EXPECT_NEAR(weak.fitted_error(), 0.4, 1e-9);
   EXPECT_FALSE(weak.mismatch());
+}
+
+TEST(DelayMismatchDetector, ANegativeIonosphereIsNoMismatch) {
+  // The receiver's watch: a scale below -1.75 would make the signal's delay negative.
+  const DelayMismatchConfig cfg{
+      .signature = DelaySignature::ionosphere_scale, .threshold = 0.75, .plausible_floor = -1.75};
+  DelayMismatchDetector none(cfg), negative(cfg);
+  const RangeErrorModel weights;
+  for (int k = 0; k < 30; ++k) {
+    none.add(ionosphere_sky(Eigen::Vector3d(2.0, -1.0, 6.0), 25.0, -1.0 + 0.01 * (k % 5)), weights);
+    negative.add(ionosphere_sky(Eigen::Vector3d(2.0, -1.0, 6.0), 25.0, -3.0 + 0.01 * (k % 5)), weights);
+  }
+  EXPECT_TRUE(none.mismatch());
+  EXPECT_NEAR(negative.fitted_error(), -2.98, 0.01);
+  EXPECT_FALSE(negative.mismatch());
 }
 
 TEST(DelayMismatchDetector, TheIonosphereBesideTheTroposphereIsToldApart) {
