@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# The correlator's NEON kernel on AArch64 without ARM hardware: cross-compiles the correlator,
-# the C/A codes and the correlator tests (with GoogleTest from its sources) with Debian's
-# aarch64 cross compiler and runs them under qemu-user. Every kernel the emulated CPU has
-# (portable and NEON) must give the portable kernel's integers.
+# The correlator's NEON kernel on AArch64 without ARM hardware: cross-compiles the C/A and E1
+# correlators, the C/A and E1 codes and the correlator tests (with GoogleTest from its
+# sources) with Debian's aarch64 cross compiler and runs them under qemu-user. Every kernel
+# the emulated CPU has (portable and NEON) must give the portable kernel's integers.
 #   correlator_aarch64.sh <source dir> <work dir>
 # Exit 77 (ctest: skipped) with a message when the cross compiler, qemu or the GoogleTest
 # sources are missing (scripts/install_deps.sh installs them).
@@ -29,7 +29,9 @@ command -v ccache >/dev/null && launcher=(ccache)
 flags=(-O2 -std=c++20 -Wall -Wextra -Werror -DFMT_HEADER_ONLY -I"$src")
 objects=()
 for f in receiver/tracking/correlator.cpp receiver/tracking/kernels/kernel_portable.cpp receiver/tracking/kernels/kernel_neon.cpp \
-         signals/ca_code.cpp signals/sim/satellite_signal_kernel.cpp tests/receiver/correlator_test.cpp; do
+         receiver/tracking/e1_correlator.cpp signals/ca_code.cpp signals/galileo/e1_codes.cpp \
+         signals/galileo/e1_code_tables.cpp signals/galileo/e1_modulation.cpp signals/sim/gaussian_noise.cpp \
+         signals/sim/satellite_signal_kernel.cpp tests/receiver/correlator_test.cpp tests/receiver/e1_correlator_test.cpp; do
   o=$(echo "$f" | tr / _).o
   "${launcher[@]}" "$cxx" "${flags[@]}" -c "$src/$f" -o "$o"
   objects+=("$o")
