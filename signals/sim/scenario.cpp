@@ -2,6 +2,7 @@
 #include "signals/data_path.hpp"
 
 #include "ins/imu_model.hpp"
+#include "ins/input_error.hpp"
 #include "ins/input_file.hpp"
 #include "ins/iso_date_time.hpp"
 #include "ins/yaml_checks.hpp"
@@ -637,6 +638,13 @@ void validate_scenario(const Scenario& s) {
   }
 }
 
+void require_scenario_systems(const Scenario& s, const std::vector<GnssSystem>& systems, const std::string& name) {
+  for (GnssSystem system : systems)
+    if (!includes_system(s.systems, system))
+      throw InputError(fmt::format("--systems {}: scenario '{}' has no {} satellites (its systems: {})",
+                                   systems_list(systems), name, system_name(system), systems_list(s.systems)));
+}
+
 Scenario load_scenario(const std::string& path, const std::string& search_root) {
   try {
     check_input_file(path, "scenario file", kMaxScenarioBytes);
@@ -670,7 +678,7 @@ std::string scenario_to_yaml(const Scenario& s) {
       << YAML::Value << s.adc.agc_time_constant_s << YAML::EndMap;
   out << YAML::Key << "nav_file" << YAML::Value << s.nav_file;
   // Written only when not the default, which keeps a GPS-only scenario's copy as it was.
-  if (s.systems != std::vector<GnssSystem>{GnssSystem::gps}) {
+  if (!is_gps_only(s.systems)) {
     std::vector<std::string> names;
     for (GnssSystem system : s.systems) names.emplace_back(system_name(system));
     out << YAML::Key << "systems" << YAML::Value << YAML::Flow << names;

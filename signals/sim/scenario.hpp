@@ -121,6 +121,10 @@ Scenario parse_scenario(const std::string& yaml_text, const std::string& origin,
                         const std::string& search_root = "");
 /// Checks cross-field consistency (throws std::invalid_argument naming the field).
 void validate_scenario(const Scenario& scenario);
+/// Throws InputError when the scenario (named `name` in the message) does not carry every
+/// system of `systems`, what a benchmark's --systems asks the receiver to track.
+void require_scenario_systems(const Scenario& scenario, const std::vector<GnssSystem>& systems,
+                              const std::string& name);
 /// Writes the scenario back as YAML with every default filled in (stored next to the outputs).
 std::string scenario_to_yaml(const Scenario& scenario);
 

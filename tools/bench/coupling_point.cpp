@@ -45,11 +45,7 @@ Scenario point_scenario(const CouplingPoint& p) {
   sc.seed = point_seed(p);
   sc.errors = error_preset(o.errors);
   validate_scenario(sc);
-  for (GnssSystem system : o.systems)
-    if (!includes_system(sc.systems, system))
-      throw InputError("--systems: the scenario '" + source_relative(o.base_scenario) + "' has no " +
-                       std::string(system_name(system)) + " satellites (its systems: " + systems_list(sc.systems) +
-                       ")");
+  require_scenario_systems(sc, o.systems, source_relative(o.base_scenario));
   return sc;
 }
 

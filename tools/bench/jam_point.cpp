@@ -119,10 +119,7 @@ Scenario jam_point_scenario(const JamPoint& p) {
                       "(e.g. imu: {{grade: tactical, rate_hz: 100}})",
                       p.mode, p.scenario));
     validate_scenario(sc);
-    for (GnssSystem system : p.systems)
-      if (!includes_system(sc.systems, system))
-        throw InputError(fmt::format("--systems: scenario '{}' has no {} satellites (its systems: {})", p.scenario,
-                                     system_name(system), systems_list(sc.systems)));
+    require_scenario_systems(sc, p.systems, p.scenario);
   } catch (const std::invalid_argument& e) {
     throw InputError(e.what());
   } catch (const std::runtime_error& e) {

@@ -100,11 +100,7 @@ std::vector<JamPoint> jam_sweep_points(const JamSweepSettings& o) {
   } catch (const std::exception& e) {
     throw InputError(e.what());
   }
-  for (GnssSystem system : o.systems)
-    if (!includes_system(base.systems, system))
-      throw InputError(fmt::format("--systems {}: scenario '{}' has no {} satellites (its systems: {})",
-                                   systems_list(o.systems), o.scenario, system_name(system),
-                                   systems_list(base.systems)));
+  require_scenario_systems(base, o.systems, o.scenario);
   const auto jammers = split_list(o.jammers, "--jammer");
   for (const auto& j : jammers) benchmark_jammer(j, 0.0, 0.0);  // rejects unknown types
   const auto modes = split_list(o.modes, "--modes");

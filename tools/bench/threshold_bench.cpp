@@ -80,11 +80,7 @@ void run_mode_thresholds(const ThresholdBenchSettings& o) {
   const Scenario sc = with_ramp(base, o);
   if (!sc.imu.enabled)
     throw InputError("scenario '" + o.aided_scenario + "' has no imu section (the aided modes need one)");
-  for (GnssSystem system : o.systems)
-    if (!includes_system(sc.systems, system))
-      throw InputError("--systems " + systems_list(o.systems) + ": scenario '" + o.aided_scenario + "' has no " +
-                       std::string(system_name(system)) + " satellites (its systems: " + systems_list(sc.systems) +
-                       ")");
+  require_scenario_systems(sc, o.systems, o.aided_scenario);
   const std::string work = bench_scratch_dir(o.work_dir, "bench_threshold_modes");
   SynthesisOptions so;
   so.threads = 0;

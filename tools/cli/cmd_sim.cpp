@@ -41,7 +41,7 @@ nlohmann::json summary_json(const Scenario& sc, const SynthesisSummary& s) {
                             {"cn0_dbhz", sat.cn0_start_dbhz},
                             {"code_phase_chips", sat.code_phase_start_chips}};
     // The system only where a second one can appear.
-    if (sc.systems != std::vector<GnssSystem>{GnssSystem::gps}) entry["id"] = sat.id.to_string();
+    if (!is_gps_only(sc.systems)) entry["id"] = sat.id.to_string();
     sats.push_back(entry);
   }
   return {{"if_file", std::filesystem::path(s.if_path).filename().string()},
@@ -66,7 +66,7 @@ void print_summary(const Scenario& sc, const SynthesisSummary& s) {
              s.if_path, s.samples, s.duration_s, to_string(sc.format), sc.sample_rate_hz, sc.if_hz, s.wall_s,
              s.duration_s / std::max(s.wall_s, 1e-9));
   fmt::print("truth: {}  satellites: {}\n", s.truth_path, s.sat_truth_path);
-  const bool gps_only = sc.systems == std::vector<GnssSystem>{GnssSystem::gps};
+  const bool gps_only = is_gps_only(sc.systems);
   fmt::print("{:>4} {:>8} {:>8} {:>11} {:>9} {:>11}\n", gps_only ? "PRN" : "SAT", "el_deg", "az_deg", "doppler_hz",
              "cn0_dbhz", "code_chips");
   for (const auto& sat : s.satellites) {
