@@ -106,6 +106,7 @@ struct AidedReceiver::Impl : ChannelAiding {
   }
 
   ChannelController* controller_for(int prn) override { return ultra.controller_for(prn); }
+  E1ChannelController* e1_controller_for(int svid) override { return ultra.e1_controller_for(svid); }
 
   void before_block() override {
     // Ultra-tight: the filter steers every channel it can. Loose/tight/coast: it steers only
@@ -294,8 +295,9 @@ struct AidedReceiver::Impl : ChannelAiding {
   }
 
   /// The tight update: every satellite's pseudorange and Doppler rows, or (galileo_only, in
-  /// ultra-tight mode, whose steered channels are GPS ones) the Galileo satellites' alone:
-  /// their E1 channels keep their own loops and reach the filter through their observables.
+  /// ultra-tight mode) those of the Galileo satellites whose E1 channels the filter does not
+  /// steer (before the system offset is known, or given back): their channels keep their
+  /// own loops and reach the filter through their observables.
   void tight_update(const ReceiverEpoch& ep, bool galileo_only = false) {
     last_tight_satellites = 0;
     if (!ep.t_rx) return;
@@ -308,8 +310,9 @@ struct AidedReceiver::Impl : ChannelAiding {
         epoch.satellites.push_back({o.satellite(), *eph, o.pseudorange_m, o.cn0_dbhz, o.doppler_hz, o.doppler_offset_s,
                                     scalar_rate_sigma_mps(o.cn0_dbhz, cfg.receiver.tracking_loops.pll_hz,
                                                           1e-3 * cfg.receiver.tracking.coherent_ms_after_bit_sync)});
-      } else if (const auto eph = galileo_ephemerides.find(o.prn);
-                 o.system == GnssSystem::galileo && eph != galileo_ephemerides.end()) {
+      } else if (const auto eph = galileo_ephemerides.find(o.prn); o.system == GnssSystem::galileo &&
+                                                                   eph != galileo_ephemerides.end() &&
+                                                                   !(galileo_only && ultra.e1_steered(o.prn))) {
         epoch.satellites.push_back(galileo_observation(o, eph->second));
       }
     }
@@ -452,6 +455,7 @@ struct AidedReceiver::Impl : ChannelAiding {
     if (ep.pvt.valid) last_pvt_t_s = ep.t_s;
     if (ep.t_rx) galileo_ephemerides = rx.galileo_ephemerides(*ep.t_rx);
     galileo_offset.add(ep.t_s, ep.pvt);
+    ultra.set_galileo_offset(galileo_offset.offset_m(), galileo_offset.sigma_m());
     ranging = 0;
     for (const auto& o : ep.observations)
       if (o.system == GnssSystem::gps ? rx.ephemeris(o.prn) != nullptr : galileo_ephemerides.count(o.prn) > 0)
@@ -499,7 +503,7 @@ struct AidedReceiver::Impl : ChannelAiding {
     out.measuring_channels = ultra.measuring_channels();
     switch (out.mode) {
       case NavMode::ultra:
-        out.filter_satellites = ultra.measuring_channels() + last_tight_satellites;  // steered GPS + Galileo rows
+        out.filter_satellites = ultra.measuring_channels() + last_tight_satellites;  // steered + unsteered Galileo rows
         break;
       case NavMode::tight:
         out.filter_satellites = last_tight_satellites;

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "aiding/aided_navigator.hpp"
+#include "aiding/broadcast_ephemeris.hpp"
 #include "aiding/ins_initializer.hpp"
 #include "ins/gps_time.hpp"
 #include "receiver/pvt/atmosphere_models.hpp"
@@ -85,9 +86,6 @@ struct LooseFix {
 KalmanUpdate loose_update(AidedNavigator& nav, const LooseFix& fix, double position_sigma_scale_m);
 
 // ---- Tight update ----
-
-/// A satellite's broadcast orbit and clock: GPS LNAV or Galileo I/NAV.
-using BroadcastEphemeris = std::variant<Ephemeris, galileo::GalileoEphemeris>;
 
 /// One satellite's observables at an epoch for the tight update. E1 and L1 share the carrier
 /// frequency, so a Doppler means the same rate for either system.

@@ -5,6 +5,7 @@
 
 #include "ins/rotations.hpp"
 #include "receiver/gnss_receiver.hpp"
+#include "receiver/tracking/e1_tracking_channel.hpp"
 #include "signals/gps_constants.hpp"
 
 namespace deepnav::aiding {
@@ -92,6 +93,13 @@ double discriminator_pseudorange_sigma_m(const RangeErrorModel& errors, double e
   return std::sqrt(code_sigma * code_sigma + errors.model_variance_per_row_m2(elevation_rad, integration_s));
 }
 
+double e1_discriminator_pseudorange_sigma_m(const RangeErrorModel& errors, double elevation_rad, double cn0_dbhz,
+                                            double integration_s, double spacing_chips, double code_sigma_floor_chips) {
+  const double code_sigma =
+      std::max(e1_code_sigma_chips(cn0_dbhz, integration_s, spacing_chips), code_sigma_floor_chips) * kChip_m;
+  return std::sqrt(code_sigma * code_sigma + errors.model_variance_per_row_m2(elevation_rad, integration_s));
+}
+
 double discriminator_rate_sigma_mps(double cn0_dbhz, double integration_s, double rate_window_s, int pairs) {
   // One integration's phase noise at both ends of the window or of the discriminator's
   // span (adjoining windows share an end, so their errors are negatively correlated:
@@ -107,6 +115,16 @@ double code_sigma_chips(double cn0_dbhz, double t_s, double spacing_chips, doubl
   const double cn0_hz = std::pow(10.0, cn0_dbhz / 10.0);
   const double piece_snr = cn0_hz * (piece_s > 0.0 ? piece_s : t_s);
   return std::sqrt(spacing_chips / (4.0 * cn0_hz * t_s) * (1.0 + 2.0 / ((2.0 - spacing_chips) * piece_snr)));
+}
+
+double e1_pilot_cn0_dbhz(double cn0_dbhz) { return cn0_dbhz + 10.0 * std::log10(e1_pilot_power_fraction()); }
+
+double e1_signal_cn0_dbhz(double pilot_cn0_dbhz) {
+  return pilot_cn0_dbhz - 10.0 * std::log10(e1_pilot_power_fraction());
+}
+
+double e1_code_sigma_chips(double cn0_dbhz, double t_s, double spacing_chips) {
+  return code_sigma_chips(e1_pilot_cn0_dbhz(cn0_dbhz), t_s, spacing_chips) / std::sqrt(3.0);
 }
 
 double phase_variance_rad2(double cn0_dbhz, double t_s) {

@@ -72,6 +72,12 @@ double scalar_rate_sigma_mps(double cn0_dbhz, double pll_bandwidth_hz, double co
 /// coherent length; 0: one coherent integration over integration_s.
 double discriminator_pseudorange_sigma_m(const RangeErrorModel& errors, double elevation_rad, double cn0_dbhz,
                                          double integration_s, double spacing_chips, double piece_s = 0.0);
+/// The same for one coherent integration of a steered Galileo E1 channel's pilot
+/// (e1_code_sigma_chips; cn0_dbhz of the whole E1 signal), its code sigma at least
+/// code_sigma_floor_chips.
+double e1_discriminator_pseudorange_sigma_m(const RangeErrorModel& errors, double elevation_rad, double cn0_dbhz,
+                                            double integration_s, double spacing_chips,
+                                            double code_sigma_floor_chips = 0.0);
 /// The rate of one steered integration (m/s): with rate_window_s > 0 a mean frequency
 /// from the carrier phase at both ends of that window, otherwise the frequency
 /// discriminator across one integration (`pairs` of them averaged); each with its floor.
@@ -82,6 +88,15 @@ double discriminator_rate_sigma_mps(double cn0_dbhz, double integration_s, doubl
 /// E-L power with normalisation: the 1/(C/N0 t) term is the averaging, the squaring loss
 /// 2/((2-d) C/N0 T_piece) that of each coherent piece). piece_s <= 0: one coherent piece.
 double code_sigma_chips(double cn0_dbhz, double t_s, double spacing_chips, double piece_s = 0.0);
+/// 1-sigma (chips) of the BOC(1,1) early-late envelope discriminator on the E1 pilot over one
+/// coherent integration of t_s at a whole-signal C/N0 of cn0_dbhz: the pilot holds
+/// e1_pilot_power_fraction() of the power, and the BOC(1,1) peak's slope (3 against 1)
+/// with the noise's correlation over the spacing (1 - 3d against 1 - d) leave a third of
+/// the BPSK discriminator's variance at the same spacing.
+double e1_code_sigma_chips(double cn0_dbhz, double t_s, double spacing_chips);
+/// The E1 pilot's C/N0 from the whole signal's, and back.
+double e1_pilot_cn0_dbhz(double cn0_dbhz);
+double e1_signal_cn0_dbhz(double pilot_cn0_dbhz);
 /// Variance (rad^2) of the Costas phase discriminator over one integration of T.
 double phase_variance_rad2(double cn0_dbhz, double t_s);
 /// 1-sigma (Hz) of a mean frequency from two phases span_s apart, each with variance

@@ -40,7 +40,11 @@ bool can_steer(bool bit_synced, ChannelState state, bool decoder_synchronised, b
 
 SteeredChannelController::SteeredChannelController(const UltraTightConfig& config, double sample_rate_hz,
                                                    const Engagement& engagement)
-    : cfg_(config), fs_(sample_rate_hz), engagement_(engagement), long_(config.long_integration) {}
+    : cfg_(config),
+      fs_(sample_rate_hz),
+      engagement_(engagement),
+      rate_window_(sample_rate_hz, kRateWindow_s),
+      long_(config.long_integration) {}
 
 ChannelDecision SteeredChannelController::on_epoch(const CorrelatorEpoch& e, const ChannelView& view) {
   ChannelDecision out;
@@ -71,7 +75,7 @@ ChannelDecision SteeredChannelController::on_epoch(const CorrelatorEpoch& e, con
       steered_ = false;
       out.loss_detection = true;
     }
-    rate_window_start_.reset();  // a window must lie inside one steered stretch
+    rate_window_.reset();  // a window must lie inside one steered stretch
     leave_long_integration();
     return out;
   }
@@ -142,12 +146,12 @@ void SteeredChannelController::choose_integration(const CorrelatorEpoch& e) {
   const LongIntegrationConfig& lc = cfg_.long_integration;
   if (!long_mode_ && cn0 < lc.enter_below_dbhz) {
     long_mode_ = true;
-    rate_window_start_.reset();
+    rate_window_.reset();
     spdlog::debug("PRN {:2d}: C/N0 {:.1f} dB-Hz: long integrations (coherent {} ms with data wipe-off)", e.prn, cn0,
                   lc.coherent_ms);
   } else if (long_mode_ && cn0 > lc.leave_above_dbhz) {
     leave_long_integration();
-    rate_window_start_.reset();
+    rate_window_.reset();
     spdlog::debug("PRN {:2d}: C/N0 {:.1f} dB-Hz: back to {} ms integrations", e.prn, cn0,
                   static_cast<int>(std::lround(e.integration_s * 1e3)));
   }
@@ -155,15 +159,10 @@ void SteeredChannelController::choose_integration(const CorrelatorEpoch& e) {
 
 void SteeredChannelController::phase_window_rate(DiscriminatorSample& d, std::int64_t end, double phase_cycles,
                                                  int samples) {
-  const auto window = static_cast<std::int64_t>(std::llround(kRateWindow_s * fs_));
-  if (rate_window_start_ && end - *rate_window_start_ >= window - samples / 2) {
-    d.rate_window_s = static_cast<double>(end - *rate_window_start_) / fs_;
-    d.doppler_hz = (phase_cycles - rate_window_start_cycles_) / d.rate_window_s;
-    d.doppler_sample = (*rate_window_start_ + end) / 2;
-  }
-  if (!rate_window_start_ || d.doppler_hz) {
-    rate_window_start_ = end;
-    rate_window_start_cycles_ = phase_cycles;
+  if (const std::optional<WindowRate> r = rate_window_.add(end, phase_cycles, samples)) {
+    d.rate_window_s = r->window_s;
+    d.doppler_hz = r->doppler_hz;
+    d.doppler_sample = r->mid_sample;
   }
 }
 
@@ -194,7 +193,7 @@ void SteeredChannelController::short_sample(const CorrelatorEpoch& e, const Chan
   } else {
     // Frequency tracking only (weak signals): the cross/dot discriminator between the two
     // adjoining integrations, referred to their common edge.
-    rate_window_start_.reset();
+    rate_window_.reset();
     d.doppler_hz = doppler;
     d.doppler_sample = e.first_sample;
   }
@@ -229,7 +228,7 @@ void SteeredChannelController::long_sample(const SteeredIntegration& s, const Ch
     if (cfg_.carrier_phase_tracking && locked && std::abs(phase_error_cycles) < kMaxWindowPhaseError_cycles) {
       phase_window_rate(d, end, e.carrier_phase_cycles + phase_error_cycles, e.samples);
     } else {
-      rate_window_start_.reset();
+      rate_window_.reset();
       if (previous && previous->sums.first_sample + previous->sums.samples == e.first_sample) {
         // The previous wiped integration adjoins: the NCO's mean frequency between the two
         // ends plus the prompts' phase advance between their centres.
@@ -244,7 +243,7 @@ void SteeredChannelController::long_sample(const SteeredIntegration& s, const Ch
     last_long_ = s;
   } else {
     // Summed in power: early and late envelopes from their powers; no carrier phase.
-    rate_window_start_.reset();
+    rate_window_.reset();
     d.code_error_chips = dll_code_error_chips(std::sqrt(s.early_power), std::sqrt(s.late_power), e.spacing_chips);
     d.piece_s = s.piece_s;
     if (s.frequency_pairs > 0) {

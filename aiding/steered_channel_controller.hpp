@@ -13,9 +13,11 @@
 #include <optional>
 #include <vector>
 
+#include "aiding/broadcast_ephemeris.hpp"
 #include "aiding/data_wipeoff.hpp"
 #include "aiding/integration_cn0_estimator.hpp"
 #include "aiding/long_integrator.hpp"
+#include "aiding/phase_rate_window.hpp"
 #include "receiver/tracking/channel_controller.hpp"
 #include "signals/ephemeris.hpp"
 
@@ -45,11 +47,16 @@ struct UltraTightConfig {
   /// wipe-off off (bit-edge-limited integrations, summed in power up to noncoherent_ms).
   LongIntegrationConfig long_integration;
   double long_phase_gain = 0.5;  ///< fraction of a long integration's phase error removed
+  /// Galileo E1 channels: pilot integrations of coherent_ms, of weak_coherent_ms (up to 100
+  /// ms, the secondary code's period) below long_integration.enter_below_dbhz until above
+  /// leave_above_dbhz. No data on the pilot: nothing to wipe off, nothing to predict.
+  int e1_coherent_ms = 20;
+  int e1_weak_coherent_ms = 100;
 };
 
 /// One channel's discriminator outputs from one integration.
 struct DiscriminatorSample {
-  int prn = 0;
+  int prn = 0;  ///< PRN or SVID of the satellite its ephemeris names the system of
   std::int64_t mid_sample = 0;
   double replica_transmit_sow = 0.0;  ///< replica transmit time at mid_sample
   double code_error_chips = 0.0;      ///< signal minus replica (positive: replica lags)
@@ -66,7 +73,11 @@ struct DiscriminatorSample {
   double piece_s = 0.0;      ///< > 0: pieces of this coherent length summed in power
   bool data_wiped = false;   ///< coherent across data bits, their signs removed
   bool measurement = false;  ///< passes the aided lock criterion (UltraTightConfig::min_cn0_dbhz)
-  Ephemeris ephemeris;
+  /// The code error's sigma is at least this (chips): what the channel's latest
+  /// discriminators scatter by (E1 channels; 0: the C/N0 model alone).
+  double code_sigma_floor_chips = 0.0;
+  BroadcastEphemeris ephemeris;
+  SatelliteId satellite() const { return {system_of(ephemeris), prn}; }
 };
 
 /// Whether the filter can take a channel over: bit edges known, not lost, subframe timing,
@@ -113,7 +124,7 @@ class SteeredChannelController final : public ChannelController {
   void leave_long_integration();
   /// Locked: an integration passed the aided lock criterion within the last second.
   SignalLockReport lock_report(std::int64_t end_sample, double cn0_dbhz) const;
-  /// Phase-window (delta range) Doppler: updates the window and returns it when one closed.
+  /// Phase-window (delta range) Doppler into `d` when the integration closes a window.
   void phase_window_rate(DiscriminatorSample& d, std::int64_t end, double phase_cycles, int samples);
 
   const UltraTightConfig& cfg_;
@@ -124,10 +135,9 @@ class SteeredChannelController final : public ChannelController {
   std::complex<double> prompt_;
   std::int64_t end_sample_ = 0;
   double doppler_hz_ = 0.0;
-  double phase_correction_cycles_ = 0.0;           ///< pending Costas correction for the next command
-  double applied_correction_cycles_ = 0.0;         ///< correction applied since the last integration ended
-  std::optional<std::int64_t> rate_window_start_;  ///< integration end where the current phase window began
-  double rate_window_start_cycles_ = 0.0;          ///< carrier phase there (NCO plus Costas error)
+  double phase_correction_cycles_ = 0.0;    ///< pending Costas correction for the next command
+  double applied_correction_cycles_ = 0.0;  ///< correction applied since the last integration ended
+  PhaseRateWindow rate_window_;             ///< carrier phase: NCO plus Costas error
   // Long integration.
   bool long_mode_ = false;
   DataWipeoff wipeoff_;

@@ -22,6 +22,11 @@
 // Costas error runs on top (carrier-phase tracking), which keeps the data bits readable.
 // Channels are never dropped for weak signal while steered: they coast on the filter.
 //
+// Galileo E1 channels are steered the same way by SteeredE1Controllers (pilot integrations,
+// 100 ms when weak), once the Galileo system offset is known: the filter has one clock (GPS
+// time), so an E1 replica is placed at the predicted range plus that offset, and its
+// discriminator pseudoranges enter less the offset, its sigma added (galileo_clock_offset.hpp).
+//
 // Seam: the per-channel work (discriminators, the phase loop, taking a channel over) is
 // done by SteeredChannelControllers on the receiver's tracking threads; this class only
 // reads what they queued and the receiver's BlockSnapshot after each block, and publishes
@@ -34,6 +39,7 @@
 #include "aiding/aided_navigator.hpp"
 #include "aiding/delay_mismatch_detector.hpp"
 #include "aiding/steered_channel_controller.hpp"
+#include "aiding/steered_e1_controller.hpp"
 #include "receiver/tracking/channel_controller.hpp"
 
 namespace deepnav::aiding {
@@ -50,6 +56,13 @@ class UltraTightTracker {
 
   /// The controller of the PRN's channel (made on first use, kept for the tracker's life).
   SteeredChannelController* controller_for(int prn);
+  /// The same for a Galileo E1 channel.
+  SteeredE1Controller* e1_controller_for(int svid);
+  /// Whether the filter steers the Galileo satellite's channel now.
+  bool e1_steered(int svid) const;
+  /// The Galileo system offset (m) the mixed fixes estimate, and its sigma: none until
+  /// known, and until then no E1 channel is taken over.
+  void set_galileo_offset(std::optional<double> offset_m, double sigma_m);
   /// Which channels the controllers take over from the next block on.
   void set_engagement(Engagement engagement) { engagement_ = engagement; }
 
@@ -67,8 +80,10 @@ class UltraTightTracker {
   /// Gives every channel back to its scalar loop.
   void release_all();
 
+  /// Channels steered now, GPS and Galileo.
   int steered_channels() const;
-  /// Channels an ultra-tight filter could take over after a block (ephemeris, transmit time, bit sync).
+  /// GPS channels an ultra-tight filter could take over after a block (ephemeris, transmit
+  /// time, bit sync): the ones it needs to run (E1 channels join once the offset is known).
   static int count_steerable(const BlockSnapshot& block);
   /// Satellites measured within the last integration span (the longest configured length).
   int measuring_channels() const { return measuring_; }
@@ -87,14 +102,26 @@ class UltraTightTracker {
     RangePrediction range;      ///< from the antenna position extrapolated to the sample
     Eigen::Vector3d antenna_velocity_ecef_mps = Eigen::Vector3d::Zero();  ///< at the sample
   };
-  std::optional<SamplePrediction> predict_at(const Ephemeris& eph, std::int64_t sample, const AidedNavigator& nav,
-                                             const BlockSnapshot& block) const;
+  /// A Galileo satellite's range includes the system offset (its clock is GST's).
+  std::optional<SamplePrediction> predict_at(const BroadcastEphemeris& eph, std::int64_t sample,
+                                             const AidedNavigator& nav, const BlockSnapshot& block) const;
   /// The replica transmit time (seconds of week) and carrier Doppler the filter predicts there.
   static double transmit_sow(const SamplePrediction& p, const AidedNavigator& nav);
   static double doppler_hz(const SamplePrediction& p, const AidedNavigator& nav);
   std::optional<RangeMeasurement> to_measurement(const DiscriminatorSample& d, const AidedNavigator& nav,
                                                  const BlockSnapshot& block) const;
+  /// Takes the samples a controller queued during the block into `ms` (or `watched`, for an
+  /// excluded satellite).
+  void collect(std::vector<DiscriminatorSample> samples, const AidedNavigator& nav, const BlockSnapshot& block,
+               std::vector<RangeMeasurement>& ms, std::vector<RangeMeasurement>& watched);
+  /// The command that puts a replica (transmit time `replica_sow`, seconds of week of its
+  /// system) where the filter predicts the satellite (`predicted`, at the block's end); none
+  /// when they disagree beyond max_code_correction_chips (logged once per episode).
+  std::optional<NcoCommand> command_for(const SatelliteId& sat, const SamplePrediction& predicted, double replica_sow,
+                                        const AidedNavigator& nav);
   void steer(const ChannelStatus& channel, SteeredChannelController& controller, const AidedNavigator& nav,
+             const BlockSnapshot& block);
+  void steer(const E1ChannelStatus& channel, SteeredE1Controller& controller, const AidedNavigator& nav,
              const BlockSnapshot& block);
   UltraTightConfig cfg_;
   double fs_;
@@ -103,14 +130,18 @@ class UltraTightTracker {
   AtmosphereModels atmosphere_;
   Engagement engagement_ = Engagement::none;
   std::map<int, SteeredChannelController> controllers_;
+  std::map<int, SteeredE1Controller> e1_controllers_;
+  std::optional<double> galileo_offset_m_;
+  double galileo_offset_sigma_m_ = 0.0;
+  bool galileo_offset_known_ = false;  ///< what the E1 controllers read
   struct ResidualSum {
     RangeResidual latest;  ///< geometry and C/N0 of the latest integration
     double sum_m = 0.0;
     int count = 0;
   };
-  std::map<int, ResidualSum> residual_sums_;
-  std::map<int, std::int64_t> last_measured_sample_;  ///< per PRN, where its latest measurement refers to
-  std::set<int> disagreeing_;                         ///< PRNs given back for disagreeing with the filter (warned once)
+  std::map<int, ResidualSum> residual_sums_;                  ///< GPS PRNs (the atmosphere watch's fit)
+  std::map<SatelliteId, std::int64_t> last_measured_sample_;  ///< where each one's latest measurement refers to
+  std::set<SatelliteId> disagreeing_;  ///< given back for disagreeing with the filter (warned once)
   int measuring_ = 0;
 };
 

@@ -8,13 +8,49 @@
 namespace deepnav {
 
 GalileoChannel::GalileoChannel(const E1TrackingConfig& tracking, const E1LoopSettings& loops,
-                               const E1ChannelStart& start)
-    : tracking_(tracking, start), loops_(start.doppler_hz, loops), decoder_(start.satellite.prn) {}
+                               const E1ChannelStart& start, E1ChannelController* steered)
+    : tracking_(tracking, start), loops_(start.doppler_hz, loops), steered_(steered), decoder_(start.satellite.prn) {}
 
-void GalileoChannel::track(const SampleBlock& block) {
+void GalileoChannel::end() {
+  if (steered_) steered_->channel_ended();
+  aided_lock_.reset();
+}
+
+E1ChannelView GalileoChannel::view(const galileo::GalileoEphemeris* ephemeris, bool clock_set) const {
+  return E1ChannelView{tracking_, decoder_, ephemeris, clock_set};
+}
+
+void GalileoChannel::carry_out(const E1ChannelDecision& d) {
+  if (d.loss_detection) {
+    tracking_.set_loss_detection(*d.loss_detection);
+    if (*d.loss_detection) aided_lock_.reset();  // given back: the channel's own criterion again
+  }
+  if (d.coherent_periods) tracking_.set_coherent_periods(*d.coherent_periods);
+  if (d.command) tracking_.apply(*d.command);
+}
+
+void GalileoChannel::collect_published(const galileo::GalileoEphemeris* ephemeris, bool clock_set) {
+  if (steered_) carry_out(steered_->between_blocks(view(ephemeris, clock_set)));
+}
+
+double GalileoChannel::cn0_dbhz() const { return aided_lock_ ? aided_lock_->cn0_dbhz : tracking_.cn0_dbhz(); }
+
+void GalileoChannel::track(const SampleBlock& block, const galileo::GalileoEphemeris* ephemeris, bool clock_set) {
   tracking_.process(block, [&](const E1CorrelatorEpoch& e) {
-    // Each integration's command acts from the very next sample.
-    tracking_.apply(loops_.update(e));
+    E1ChannelDecision outside;
+    if (steered_) {
+      outside = steered_->on_epoch(e, view(ephemeris, clock_set));
+      carry_out(outside);
+    }
+    if (outside.owns_epoch) {
+      // Ready to take the channel back where the filter leaves it.
+      loops_.follow(e);
+      if (outside.lock) aided_lock_ = outside.lock;
+    } else {
+      aided_lock_.reset();
+      // Each integration's command acts from the very next sample.
+      tracking_.apply(loops_.update(e));
+    }
     decoder_.add(e.symbols);
     tracked_s_ += e.integration_s;
     recent_.push_back({e.first_sample, e.first_sample + e.samples, e.integration_s, e.carrier_doppler_hz});
@@ -28,17 +64,12 @@ void GalileoChannel::track(const SampleBlock& block) {
 }
 
 bool GalileoChannel::observable(double lost_cn0_dbhz) const {
-  return tracking_.state() == E1ChannelState::tracking && decoder_.navigation().time_mark().has_value() &&
-         tracking_.cn0_dbhz() >= lost_cn0_dbhz;
+  if (tracking_.state() != E1ChannelState::tracking || !decoder_.navigation().time_mark()) return false;
+  return aided_lock_ ? aided_lock_->locked : tracking_.cn0_dbhz() >= lost_cn0_dbhz;
 }
 
 std::optional<double> GalileoChannel::transmit_time_sow(std::int64_t sample) const {
-  // The time mark dates the start of a code period; the replica's unwrapped code phase
-  // counts chips from the start of period 0.
-  const std::optional<double> period0_tow = decoder_.navigation().tow_at_code_period(0);
-  if (!period0_tow) return std::nullopt;
-  const double tow = *period0_tow + tracking_.code_chips_at(sample) / galileo::kE1CodeRate_cps;
-  return tow - kSecondsPerWeek * std::floor(tow / kSecondsPerWeek);
+  return e1_transmit_time_sow(decoder_, tracking_.code_chips_at(sample));
 }
 
 double GalileoChannel::mean_doppler_hz() const {
@@ -65,9 +96,10 @@ ChannelObservation GalileoChannel::observe(const GpsTime& t_rx, double transmit_
     o.doppler_offset_s = (mid - static_cast<double>(sample)) / sample_rate_hz;
   }
   o.carrier_phase_cycles = tracking_.carrier_phase_cycles();
-  o.cn0_dbhz = tracking_.cn0_dbhz();
+  o.cn0_dbhz = cn0_dbhz();
   o.lock_time_s = tracked_s_;
   o.after_gap = after_gap;
+  o.aided_lock = aided_lock_.has_value();
   return o;
 }
 

@@ -16,6 +16,7 @@
 #include "ins/gps_time.hpp"
 #include "receiver/navdata/inav_navigation.hpp"
 #include "receiver/receiver_channel.hpp"
+#include "receiver/tracking/e1_channel_controller.hpp"
 #include "receiver/tracking/e1_tracking_channel.hpp"
 #include "receiver/tracking/e1_tracking_loops.hpp"
 
@@ -23,19 +24,31 @@ namespace deepnav {
 
 class GalileoChannel {
  public:
-  GalileoChannel(const E1TrackingConfig& tracking, const E1LoopSettings& loops, const E1ChannelStart& start);
+  /// `steered`: an outside filter's controller for the satellite (ultra-tight), or none.
+  GalileoChannel(const E1TrackingConfig& tracking, const E1LoopSettings& loops, const E1ChannelStart& start,
+                 E1ChannelController* steered = nullptr);
+  GalileoChannel(const GalileoChannel&) = delete;
+  GalileoChannel& operator=(const GalileoChannel&) = delete;
 
   int svid() const { return tracking_.satellite().prn; }
   const SatelliteId& satellite() const { return tracking_.satellite(); }
   const E1TrackingChannel& tracking() const { return tracking_; }
   const InavDecoder& decoder() const { return decoder_; }
 
-  /// Tracks one block: correlation, the loops after every integration, the E1-B symbols to
-  /// the decoder.
-  void track(const SampleBlock& block);
+  /// Tracks one block: correlation, after every integration the outside controller (when it
+  /// takes it) or the loops, the E1-B symbols to the decoder. `ephemeris` (the receiver's,
+  /// or none) and `clock_set` are what the controller is shown.
+  void track(const SampleBlock& block, const galileo::GalileoEphemeris* ephemeris = nullptr, bool clock_set = false);
+  /// Between blocks: what the outside controller published since the channel last tracked.
+  void collect_published(const galileo::GalileoEphemeris* ephemeris, bool clock_set);
   /// Whether its observables may be formed: tracking on the wiped pilot, a GST time mark
-  /// decoded, and a signal behind it (C/N0 at or above `lost_cn0_dbhz`).
+  /// decoded, and a signal behind it: while an outside filter steers the channel its lock
+  /// criterion, otherwise the C/N0 at or above `lost_cn0_dbhz`.
   bool observable(double lost_cn0_dbhz) const;
+  /// The owner releases the channel: the steering controller lets it go (between blocks).
+  void end();
+  /// The C/N0 the channel reports: the steering controller's estimate while it has one.
+  double cn0_dbhz() const;
   /// GST seconds of week of the prompt replica at `sample`, once a time mark is decoded.
   std::optional<double> transmit_time_sow(std::int64_t sample) const;
   /// The observables at `sample`, whose receiver time is `t_rx` and GST transmit time
@@ -47,6 +60,8 @@ class GalileoChannel {
   /// Mean NCO Doppler over the last kDopplerWindow_s of integrations (the loop's frequency
   /// before any integration ended).
   double mean_doppler_hz() const;
+  E1ChannelView view(const galileo::GalileoEphemeris* ephemeris, bool clock_set) const;
+  void carry_out(const E1ChannelDecision& decision);
 
   struct DopplerSpan {
     std::int64_t first_sample;
@@ -56,6 +71,8 @@ class GalileoChannel {
   };
   E1TrackingChannel tracking_;
   E1LoopController loops_;
+  E1ChannelController* steered_;
+  std::optional<SignalLockReport> aided_lock_;  ///< the steering controller's latest verdict, while it steers
   InavDecoder decoder_;
   std::deque<DopplerSpan> recent_;  ///< the latest integrations, newest last
   double tracked_s_ = 0.0;

@@ -108,10 +108,16 @@ void GalileoChannelSet::start_channel(const GalileoAcquisitionResult& r, std::in
   start.doppler_hz = r.doppler_hz;
   start.code_phase_chips = r.code_phase_chips;
   start.sample_index = first_sample;
-  channels_.push_back(std::make_unique<GalileoChannel>(cfg_.tracking, cfg_.loops, start));
+  channels_.push_back(std::make_unique<GalileoChannel>(
+      cfg_.tracking, cfg_.loops, start, aiding_ ? aiding_->e1_controller_for(r.satellite.prn) : nullptr));
+}
+
+void GalileoChannelSet::collect_published(const std::optional<GpsTime>& t) {
+  for (const auto& ch : channels_) ch->collect_published(t ? ephemeris(ch->svid(), *t) : nullptr, t.has_value());
 }
 
 void GalileoChannelSet::release_all() {
+  for (const auto& ch : channels_) ch->end();
   channels_.clear();
   last_search_s_ = -std::numeric_limits<double>::infinity();
 }
@@ -132,6 +138,7 @@ bool GalileoChannelSet::after_block() {
   std::erase_if(channels_, [](const auto& ch) {
     if (ch->tracking().state() != E1ChannelState::lost) return false;
     spdlog::info("{}: loss of lock", ch->satellite().to_string());
+    ch->end();
     return true;
   });
   return fresh;

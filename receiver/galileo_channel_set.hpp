@@ -54,6 +54,9 @@ class GalileoChannelSet {
   GalileoChannelSet& operator=(const GalileoChannelSet&) = delete;
 
   bool channel_free() const { return static_cast<int>(channels_.size()) < cfg_.channels; }
+  /// An outside filter that may steer the channels (ultra-tight), or none; channels started
+  /// from now on ask it for their controller.
+  void set_channel_aiding(ChannelAiding* aiding) { aiding_ = aiding; }
 
   /// The block just read joins the search window while a channel is free.
   void keep(const SampleBlock& block);
@@ -72,6 +75,9 @@ class GalileoChannelSet {
   std::size_t size() const { return channels_.size(); }
   GalileoChannel& channel(std::size_t i) { return *channels_[i]; }
   const GalileoChannel& channel(std::size_t i) const { return *channels_[i]; }
+  /// Between blocks: what the outside filter published for the channels, each shown its
+  /// ephemeris in use at `t` (none without a receiver clock).
+  void collect_published(const std::optional<GpsTime>& t);
   /// After every channel tracked a block: takes the ephemerides and GGTO the pages
   /// completed, releases lost channels. Returns whether a new ephemeris came in.
   bool after_block();
@@ -102,6 +108,7 @@ class GalileoChannelSet {
   SampleHistory window_;
   double last_search_s_;
   std::vector<std::unique_ptr<GalileoChannel>> channels_;
+  ChannelAiding* aiding_ = nullptr;
   std::map<int, galileo::GalileoEphemeris> decoded_;
   std::optional<galileo::GgtoParameters> ggto_;
   NavData assisted_;

@@ -94,6 +94,7 @@ struct GnssReceiver::Impl {
   std::vector<ReceiverChannel> channels;
   std::vector<std::vector<ChannelEpochRecord>> records;  ///< per channel, for the block being tracked
   std::vector<int> tracked_prns;                         ///< channels of the block just tracked, lost ones included
+  std::vector<int> tracked_galileo_svids;                ///< the same for the Galileo channels
   std::vector<int> acquired;                             ///< PRNs, each once, in the order first acquired
   std::map<int, NavigationStatus> finished_status;       ///< of channels already released
   std::int64_t first_index = -1, end_index = -1;         ///< span of the samples read so far
@@ -183,8 +184,9 @@ struct GnssReceiver::Impl {
   }
 
   /// What the outside filter published for its channels since they last tracked.
-  void collect_published() {
+  void collect_published(std::int64_t next_sample) {
     for (ReceiverChannel& ch : channels) ch.collect_published(navigation.ephemeris(ch.prn()), clock.is_set());
+    if (galileo) galileo->collect_published(clock.at(next_sample));
   }
 
   /// Every channel over one block (in parallel on the worker threads: channels are
@@ -197,11 +199,15 @@ struct GnssReceiver::Impl {
     for (auto& r : records) r.clear();
     tracked_prns.clear();
     for (const ReceiverChannel& ch : channels) tracked_prns.push_back(ch.prn());
-    const bool clock_set = clock.is_set();
+    tracked_galileo_svids.clear();
     const std::size_t galileo_channels = galileo ? galileo->size() : 0;
+    for (std::size_t k = 0; k < galileo_channels; ++k) tracked_galileo_svids.push_back(galileo->channel(k).svid());
+    const bool clock_set = clock.is_set();
+    const std::optional<GpsTime> t_block = clock.at(block.first_sample_index);
     run_in_shares(workers.get(), channels.size() + galileo_channels, [&](std::size_t i) {
       if (i >= channels.size()) {
-        galileo->channel(i - channels.size()).track(block);
+        GalileoChannel& ch = galileo->channel(i - channels.size());
+        ch.track(block, t_block ? galileo->ephemeris(ch.svid(), *t_block) : nullptr, clock_set);
         return;
       }
       channels[i].track(block, navigation.ephemeris(channels[i].prn()), clock_set, records[i]);
@@ -307,6 +313,20 @@ struct GnssReceiver::Impl {
       c.replica_transmit_sow = ch.transmit_time_sow(end);
       if (const Ephemeris* e = navigation.ephemeris(c.prn)) c.ephemeris = *e;
       s.channels.push_back(std::move(c));
+    }
+    s.tracked_galileo_svids = tracked_galileo_svids;
+    if (!galileo) return s;
+    const std::optional<GpsTime> t_end = clock.at(end);
+    for (std::size_t k = 0; k < galileo->size(); ++k) {
+      const GalileoChannel& ch = galileo->channel(k);
+      E1ChannelStatus c;
+      c.svid = ch.svid();
+      c.state = ch.tracking().state();
+      c.time_mark = ch.decoder().navigation().time_mark().has_value();
+      c.cn0_dbhz = ch.cn0_dbhz();
+      c.replica_transmit_sow = ch.transmit_time_sow(end);
+      if (const galileo::GalileoEphemeris* e = t_end ? galileo->ephemeris(c.svid, *t_end) : nullptr) c.ephemeris = *e;
+      s.galileo_channels.push_back(std::move(c));
     }
     return s;
   }
@@ -485,14 +505,14 @@ void GnssReceiver::run(const std::function<void(const ReceiverEpoch&)>& on_epoch
     }
     if (m.aiding) {
       m.aiding->before_block();
-      m.collect_published();
+      m.collect_published(block.first_sample_index);
     }
     m.track(block, on_correlation);
     m.take_signal_week(end);
     if (m.aiding) {
       const BlockSnapshot snap = m.snapshot(end);
       m.aiding->after_block(snap);
-      m.collect_published();
+      m.collect_published(end);
       if (m.cfg.guided.enabled) m.guide(block, snap);
     }
     m.acquisition.keep(block, m.gps_on && m.channel_free());
@@ -528,6 +548,7 @@ const Ephemeris* GnssReceiver::ephemeris(int prn) const { return impl_->navigati
 
 void GnssReceiver::set_channel_aiding(ChannelAiding* aiding) {
   impl_->aiding = aiding;
+  if (impl_->galileo) impl_->galileo->set_channel_aiding(aiding);
   for (ReceiverChannel& ch : impl_->channels) ch.set_steered(aiding ? aiding->controller_for(ch.prn()) : nullptr);
 }
 

@@ -41,6 +41,9 @@ struct ChannelObservation {
   /// tracking, so it refers to the middle of that window (about -55 ms).
   double doppler_offset_s = 0.0;
   GnssSystem system = GnssSystem::gps;  ///< whose satellite `prn` numbers
+  /// Galileo: observable by the lock criterion of an outside filter that steers the channel
+  /// (ultra-tight), not by the channel's own C/N0 rule.
+  bool aided_lock = false;
 
   SatelliteId satellite() const { return {system, prn}; }
 };

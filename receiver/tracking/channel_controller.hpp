@@ -19,15 +19,18 @@
 
 #include "ins/gps_time.hpp"
 #include "receiver/acquisition/guided_search.hpp"
+#include "receiver/tracking/e1_tracking_types.hpp"
 #include "receiver/tracking/tracking_channel.hpp"
 #include "receiver/tracking/tracking_loops.hpp"
 #include "receiver/tracking/tracking_types.hpp"
 #include "signals/ephemeris.hpp"
+#include "signals/galileo/galileo_ephemeris.hpp"
 #include "signals/iono_utc.hpp"
 
 namespace deepnav {
 
 class NavDecoder;
+class E1ChannelController;
 
 /// What a controller may read of its channel, and of the receiver for it.
 struct ChannelView {
@@ -94,6 +97,16 @@ struct ChannelStatus {
   std::optional<Ephemeris> ephemeris;          ///< the receiver's, decoded or assisted
 };
 
+/// One Galileo E1 channel as the aiding side sees it between blocks.
+struct E1ChannelStatus {
+  int svid = 0;
+  E1ChannelState state{};
+  bool time_mark = false;  ///< the I/NAV pages dated its code periods
+  double cn0_dbhz = 0.0;
+  std::optional<double> replica_transmit_sow;          ///< GST transmit time of the prompt replica at the block's end
+  std::optional<galileo::GalileoEphemeris> ephemeris;  ///< the receiver's, decoded or assisted
+};
+
 /// The receiver clock: t_rx(s) = reference + (s - reference_sample) / fs.
 struct ReceiverClockReference {
   GpsTime reference;
@@ -110,8 +123,10 @@ struct BlockSnapshot {
   double sample_rate_hz = 0.0;
   std::optional<ReceiverClockReference> clock;  ///< once the receiver clock is set
   IonoParameters iono;                          ///< decoded or assisted (invalid: none yet)
-  std::vector<int> tracked_prns;        ///< channels that tracked this block, in channel order (lost ones included)
-  std::vector<ChannelStatus> channels;  ///< channels that go on tracking, in channel order
+  std::vector<int> tracked_prns;           ///< channels that tracked this block, in channel order (lost ones included)
+  std::vector<ChannelStatus> channels;     ///< channels that go on tracking, in channel order
+  std::vector<int> tracked_galileo_svids;  ///< Galileo channels that tracked this block (lost ones included)
+  std::vector<E1ChannelStatus> galileo_channels;  ///< Galileo channels that go on tracking
 };
 
 /// A satellite the receiver does not track, with the ephemeris it has for it (decoded
@@ -129,6 +144,8 @@ class ChannelAiding {
   /// the receiver's life), or nullptr to leave the channel to its own loops. Called when
   /// the channel starts; its on_epoch may run on a worker thread.
   virtual ChannelController* controller_for(int prn) = 0;
+  /// The same for a Galileo E1 channel tracking `svid` (none by default: its own loops).
+  virtual E1ChannelController* e1_controller_for(int /*svid*/) { return nullptr; }
   /// Before each block is tracked.
   virtual void before_block() = 0;
   /// After each block is tracked, on the receiver's thread.

@@ -12,6 +12,7 @@ namespace {
 
 constexpr double kPeriod = galileo::kE1CodeLength_chips;
 constexpr int kPeriodMs = 4;
+constexpr int kMaxCoherentPeriods = 25;  // 100 ms: one CS25 period
 constexpr double kMinSampleRate_hz = 2.1e6;
 
 /// An untracked PRN's pilot code for the noise reference: the next PRN.
@@ -88,6 +89,18 @@ void E1TrackingChannel::apply(const NcoCommand& command) {
   nco_.carrier_doppler_hz = command.carrier_doppler_hz;
   if (command.carrier_phase_correction_cycles) carrier_phase_cycles_ += *command.carrier_phase_correction_cycles;
   if (command.code_phase_correction_chips) jump_replica(*command.code_phase_correction_chips);
+}
+
+void E1TrackingChannel::set_loss_detection(bool on) {
+  loss_detection_ = on;
+  low_since_s_ = -1.0;  // a fade is timed afresh once the rule is back
+}
+
+void E1TrackingChannel::set_coherent_periods(int periods) {
+  if (periods < 1 || periods > kMaxCoherentPeriods)
+    throw std::invalid_argument("E1 tracking: coherent periods must be 1 to 25 (4 to 100 ms), got " +
+                                std::to_string(periods));
+  if (state_ == E1ChannelState::tracking) coherent_periods_ = periods;
 }
 
 void E1TrackingChannel::jump_replica(double chips) {
@@ -256,7 +269,7 @@ void E1TrackingChannel::monitor(E1CorrelatorEpoch& e) {
     }
     if (guard_.exhausted()) state_ = E1ChannelState::lost;
   }
-  if (lock_.ready()) {
+  if (lock_.ready() && loss_detection_) {
     // Weak or not phase-coherent for lost_after_s (either test alone passes noise now and then).
     if (cn0_dbhz() < cfg_.lost_cn0_dbhz || lock_.phase_lock_indicator() < 1.2) {
       if (low_since_s_ < 0.0) low_since_s_ = tracked_s_;

@@ -82,8 +82,17 @@ class E1TrackingChannel {
   void process(const SampleBlock& block, const std::function<void(const E1CorrelatorEpoch&)>& on_epoch);
   /// New NCO rates (and optional one-off phase corrections) from the next sample on.
   void apply(const NcoCommand& command);
+  /// The weak-signal loss rule (lost_cn0_dbhz for lost_after_s) on or off: off while an
+  /// outside filter steers the channel through a fade. The side-peak guard stays on.
+  void set_loss_detection(bool on);
+  /// Once tracking (secondary code wiped): pilot integrations of `periods` code periods
+  /// (1 to 25, 4 to 100 ms) from the one under way on (it ends when it holds that many).
+  /// Ignored before; throws std::invalid_argument outside 1..25.
+  void set_coherent_periods(int periods);
+  int coherent_periods() const { return coherent_periods_; }
 
   const SatelliteId& satellite() const { return start_.satellite; }
+  const E1TrackingConfig& config() const { return cfg_; }
   E1ChannelState state() const { return state_; }
   double cn0_dbhz() const;
   bool phase_locked() const { return lock_.pll_locked(); }
@@ -132,6 +141,7 @@ class E1TrackingChannel {
   SidePeakGuard guard_;
   double tracked_s_ = 0.0;
   double low_since_s_ = -1.0;
+  bool loss_detection_ = true;
 };
 
 }  // namespace deepnav

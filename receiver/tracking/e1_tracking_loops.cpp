@@ -19,6 +19,12 @@ E1LoopController::E1LoopController(double initial_doppler_hz, E1LoopSettings set
     : s_(settings),
       carrier_(settings.pll_order, settings.pull_in.pll_hz, settings.pull_in.fll_hz, initial_doppler_hz) {}
 
+void E1LoopController::follow(const E1CorrelatorEpoch& e) {
+  carrier_ = CarrierLoopFilter(s_.pll_order, s_.tracking.pll_hz, 0.0, e.carrier_doppler_hz);
+  tracking_bandwidths_ = true;
+  previous_prompt_ = e.prompt;
+}
+
 NcoCommand E1LoopController::update(const E1CorrelatorEpoch& e) {
   const double t = e.integration_s;
   const bool pull_in = e.state == E1ChannelState::pull_in;

@@ -42,6 +42,9 @@ class E1LoopController {
   E1LoopController(double initial_doppler_hz, E1LoopSettings settings = {});
   /// The command for the next integration.
   NcoCommand update(const E1CorrelatorEpoch& epoch);
+  /// An outside filter took the integration (a secondary-wiped one): restart the loop at the
+  /// NCO Doppler it left, with the tracking bandwidths, so it can take the channel back there.
+  void follow(const E1CorrelatorEpoch& epoch);
   double doppler_hz() const { return carrier_.frequency_hz(); }
 
  private:

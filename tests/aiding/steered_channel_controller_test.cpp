@@ -72,7 +72,7 @@ TEST(SteeredChannelController, CommandsGoOutOnceAndSamplesMeasureTheSignalWherev
       EXPECT_GT(d.mid_sample, last_mid);
       EXPECT_GT(d.mid_sample, block_start);
       EXPECT_LT(d.mid_sample, rig.end_sample());
-      EXPECT_EQ(d.ephemeris.prn, kPrn);
+      EXPECT_EQ(std::get<Ephemeris>(d.ephemeris).prn, kPrn);
       last_mid = d.mid_sample;
       ++samples;
       if (block >= 25) {  // once the loops have settled

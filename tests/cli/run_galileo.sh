@@ -4,7 +4,7 @@
 # and fixes; an assisted start fixes from GPS and Galileo together, better than from
 # Galileo alone; obs.rnx and nav.rnx carry the Galileo satellites; a rate below 4 Msps is
 # refused with Galileo, naming why; loose coupling takes the two-system fix, tight and
-# ultra-tight coupling both systems' measurements.
+# ultra-tight coupling both systems' measurements (ultra-tight steering the E1 channels too).
 #   usage: run_galileo.sh <deepnav binary> <source dir>
 source "$(dirname "$0")/lib/harness.sh" "$@"
 
@@ -57,12 +57,22 @@ check_json_each "$work/loose/summary.json" \
   "loose GPS+Galileo: horizontal RMS <= 1 m" horizontal_error_m.rms '<=' 1
 check "loose GPS+Galileo: the filter navigates" 'grep -q ",loose," "$work/loose/pvt.csv"'
 # Tight and ultra-tight: the filter's rows come from both systems (more satellites than GPS
-# alone); in ultra-tight mode the GPS channels are steered and the Galileo ones add tight rows.
+# alone); in ultra-tight mode it steers the E1 channels too once the mixed fixes have dated
+# the Galileo system offset (the debug log names each channel it takes over).
+sim_source circle_source "$work/circle"
 for mode in tight ultra; do
   for systems in gps gps,galileo; do
-    run_on_sim "$work/circle" "$work/${mode}_${systems/,/_}" --systems "$systems" --ephemeris-from "$nav" \
-      --mode "$mode" "${imu[@]}" --truth "$work/circle/truth.csv"
+    out="$work/${mode}_${systems/,/_}"
+    "$deepnav" -v run --out "$out" "${circle_source[@]}" --systems "$systems" --ephemeris-from "$nav" \
+      --mode "$mode" "${imu[@]}" --truth "$work/circle/truth.csv" > "$out.log" 2>&1 ||
+      abort "run $mode $systems: $(tail -n 5 "$out.log")"
   done
+  steered_e1=$(grep -cE "^debug: E[0-9]{2}: steered by the navigation filter" "$work/${mode}_gps_galileo.log" || true)
+  if [[ $mode == ultra ]]; then
+    check "ultra GPS+Galileo: the filter steers the E1 channels ($steered_e1 taken over)" "(( steered_e1 >= 4 ))"
+  else
+    check "tight GPS+Galileo: no E1 channel steered at full strength ($steered_e1)" "(( steered_e1 == 0 ))"
+  fi
   most() { awk -F, -v mode="$1" 'NR > 1 && $(NF-1) == mode && $NF > m { m = $NF } END { print m + 0 }' "$2"; }
   gps_rows=$(most "$mode" "$work/${mode}_gps/pvt.csv")
   both_rows=$(most "$mode" "$work/${mode}_gps_galileo/pvt.csv")

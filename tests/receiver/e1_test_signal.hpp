@@ -39,6 +39,8 @@ class E1Signal {
         code_c_(galileo::e1c_code_chips(s_.prn)) {}
 
   const E1SignalSpec& spec() const { return s_; }
+  /// The signal's level from the next block on (a fade, a jammer's onset).
+  void set_cn0_dbhz(double cn0_dbhz) { s_.cn0_dbhz = cn0_dbhz; }
   /// Unwrapped code phase (chips) of the signal arriving at time t.
   double code_chips(double t) const {
     const double k = galileo::kE1CodeRate_cps / galileo::kE1_Hz;  // code Doppler follows the carrier's

@@ -77,13 +77,14 @@ nlohmann::json figure(const std::optional<double>& v) { return v ? nlohmann::jso
 }  // namespace
 
 void JamRecorder::on_epoch(const NavigationEpoch& e) {
-  // Galileo channels by their observables over the interval since the last epoch.
+  // Galileo channels by their observables over the interval since the last epoch (one the
+  // filter steers is observable by its lock criterion, which the timeline then applies).
   const double t = e.receiver.t_s;
   if (last_epoch_t_s_ && t > *last_epoch_t_s_) {
     for (const ChannelObservation& o : e.receiver.observations)
       if (o.system == GnssSystem::galileo)
         tracking.push_back({*last_epoch_t_s_, o.satellite(), ChannelState::tracking, t - *last_epoch_t_s_, o.doppler_hz,
-                            o.cn0_dbhz, std::nullopt});
+                            o.cn0_dbhz, o.aided_lock ? std::optional<bool>(true) : std::nullopt});
   }
   last_epoch_t_s_ = t;
   if (!e.solution.valid) return;

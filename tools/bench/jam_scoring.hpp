@@ -18,7 +18,8 @@ namespace deepnav::bench {
 
 /// One correlator integration of the run (a GPS channel's), or one observation epoch of a
 /// Galileo channel (its E1 channel reports observables only: observable means tracking on
-/// the pilot above the loss threshold, the scalar loss rule's verdict).
+/// the pilot above the loss threshold, the scalar loss rule's verdict, or, while the filter
+/// steers it, a measurement within the last second, the aided lock criterion).
 struct TrackingRow {
   double t_s;  ///< start of the integration (first sample / fs), or of the epoch's interval
   SatelliteId satellite;
