@@ -3,6 +3,18 @@
 #include <cmath>
 
 namespace deepnav::aiding {
+
+IntegrationPower coherent_power(const std::complex<double>& prompt, const std::complex<double>& noise, double end_s,
+                                double integration_s, double noise_s) {
+  IntegrationPower p;
+  p.end_s = end_s;
+  p.prompt_power = std::norm(prompt);
+  p.sum_t_s = integration_s;
+  p.sum_t2_s2 = integration_s * integration_s;
+  p.noise_power = std::norm(noise);
+  p.noise_s = noise_s;
+  return p;
+}
 namespace {
 
 /// The noise density changes slowly (front-end gain): its average spans this many windows.

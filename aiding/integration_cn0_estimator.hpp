@@ -37,6 +37,11 @@ struct IntegrationPower {
   bool data_wiped = false;
 };
 
+/// One coherent integration of `integration_s` ending at `end_s`, its prompt and the noise
+/// correlator's sum over `noise_s`.
+IntegrationPower coherent_power(const std::complex<double>& prompt, const std::complex<double>& noise, double end_s,
+                                double integration_s, double noise_s);
+
 class IntegrationCn0Estimator {
  public:
   explicit IntegrationCn0Estimator(double window_s = 2.0, int min_integrations = 5)

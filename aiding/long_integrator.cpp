@@ -44,14 +44,8 @@ CorrelatorEpoch scaled(const CorrelatorEpoch& e, double s) {
 }  // namespace
 
 IntegrationPower power_of(const CorrelatorEpoch& e, double fs) {
-  IntegrationPower p;
-  p.end_s = static_cast<double>(e.first_sample + e.samples) / fs;
-  p.prompt_power = std::norm(e.prompt);
-  p.sum_t_s = e.integration_s;
-  p.sum_t2_s2 = e.integration_s * e.integration_s;
-  p.noise_power = std::norm(e.noise);
-  p.noise_s = e.noise_samples / fs;
-  return p;
+  return coherent_power(e.prompt, e.noise, static_cast<double>(e.first_sample + e.samples) / fs, e.integration_s,
+                        e.noise_samples / fs);
 }
 
 IntegrationPower power_of(const SteeredIntegration& s, double fs) {

@@ -21,13 +21,8 @@ constexpr double kLockHold_s = 1.0;                  // locked: a measurement wi
 constexpr std::size_t kRecent = 10;                  // integrations that show a sudden change at once
 
 IntegrationPower power_of(const E1CorrelatorEpoch& e, double fs) {
-  IntegrationPower p;
-  p.end_s = static_cast<double>(e.first_sample + e.samples) / fs;
-  p.prompt_power = std::norm(e.prompt);
-  p.sum_t_s = e.integration_s;
-  p.sum_t2_s2 = e.integration_s * e.integration_s;
-  p.noise_power = std::norm(e.noise);
-  p.noise_s = e.noise_samples / fs;
+  IntegrationPower p = coherent_power(e.prompt, e.noise, static_cast<double>(e.first_sample + e.samples) / fs,
+                                      e.integration_s, e.noise_samples / fs);
   // The secondary-wiped pilot has no sign left: its prompt reads the phase error directly.
   p.wiped_prompt = e.prompt;
   p.data_wiped = true;
@@ -69,8 +64,8 @@ E1ChannelDecision SteeredE1Controller::on_epoch(const E1CorrelatorEpoch& e, cons
     engaged = faded || (steered_ && e.cn0_dbhz < cfg_.recovered_above_dbhz);
   }
   const std::optional<double> tt = e1_transmit_time_sow(view.decoder, e);
-  if (!engaged || !can_steer_e1(e.state, tt.has_value(), view.ephemeris != nullptr, view.receiver_clock_set,
-                                offset_known_))
+  if (!engaged ||
+      !can_steer_e1(e.state, tt.has_value(), view.ephemeris != nullptr, view.receiver_clock_set, offset_known_))
     return let_go(view);
   E1ChannelDecision out;
   out.owns_epoch = true;

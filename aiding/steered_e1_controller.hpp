@@ -96,7 +96,7 @@ class SteeredE1Controller final : public E1ChannelController {
     std::complex<double> prompt;
     double code_error_chips = 0.0;
   };
-  std::deque<Recent> recent_;  ///< the latest integrations, newest last
+  std::deque<Recent> recent_;             ///< the latest integrations, newest last
   double phase_correction_cycles_ = 0.0;  ///< pending phase-loop correction for the next command
   std::optional<std::int64_t> last_measurement_end_;
   std::vector<DiscriminatorSample> outbox_;

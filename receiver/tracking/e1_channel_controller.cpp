@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "signals/galileo/galileo_constants.hpp"
 #include "ins/gps_time.hpp"
+#include "signals/galileo/galileo_constants.hpp"
 
 namespace deepnav {
 
@@ -17,9 +17,8 @@ std::optional<double> e1_transmit_time_sow(const InavDecoder& decoder, double co
 }
 
 std::optional<double> e1_transmit_time_sow(const InavDecoder& decoder, const E1CorrelatorEpoch& epoch) {
-  return e1_transmit_time_sow(decoder,
-                              static_cast<double>(epoch.code_period) * galileo::kE1CodeLength_chips +
-                                  epoch.code_phase_chips);
+  return e1_transmit_time_sow(
+      decoder, static_cast<double>(epoch.code_period) * galileo::kE1CodeLength_chips + epoch.code_phase_chips);
 }
 
 }  // namespace deepnav

@@ -6,8 +6,8 @@
 // back to its own loops and loss rule.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -140,12 +140,27 @@ double measured_error_chips(const DiscriminatorSample& d, const SteeredE1Rig& ri
   return (measured - rig.truth_transmit_sow(d.mid_sample)) * galileo::kE1CodeRate_cps;
 }
 
-TEST(SteeredE1Controller, TakesTheChannelOnlyOnceItsReplicaCanBePlaced) {
-  SteeredE1Rig rig(45.0);
+/// A 45 dB-Hz signal, the filter engaged and the Galileo offset known (unless a test says
+/// otherwise before the first track()).
+class SteeredE1ControllerTest : public ::testing::Test {
+ protected:
+  /// The first 3.5 s: pulled in, the first time mark decoded, taken over; its samples dropped.
+  void take_over() {
+    rig.track(3500, controller);
+    ASSERT_TRUE(controller.steered());
+    rig.take_decisions();
+    controller.take_samples();
+  }
+
+  SteeredE1Rig rig{45.0};
   const UltraTightConfig cfg;
-  const Engagement engagement = Engagement::all;
-  bool offset_known = false;
-  SteeredE1Controller controller(cfg, 4.0e6, engagement, offset_known);
+  Engagement engagement = Engagement::all;
+  bool offset_known = true;
+  SteeredE1Controller controller{cfg, 4.0e6, engagement, offset_known};
+};
+
+TEST_F(SteeredE1ControllerTest, TakesTheChannelOnlyOnceItsReplicaCanBePlaced) {
+  offset_known = false;
   // Pulled in and tracking the pilot, the first page with the time decoded: still its own
   // loops while the Galileo system offset is unknown.
   rig.track(3500, controller);
@@ -165,15 +180,8 @@ TEST(SteeredE1Controller, TakesTheChannelOnlyOnceItsReplicaCanBePlaced) {
   EXPECT_FALSE(rig.loss_detection());
 }
 
-TEST(SteeredE1Controller, SamplesMeasureTheSignalAndTheLoopHoldsItsPhase) {
-  SteeredE1Rig rig(45.0);
-  const UltraTightConfig cfg;
-  const Engagement engagement = Engagement::all;
-  const bool offset_known = true;
-  SteeredE1Controller controller(cfg, 4.0e6, engagement, offset_known);
-  rig.track(3500, controller);
-  ASSERT_TRUE(controller.steered());
-  controller.take_samples();
+TEST_F(SteeredE1ControllerTest, SamplesMeasureTheSignalAndTheLoopHoldsItsPhase) {
+  take_over();
   rig.track(2000, controller);
   const std::vector<DiscriminatorSample> samples = controller.take_samples();
   ASSERT_GE(samples.size(), 90u);  // 20 ms integrations
@@ -199,15 +207,8 @@ TEST(SteeredE1Controller, SamplesMeasureTheSignalAndTheLoopHoldsItsPhase) {
   EXPECT_NEAR(decisions.back().lock->cn0_dbhz, 45.0, 2.0);
 }
 
-TEST(SteeredE1Controller, AWeakSignalIsIntegratedLongerOnThePilotAndStillMeasured) {
-  SteeredE1Rig rig(45.0);
-  const UltraTightConfig cfg;
-  const Engagement engagement = Engagement::all;
-  const bool offset_known = true;
-  SteeredE1Controller controller(cfg, 4.0e6, engagement, offset_known);
-  rig.track(3500, controller);
-  ASSERT_TRUE(controller.steered());
-  controller.take_samples();
+TEST_F(SteeredE1ControllerTest, AWeakSignalIsIntegratedLongerOnThePilotAndStillMeasured) {
+  take_over();
   // 24 dB-Hz: below the channel's own loss threshold (25 dB-Hz for a second).
   rig.set_cn0_dbhz(24.0);
   rig.track(1000, controller);
@@ -237,14 +238,8 @@ TEST(SteeredE1Controller, AWeakSignalIsIntegratedLongerOnThePilotAndStillMeasure
   EXPECT_LT(std::sqrt(sum2 / measurements), 0.06);
 }
 
-TEST(SteeredE1Controller, AReleaseGivesTheChannelBackToItsOwnLoopsAndLossRule) {
-  SteeredE1Rig rig(45.0);
-  const UltraTightConfig cfg;
-  Engagement engagement = Engagement::all;
-  const bool offset_known = true;
-  SteeredE1Controller controller(cfg, 4.0e6, engagement, offset_known);
-  rig.track(3500, controller);
-  ASSERT_TRUE(controller.steered());
+TEST_F(SteeredE1ControllerTest, AReleaseGivesTheChannelBackToItsOwnLoopsAndLossRule) {
+  take_over();
   ASSERT_FALSE(rig.loss_detection());
   controller.publish_release();
   engagement = Engagement::none;
@@ -252,8 +247,6 @@ TEST(SteeredE1Controller, AReleaseGivesTheChannelBackToItsOwnLoopsAndLossRule) {
   EXPECT_EQ(d.loss_detection, std::optional<bool>(true));
   EXPECT_EQ(d.coherent_periods, std::optional<int>(kCoherentPeriods));
   EXPECT_TRUE(rig.loss_detection());
-  rig.take_decisions();
-  controller.take_samples();
   rig.track(200, controller);
   EXPECT_FALSE(controller.steered());
   EXPECT_TRUE(rig.take_decisions().empty());
