@@ -58,11 +58,11 @@ E1ChannelDecision SteeredE1Controller::let_go(const E1ChannelView& view) {
 
 E1ChannelDecision SteeredE1Controller::on_epoch(const E1CorrelatorEpoch& e, const E1ChannelView& view) {
   const std::int64_t end = e.first_sample + e.samples;
-  bool engaged = engagement_ == Engagement::all;
-  if (engagement_ == Engagement::faded_only) {
-    const bool faded = e.cn0_dbhz > 0.0 && e.cn0_dbhz < cfg_.faded_below_dbhz;
-    engaged = faded || (steered_ && e.cn0_dbhz < cfg_.recovered_above_dbhz);
-  }
+  // Ultra-tight only. Steering faded E1 channels through outages in the other modes, as GPS
+  // ones are, left a suburban loose-coupling run of the Monte Carlo 26 m off (3.4 m with
+  // the E1 channels on their own loops): not measured, such a channel's replica is the
+  // filter's own prediction.
+  const bool engaged = engagement_ == Engagement::all;
   const std::optional<double> tt = e1_transmit_time_sow(view.decoder, e);
   if (!engaged ||
       !can_steer_e1(e.state, tt.has_value(), view.ephemeris != nullptr, view.receiver_clock_set, offset_known_))

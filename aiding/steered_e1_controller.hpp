@@ -27,7 +27,8 @@
 // lock criterion itself), and their prompts' mean I over mean |Q| must show phase lock
 // before a rate is taken.
 //
-// One controller per SVID for the receiver's life, as for GPS.
+// Only ultra-tight engages it (Engagement::all): in loose and tight mode the E1 channels keep
+// their own loops through fades. One controller per SVID for the receiver's life, as for GPS.
 #include <complex>
 #include <cstdint>
 #include <deque>

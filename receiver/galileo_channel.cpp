@@ -13,6 +13,7 @@ GalileoChannel::GalileoChannel(const E1TrackingConfig& tracking, const E1LoopSet
 
 void GalileoChannel::end() {
   if (steered_) steered_->channel_ended();
+  steered_now_ = false;
   aided_lock_.reset();
 }
 
@@ -23,7 +24,10 @@ E1ChannelView GalileoChannel::view(const galileo::GalileoEphemeris* ephemeris, b
 void GalileoChannel::carry_out(const E1ChannelDecision& d) {
   if (d.loss_detection) {
     tracking_.set_loss_detection(*d.loss_detection);
-    if (*d.loss_detection) aided_lock_.reset();  // given back: the channel's own criterion again
+    if (*d.loss_detection) {  // given back: the channel's own criterion again
+      steered_now_ = false;
+      aided_lock_.reset();
+    }
   }
   if (d.coherent_periods) tracking_.set_coherent_periods(*d.coherent_periods);
   if (d.command) tracking_.apply(*d.command);
@@ -42,10 +46,11 @@ void GalileoChannel::track(const SampleBlock& block, const galileo::GalileoEphem
       outside = steered_->on_epoch(e, view(ephemeris, clock_set));
       carry_out(outside);
     }
+    steered_now_ = outside.owns_epoch;
     if (outside.owns_epoch) {
       // Ready to take the channel back where the filter leaves it.
       loops_.follow(e);
-      if (outside.lock) aided_lock_ = outside.lock;
+      aided_lock_ = outside.lock;
     } else {
       aided_lock_.reset();
       // Each integration's command acts from the very next sample.
@@ -65,7 +70,8 @@ void GalileoChannel::track(const SampleBlock& block, const galileo::GalileoEphem
 
 bool GalileoChannel::observable(double lost_cn0_dbhz) const {
   if (tracking_.state() != E1ChannelState::tracking || !decoder_.navigation().time_mark()) return false;
-  return aided_lock_ ? aided_lock_->locked : tracking_.cn0_dbhz() >= lost_cn0_dbhz;
+  if (steered_now_) return aided_lock_ && aided_lock_->locked;
+  return tracking_.cn0_dbhz() >= lost_cn0_dbhz;
 }
 
 std::optional<double> GalileoChannel::transmit_time_sow(std::int64_t sample) const {

@@ -43,7 +43,9 @@ class GalileoChannel {
   void collect_published(const galileo::GalileoEphemeris* ephemeris, bool clock_set);
   /// Whether its observables may be formed: tracking on the wiped pilot, a GST time mark
   /// decoded, and a signal behind it: while an outside filter steers the channel its lock
-  /// criterion, otherwise the C/N0 at or above `lost_cn0_dbhz`.
+  /// criterion (none when it steers the channel through a fade without measuring it: the
+  /// replica is then the filter's own prediction, and a fix from it would echo the filter),
+  /// otherwise the C/N0 at or above `lost_cn0_dbhz`.
   bool observable(double lost_cn0_dbhz) const;
   /// The owner releases the channel: the steering controller lets it go (between blocks).
   void end();
@@ -72,7 +74,8 @@ class GalileoChannel {
   E1TrackingChannel tracking_;
   E1LoopController loops_;
   E1ChannelController* steered_;
-  std::optional<SignalLockReport> aided_lock_;  ///< the steering controller's latest verdict, while it steers
+  bool steered_now_ = false;                    ///< the outside controller took the latest integration
+  std::optional<SignalLockReport> aided_lock_;  ///< its latest verdict, while it steers and judges
   InavDecoder decoder_;
   std::deque<DopplerSpan> recent_;  ///< the latest integrations, newest last
   double tracked_s_ = 0.0;
