@@ -91,8 +91,8 @@ E1ChannelDecision SteeredE1Controller::on_epoch(const E1CorrelatorEpoch& e, cons
   const double reference_chips = code_sigma_chips(cfg_.min_cn0_dbhz, kReferenceIntegration_s, e.spacing_chips);
   const std::optional<double> recent_rms = recent_code_rms_chips();
   d.code_sigma_floor_chips = recent_rms.value_or(0.0);
-  d.measurement = cn0_.ready() && cn0_.signal_detected(kDetectionSigmas) && recent_rms &&
-                  *recent_rms <= reference_chips &&
+  // A measurement only once the recent integrations floor its sigma.
+  d.measurement = cn0_.ready() && cn0_.signal_detected(kDetectionSigmas) && recent_rms.has_value() &&
                   e1_code_sigma_chips(cn0, e.integration_s, e.spacing_chips) <= reference_chips;
   if (d.measurement) last_measurement_end_ = end;
   d.ephemeris = *view.ephemeris;

@@ -23,9 +23,9 @@
 // A sudden change (a jammer switched on) reaches that C/N0 only after seconds: its window is
 // 2 s and its noise reference ten times longer, so the estimate still reads the signal as it
 // was while the discriminators are already noise. The last ten integrations say it at once:
-// their code errors' RMS is a floor under the pseudorange's sigma (and must pass the aided
-// lock criterion itself), and their prompts' mean I over mean |Q| must show phase lock
-// before a rate is taken.
+// their code errors' RMS is a floor under the pseudorange's sigma (no measurement before
+// there are ten), and their prompts' mean I over mean |Q| must show phase lock before a
+// rate is taken.
 //
 // Only ultra-tight engages it (Engagement::all): in loose and tight mode the E1 channels keep
 // their own loops through fades. One controller per SVID for the receiver's life, as for GPS.
