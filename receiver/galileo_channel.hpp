@@ -47,9 +47,9 @@ class GalileoChannel {
   /// replica is then the filter's own prediction, and a fix from it would echo the filter),
   /// otherwise the C/N0 at or above `lost_cn0_dbhz`.
   bool observable(double lost_cn0_dbhz) const;
-  /// The owner releases the channel: the steering controller lets it go (between blocks).
+  /// The owner releases the channel: its outside controller lets it go (between blocks).
   void end();
-  /// The C/N0 the channel reports: the steering controller's estimate while it has one.
+  /// The C/N0 the channel reports: its outside controller's estimate while that one has one.
   double cn0_dbhz() const;
   /// GST seconds of week of the prompt replica at `sample`, once a time mark is decoded.
   std::optional<double> transmit_time_sow(std::int64_t sample) const;

@@ -4,7 +4,7 @@
 # and fixes; an assisted start fixes from GPS and Galileo together, better than from
 # Galileo alone; obs.rnx and nav.rnx carry the Galileo satellites; a rate below 4 Msps is
 # refused with Galileo, naming why; loose coupling takes the two-system fix, tight and
-# ultra-tight coupling both systems' measurements (ultra-tight steering the E1 channels too).
+# ultra-tight coupling both systems' measurements (ultra-tight steers the E1 channels too).
 #   usage: run_galileo.sh <deepnav binary> <source dir>
 source "$(dirname "$0")/lib/harness.sh" "$@"
 
