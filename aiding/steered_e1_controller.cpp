@@ -43,29 +43,36 @@ SteeredE1Controller::SteeredE1Controller(const UltraTightConfig& config, double 
       offset_known_(offset_known),
       rate_window_(sample_rate_hz, kRateWindow_s) {}
 
+int SteeredE1Controller::own_coherent_periods(const E1ChannelView& view) {
+  return view.channel.config().coherent_ms_after_sync / kPeriodMs;
+}
+
+void SteeredE1Controller::forget_signal() {
+  long_mode_ = false;
+  rate_window_.reset();  // a window must lie inside one steered stretch
+  recent_.clear();
+}
+
 E1ChannelDecision SteeredE1Controller::let_go(const E1ChannelView& view) {
   E1ChannelDecision out;
   if (steered_) {
     steered_ = false;
     out.loss_detection = true;
-    out.coherent_periods = view.channel.config().coherent_ms_after_sync / kPeriodMs;
+    out.coherent_periods = own_coherent_periods(view);
   }
-  long_mode_ = false;
-  rate_window_.reset();  // a window must lie inside one steered stretch
-  recent_.clear();
+  forget_signal();
   return out;
 }
 
 E1ChannelDecision SteeredE1Controller::on_epoch(const E1CorrelatorEpoch& e, const E1ChannelView& view) {
   const std::int64_t end = e.first_sample + e.samples;
-  // Ultra-tight only. Steering faded E1 channels through outages in the other modes, as GPS
+  // Ultra-tight only. Faded E1 channels held through outages in the other modes, as GPS
   // ones are, left a suburban loose-coupling run of the Monte Carlo 26 m off (3.4 m with
   // the E1 channels on their own loops): not measured, such a channel's replica is the
   // filter's own prediction.
-  const bool engaged = engagement_ == Engagement::all;
+  if (engagement_ != Engagement::all) return let_go(view);
   const std::optional<double> tt = e1_transmit_time_sow(view.decoder, e);
-  if (!engaged ||
-      !can_steer_e1(e.state, tt.has_value(), view.ephemeris != nullptr, view.receiver_clock_set, offset_known_))
+  if (!can_steer_e1(e.state, tt.has_value(), view.ephemeris != nullptr, view.receiver_clock_set, offset_known_))
     return let_go(view);
   E1ChannelDecision out;
   out.owns_epoch = true;
@@ -97,7 +104,7 @@ E1ChannelDecision SteeredE1Controller::on_epoch(const E1CorrelatorEpoch& e, cons
   if (d.measurement) last_measurement_end_ = end;
   d.ephemeris = *view.ephemeris;
   outbox_.push_back(std::move(d));
-  if (engagement_ == Engagement::all) out.lock = lock_report(end, cn0);
+  out.lock = lock_report(end, cn0);
   return out;
 }
 
@@ -184,7 +191,7 @@ E1ChannelDecision SteeredE1Controller::between_blocks(const E1ChannelView& view)
   out.command = inbox_command_;
   if (inbox_release_) {
     out.loss_detection = true;
-    out.coherent_periods = view.channel.config().coherent_ms_after_sync / kPeriodMs;
+    out.coherent_periods = own_coherent_periods(view);
   }
   inbox_command_.reset();
   inbox_release_ = false;
@@ -209,18 +216,14 @@ void SteeredE1Controller::publish(const NcoCommand& command) {
 void SteeredE1Controller::publish_release() {
   steered_ = false;
   inbox_release_ = true;
-  long_mode_ = false;
-  rate_window_.reset();
-  recent_.clear();
+  forget_signal();
 }
 
 void SteeredE1Controller::release() {
   if (steered_) inbox_release_ = true;
   steered_ = false;
   outbox_.clear();
-  long_mode_ = false;
-  rate_window_.reset();
-  recent_.clear();
+  forget_signal();
 }
 
 }  // namespace deepnav::aiding

@@ -73,8 +73,13 @@ class SteeredE1Controller final : public E1ChannelController {
   bool long_integration() const { return long_mode_; }
 
  private:
-  /// Stops steering (the channel's own loops and loss rule again); what the decision says.
+  /// Gives the channel back (its own loops and loss rule again); what the decision says.
   E1ChannelDecision let_go(const E1ChannelView& view);
+  /// The channel's own pilot integration length (code periods), to return it to.
+  static int own_coherent_periods(const E1ChannelView& view);
+  /// What the integrations so far said (length chosen, phase window, recent scatter) no
+  /// longer holds: the channel is given back.
+  void forget_signal();
   /// The integration length for the C/N0 so far: the periods to ask for when it changes.
   std::optional<int> choose_length(const E1CorrelatorEpoch& e);
   DiscriminatorSample sample_of(const E1CorrelatorEpoch& e, double transmit_sow, double cn0_dbhz) const;

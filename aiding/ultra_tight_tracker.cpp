@@ -199,11 +199,13 @@ KalmanUpdate UltraTightTracker::update_and_steer(AidedNavigator& nav, const Bloc
   if (!ms.empty()) result = nav.update_ranges(ms, innovations, watched);
   for (const ChannelStatus& ch : block.channels) {
     SteeredChannelController& controller = *controller_for(ch.prn);
-    if (controller.steered()) steer(ch, controller, nav, block);
+    if (controller.steered() && ch.ephemeris)
+      steer({GnssSystem::gps, ch.prn}, ch.replica_transmit_sow, *ch.ephemeris, controller, nav, block);
   }
   for (const E1ChannelStatus& ch : block.galileo_channels) {
     SteeredE1Controller& controller = *e1_controller_for(ch.svid);
-    if (controller.steered()) steer(ch, controller, nav, block);
+    if (controller.steered() && ch.ephemeris)
+      steer({GnssSystem::galileo, ch.svid}, ch.replica_transmit_sow, *ch.ephemeris, controller, nav, block);
   }
   return result;
 }
@@ -266,25 +268,14 @@ std::optional<NcoCommand> UltraTightTracker::command_for(const SatelliteId& sat,
   return cmd;
 }
 
-void UltraTightTracker::steer(const ChannelStatus& ch, SteeredChannelController& controller, const AidedNavigator& nav,
+template <class Controller>
+void UltraTightTracker::steer(const SatelliteId& sat, const std::optional<double>& replica_sow,
+                              const BroadcastEphemeris& eph, Controller& controller, const AidedNavigator& nav,
                               const BlockSnapshot& block) {
-  if (!ch.replica_transmit_sow || !ch.ephemeris) return;
-  const SatelliteId sat{GnssSystem::gps, ch.prn};
-  const std::optional<SamplePrediction> predicted = predict_at(*ch.ephemeris, block.end_sample, nav, block);
+  if (!replica_sow) return;
+  const std::optional<SamplePrediction> predicted = predict_at(eph, block.end_sample, nav, block);
   if (!predicted) return;
-  if (const std::optional<NcoCommand> cmd = command_for(sat, *predicted, *ch.replica_transmit_sow, nav))
-    controller.publish(*cmd);
-  else controller.publish_release();
-}
-
-void UltraTightTracker::steer(const E1ChannelStatus& ch, SteeredE1Controller& controller, const AidedNavigator& nav,
-                              const BlockSnapshot& block) {
-  if (!ch.replica_transmit_sow || !ch.ephemeris) return;
-  const SatelliteId sat{GnssSystem::galileo, ch.svid};
-  const std::optional<SamplePrediction> predicted = predict_at(*ch.ephemeris, block.end_sample, nav, block);
-  if (!predicted) return;
-  if (const std::optional<NcoCommand> cmd = command_for(sat, *predicted, *ch.replica_transmit_sow, nav))
-    controller.publish(*cmd);
+  if (const std::optional<NcoCommand> cmd = command_for(sat, *predicted, *replica_sow, nav)) controller.publish(*cmd);
   else controller.publish_release();
 }
 

@@ -119,10 +119,11 @@ class UltraTightTracker {
   /// when they disagree beyond max_code_correction_chips (logged once per episode).
   std::optional<NcoCommand> command_for(const SatelliteId& sat, const SamplePrediction& predicted, double replica_sow,
                                         const AidedNavigator& nav);
-  void steer(const ChannelStatus& channel, SteeredChannelController& controller, const AidedNavigator& nav,
-             const BlockSnapshot& block);
-  void steer(const E1ChannelStatus& channel, SteeredE1Controller& controller, const AidedNavigator& nav,
-             const BlockSnapshot& block);
+  /// Publishes that command into a steered channel's controller (GPS or E1), or gives the
+  /// channel back when there is a prediction but they disagree.
+  template <class Controller>
+  void steer(const SatelliteId& sat, const std::optional<double>& replica_sow, const BroadcastEphemeris& eph,
+             Controller& controller, const AidedNavigator& nav, const BlockSnapshot& block);
   UltraTightConfig cfg_;
   double fs_;
   RangeErrorModel range_errors_;
